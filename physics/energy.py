@@ -1,0 +1,69 @@
+"""Energy of the masses, and the work done on them by non-conservative forces.
+
+    K = Σ |p|² / 2m                       kinetic energy, J
+    U = Σ over conservative forces of U   spring ½k(|L| − L0)² and gravity m g h, J
+    E = K + U                             mechanical energy, J
+    P_nc = Σ F_nc · v                     power of damping, drag and driving, W
+    W_nc(t) = ∫ P_nc dt                   their work since the start, J
+
+The energy principle says E(t) − W_nc(t) stays equal to E(0): damping and drag only take energy
+away (P_nc ≤ 0), a driving force may add it. A numerical run keeps E − W_nc constant only to the
+accuracy of its integrator, which makes it a good check on the integrator.
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from .state import State, velocity
+
+
+def kinetic(state: State) -> np.ndarray:
+    """K = |p|² / 2m for each mass, J."""
+    return np.sum(state.p * state.p, axis=-1) / (2.0 * state.m)
+
+
+def potential(state: State, forces) -> np.ndarray:
+    """U of every conservative force, for each mass, J."""
+    U = np.zeros(state.count)
+    for force in forces:
+        if force.conservative:
+            U += force.potential_energy(state.r, state.m)
+    return U
+
+
+def nonconservative_power(state: State, forces) -> np.ndarray:
+    """P_nc = F_nc · v for each mass: the rate at which damping, drag and driving do work, W."""
+    v = velocity(state.p, state.m)
+    F_nc = np.zeros_like(state.r)
+    for force in forces:
+        if not force.conservative:
+            F_nc += force(state.t, state.r, v, state.m)
+    return np.sum(F_nc * v, axis=-1)
+
+
+class WorkMeter:
+    """Accumulates W_nc = ∫ P_nc dt step by step with the trapezoid rule.
+
+    Call :meth:`advance` with each new state; :attr:`work` is W_nc per mass, J. Reset by making a
+    new meter.
+    """
+
+    def __init__(self, state: State, forces):
+        self.forces = forces
+        self._power = nonconservative_power(state, forces)
+        self._t = state.t
+        self.work = np.zeros(state.count)
+
+    def advance(self, state: State) -> np.ndarray:
+        power = nonconservative_power(state, self.forces)
+        self.work = self.work + 0.5 * (power + self._power) * (state.t - self._t)
+        self._power, self._t = power, state.t
+        return self.work
+
+
+def report(state: State, forces, work) -> dict:
+    """K, U, E and E − W_nc summed over all masses, J."""
+    K = float(np.sum(kinetic(state)))
+    U = float(np.sum(potential(state, forces)))
+    W = float(np.sum(work))
+    return {"K": K, "U": U, "E": K + U, "W_nc": W, "E_minus_W_nc": K + U - W}

@@ -1,0 +1,199 @@
+"""Forces on N point masses. Each is a pure function of (t, r, v, m) returning an (N, 3) array, in N.
+
+A force is a small frozen object holding its parameters; calling it gives the force on every mass:
+
+    F = force(t, r, v, m)        t in s, r in m (N, 3), v in m/s (N, 3), m in kg (N,)
+
+The net force is the sum over a list of forces (:func:`net_force`). Conservative forces also give
+their potential energy per mass; the others are counted in the non-conservative work W_nc
+(see physics/energy.py). Parameters may be one number for all masses or one value per mass
+(an (N,) array, or (N, 3) for anchors), which is how a batch of oscillators is stepped at once.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+
+def _per_mass(value) -> np.ndarray | float:
+    """A scalar parameter, or an (N,) array reshaped to (N, 1) so it multiplies (N, 3) rows."""
+    array = np.asarray(value, dtype=float)
+    return float(array) if array.ndim == 0 else array.reshape(-1, 1)
+
+
+def _unit(vector) -> np.ndarray:
+    vector = np.asarray(vector, dtype=float)
+    length = np.linalg.norm(vector)
+    if length == 0:
+        raise ValueError("a direction must not be the zero vector")
+    return vector / length
+
+
+@dataclass(frozen=True, eq=False)
+class Spring:
+    """Hooke's law for a spring from a fixed anchor to each mass, in 3-D.
+
+    F = −k (|L| − L0) L̂,  with L = r − anchor
+    k in N/m (stiffness), L0 in m (relaxed length), anchor in m. U = ½ k (|L| − L0)², in J.
+    """
+
+    k: object = 0.0
+    L0: object = 0.0
+    anchor: object = (0.0, 0.0, 0.0)
+    conservative = True
+    uses_velocity = False
+
+    def __post_init__(self):
+        object.__setattr__(self, "k", _per_mass(self.k))
+        object.__setattr__(self, "L0", _per_mass(self.L0))
+        object.__setattr__(self, "anchor", np.asarray(self.anchor, dtype=float))
+
+    def stretch(self, r: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """L = r − anchor and its length |L| (shape (N, 1))."""
+        L = r - self.anchor
+        return L, np.sqrt(np.sum(L * L, axis=-1, keepdims=True))
+
+    def __call__(self, t, r, v, m):
+        k, L0 = self.k, self.L0
+        L, length = self.stretch(r)
+        # F = −k(|L| − L0) L̂ = −k (1 − L0/|L|) L; at |L| = 0 the direction is undefined, so F = 0 there.
+        if np.all(L0 == 0):
+            return -k * L
+        safe = np.where(length > 0, length, 1.0)
+        return np.where(length > 0, -k * (1.0 - L0 / safe) * L, 0.0)
+
+    def potential_energy(self, r, m):
+        """U = ½ k (|L| − L0)² for each mass, J."""
+        _, length = self.stretch(r)
+        return (0.5 * self.k * (length - self.L0) ** 2)[:, 0]
+
+
+@dataclass(frozen=True, eq=False)
+class SpringBetween:
+    """Hooke's law for a spring joining mass i to mass j (for chains).
+
+    F_i = −k (|L| − L0) L̂,  F_j = −F_i,  with L = r_i − r_j
+    k in N/m, L0 in m. U = ½ k (|L| − L0)², in J, shared half and half between the two masses.
+    """
+
+    k: float
+    L0: float
+    i: int
+    j: int
+    conservative = True
+    uses_velocity = False
+
+    def _stretch(self, r):
+        L = r[self.i] - r[self.j]
+        return L, float(np.sqrt(L @ L))
+
+    def __call__(self, t, r, v, m):
+        L, length = self._stretch(r)
+        pull = -self.k * (length - self.L0) * L / length if length > 0 else np.zeros(3)
+        F = np.zeros_like(r)
+        F[self.i] += pull
+        F[self.j] -= pull
+        return F
+
+    def potential_energy(self, r, m):
+        _, length = self._stretch(r)
+        U = np.zeros(r.shape[0])
+        U[[self.i, self.j]] += 0.25 * self.k * (length - self.L0) ** 2
+        return U
+
+
+@dataclass(frozen=True, eq=False)
+class Gravity:
+    """Uniform gravity near the Earth's surface.
+
+    F = m g ĝ,  with g the magnitude in m/s² (9.8 on Earth) acting along ĝ = −y by default.
+    U = m g h with h = −ĝ·r the height, in J.
+    """
+
+    g: float = 9.8
+    direction: object = (0.0, -1.0, 0.0)
+    conservative = True
+    uses_velocity = False
+
+    def __post_init__(self):
+        object.__setattr__(self, "direction", _unit(self.direction))
+
+    def __call__(self, t, r, v, m):
+        return m[:, None] * (self.g * self.direction)
+
+    def potential_energy(self, r, m):
+        """U = m g h, with h measured up from the origin, J."""
+        return -m * self.g * (r @ self.direction)
+
+
+@dataclass(frozen=True, eq=False)
+class LinearDamping:
+    """Linear (viscous) damping.
+
+    F = −b v,  b in kg/s (N per m/s). Always opposite v; it removes energy at the rate b|v|².
+    """
+
+    b: object = 0.0
+    conservative = False
+    uses_velocity = True
+
+    def __post_init__(self):
+        object.__setattr__(self, "b", _per_mass(self.b))
+
+    def __call__(self, t, r, v, m):
+        return -self.b * v
+
+
+@dataclass(frozen=True, eq=False)
+class QuadraticDrag:
+    """Quadratic air drag.
+
+    F = −½ C A ρ |v| v,  with C the drag coefficient (no unit), A the cross-section area in m²
+    and ρ the air density in kg/m³. Always opposite v, zero at rest, growing as speed squared.
+    """
+
+    C: object = 0.0
+    A: object = 0.0
+    rho: object = 0.0
+    conservative = False
+    uses_velocity = True
+
+    def __post_init__(self):
+        for name in ("C", "A", "rho"):
+            object.__setattr__(self, name, _per_mass(getattr(self, name)))
+
+    def __call__(self, t, r, v, m):
+        speed = np.sqrt(np.sum(v * v, axis=-1, keepdims=True))
+        return -0.5 * self.C * self.A * self.rho * speed * v
+
+
+@dataclass(frozen=True, eq=False)
+class Driving:
+    """A sinusoidal driving force.
+
+    F = F0 cos(ω t) â,  F0 in N (amplitude), ω in rad/s (angular frequency, not Hz: f = ω / 2π),
+    â a unit vector (x by default). F0 and ω may be per mass, to sweep a batch of frequencies.
+    """
+
+    F0: object = 0.0
+    omega: object = 0.0
+    axis: object = (1.0, 0.0, 0.0)
+    conservative = False
+    uses_velocity = False
+
+    def __post_init__(self):
+        object.__setattr__(self, "F0", _per_mass(self.F0))
+        object.__setattr__(self, "omega", _per_mass(self.omega))
+        object.__setattr__(self, "axis", _unit(self.axis))
+
+    def __call__(self, t, r, v, m):
+        return np.broadcast_to(self.F0 * np.cos(self.omega * t) * self.axis, r.shape)
+
+
+def net_force(forces, t, r, v, m) -> np.ndarray:
+    """F_net = the sum of every force in the list, shape (N, 3), N."""
+    F_net = np.zeros_like(r)
+    for force in forces:
+        F_net += force(t, r, v, m)
+    return F_net

@@ -1,0 +1,119 @@
+"""Integrators: pure functions (state, forces, dt) -> new state, chosen by name from INTEGRATORS.
+
+Every method advances time by one fixed step Δt. Velocity always comes from momentum,
+v = p / m (physics/state.py). F(t, r, v) below means the net force of the list of forces.
+"""
+from __future__ import annotations
+
+from .forces import net_force
+from .state import State, velocity
+
+
+def euler_cromer(state: State, forces, dt: float) -> State:
+    """The page's momentum update (Euler-Cromer, semi-implicit Euler). The default.
+
+        F_net = F(t, r_i, v_i)
+        p_f = p_i + F_net Δt
+        v_f = p_f / m
+        r_f = r_i + v_f Δt          (v_avg ≈ v_f, as Matter & Interactions teaches)
+
+    First order. On an undamped spring its energy stays bounded (it is symplectic), as long as
+    ω Δt < 2 with ω = √(k/m); beyond that the motion grows without bound.
+    """
+    t, r, p, m = state.t, state.r, state.p, state.m
+    F_net = net_force(forces, t, r, velocity(p, m), m)
+    p_f = p + F_net * dt
+    v_f = velocity(p_f, m)
+    r_f = r + v_f * dt
+    return State(t=t + dt, r=r_f, p=p_f, m=m)
+
+
+def euler(state: State, forces, dt: float) -> State:
+    """Forward (explicit) Euler: the position moves with the OLD velocity.
+
+        F_net = F(t, r_i, v_i)
+        r_f = r_i + v_i Δt
+        p_f = p_i + F_net Δt
+
+    First order. Unstable on a spring for every Δt: each step multiplies the energy by about
+    1 + (ω Δt)², so the amplitude always grows. Kept to show why the page uses v_f instead.
+    """
+    t, r, p, m = state.t, state.r, state.p, state.m
+    v_i = velocity(p, m)
+    F_net = net_force(forces, t, r, v_i, m)
+    return State(t=t + dt, r=r + v_i * dt, p=p + F_net * dt, m=m)
+
+
+def verlet(state: State, forces, dt: float) -> State:
+    """Velocity Verlet (leapfrog in kick-drift-kick form).
+
+        p_½ = p_i + F(t, r_i, v_i) Δt/2
+        r_f = r_i + (p_½ / m) Δt
+        p_f = p_½ + F(t + Δt, r_f, v_f) Δt/2
+
+    Second order and symplectic for forces of position alone, so the energy of an undamped spring
+    stays bounded (for ω Δt < 2). Velocity-dependent forces (damping, drag) need v_f before it is
+    known; we estimate it with one explicit half kick, v_f ≈ (p_½ + F(t + Δt, r_f, v_½) Δt/2) / m,
+    which keeps the method second order at the cost of one extra force evaluation. Without
+    velocity-dependent forces that extra evaluation is skipped.
+    """
+    t, r, p, m = state.t, state.r, state.p, state.m
+    half = 0.5 * dt
+    p_half = p + net_force(forces, t, r, velocity(p, m), m) * half
+    v_half = velocity(p_half, m)
+    r_f = r + v_half * dt
+    v_guess = v_half
+    if any(force.uses_velocity for force in forces):
+        v_guess = velocity(p_half + net_force(forces, t + dt, r_f, v_half, m) * half, m)
+    p_f = p_half + net_force(forces, t + dt, r_f, v_guess, m) * half
+    return State(t=t + dt, r=r_f, p=p_f, m=m)
+
+
+def rk4(state: State, forces, dt: float) -> State:
+    """Classical fourth-order Runge-Kutta on (r, p), with r' = p/m and p' = F(t, r, p/m).
+
+        k1 = f(t,        y)
+        k2 = f(t + Δt/2, y + k1 Δt/2)
+        k3 = f(t + Δt/2, y + k2 Δt/2)
+        k4 = f(t + Δt,   y + k3 Δt)
+        y_f = y + (k1 + 2 k2 + 2 k3 + k4) Δt/6
+
+    Fourth order and very accurate per step, but not symplectic: over very long undamped runs its
+    energy drifts slowly down. Four force evaluations per step.
+    """
+    t, r, p, m = state.t, state.r, state.p, state.m
+
+    def slopes(t_, r_, p_):
+        v_ = velocity(p_, m)
+        return v_, net_force(forces, t_, r_, v_, m)
+
+    half = 0.5 * dt
+    dr1, dp1 = slopes(t, r, p)
+    dr2, dp2 = slopes(t + half, r + dr1 * half, p + dp1 * half)
+    dr3, dp3 = slopes(t + half, r + dr2 * half, p + dp2 * half)
+    dr4, dp4 = slopes(t + dt, r + dr3 * dt, p + dp3 * dt)
+    sixth = dt / 6.0
+    return State(
+        t=t + dt,
+        r=r + (dr1 + 2 * dr2 + 2 * dr3 + dr4) * sixth,
+        p=p + (dp1 + 2 * dp2 + 2 * dp3 + dp4) * sixth,
+        m=m,
+    )
+
+
+INTEGRATORS = {
+    "euler-cromer": euler_cromer,
+    "euler": euler,
+    "verlet": verlet,
+    "rk4": rk4,
+}
+DEFAULT_INTEGRATOR = "euler-cromer"
+
+# ω Δt above which each method's motion on an undamped spring grows without bound
+# (None: unstable at every Δt). From the amplification factor of x'' = −ω² x.
+STABILITY_LIMIT_OMEGA_DT = {
+    "euler-cromer": 2.0,
+    "euler": None,
+    "verlet": 2.0,
+    "rk4": 2.0 * 2.0 ** 0.5,
+}

@@ -1,0 +1,141 @@
+"""Running a model forward: many fixed steps of Δt, with a guard against numerical blow-up.
+
+A run is the page's loop: repeat the chosen integrator's step until the question time. It also
+watches for blow-up, which an explicit method hits when Δt is too large for the spring
+(ω Δt > 2 for Euler-Cromer, with ω = √(k/m)), so that a run never returns NaN as an answer.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from .energy import WorkMeter, report
+from .forces import Spring
+from .integrators import INTEGRATORS, STABILITY_LIMIT_OMEGA_DT
+from .state import State
+
+
+class BlowUpError(RuntimeError):
+    """The state became non-finite or grew without bound: Δt is too large for this method."""
+
+
+def fastest_angular_frequency(forces, m) -> float:
+    """ω = √(k/m), the largest over springs and masses, rad/s (0 without springs)."""
+    omegas = [np.sqrt(np.max(np.broadcast_to(f.k, (len(m), 1))[:, 0] / m))
+              for f in forces if isinstance(f, Spring)]
+    return float(max(omegas, default=0.0))
+
+
+def stability_advice(integrator, dt: float, omega: float) -> str:
+    """One sentence naming Δt and the stability limit of the method on this spring."""
+    if not isinstance(integrator, str):  # several methods side by side: the strictest one
+        integrator = min(integrator, key=lambda name: STABILITY_LIMIT_OMEGA_DT[name] or 0.0)
+    limit = STABILITY_LIMIT_OMEGA_DT[integrator]
+    if omega == 0:
+        return f"dt = {dt:g} s"
+    if limit is None:
+        return (f"dt = {dt:g} s; {integrator} is unstable on a spring at every dt "
+                f"(ω = √(k/m) = {omega:.4g} rad/s): use euler-cromer, verlet or rk4")
+    return (f"dt = {dt:g} s, but {integrator} is stable on this spring only for ω·dt < {limit:.3g}, "
+            f"i.e. dt < {limit / omega:.4g} s (ω = √(k/m) = {omega:.4g} rad/s)")
+
+
+def steps_to_reach(until: float, dt: float) -> int:
+    """Number of steps of dt that reaches time `until` (rounding up, forgiving round-off)."""
+    return max(0, math.ceil(until / dt - 1e-9))
+
+
+@dataclass
+class Trajectory:
+    """Samples of a run: t (n,), r and p (n, N, 3); energy (dict of (n,) arrays, J) if recorded."""
+
+    t: np.ndarray
+    r: np.ndarray
+    p: np.ndarray
+    m: np.ndarray
+    energy: dict | None = None
+
+    @property
+    def v(self) -> np.ndarray:
+        return self.p / self.m[None, :, None]
+
+    @property
+    def final(self) -> State:
+        return State(t=float(self.t[-1]), r=self.r[-1], p=self.p[-1], m=self.m)
+
+
+def stepper(integrator):
+    """The step function for an integrator name, or for a tuple of names, one per mass.
+
+    A tuple steps mass i with integrator i (by stepping the whole state with each method and
+    keeping row i), which is right only for masses that do not act on each other, such as the
+    side-by-side comparison of integrators.
+    """
+    if isinstance(integrator, str):
+        return INTEGRATORS[integrator]
+    methods = [INTEGRATORS[name] for name in integrator]
+
+    def mixed_step(state: State, forces, dt: float) -> State:
+        results = {method: method(state, forces, dt) for method in set(methods)}
+        rows = np.arange(state.count)
+        r = np.stack([results[method].r[i] for i, method in zip(rows, methods)])
+        p = np.stack([results[method].p[i] for i, method in zip(rows, methods)])
+        return State(t=state.t + dt, r=r, p=p, m=state.m)
+    return mixed_step
+
+
+def run(state: State, forces, *, dt: float, until: float, integrator="euler-cromer",
+        with_energy: bool = False, growth_limit: float = 1e6) -> Trajectory:
+    """Step from state.t to `until` with fixed dt and record every step.
+
+    Raises BlowUpError if the state stops being finite, or any mass strays more than
+    `growth_limit` times the starting size of the motion from its spring's anchor.
+    """
+    step = stepper(integrator)
+    n = steps_to_reach(until - state.t, dt)
+    omega = fastest_angular_frequency(forces, state.m)
+    scale = _motion_scale(state, forces, omega)
+    t = np.empty(n + 1)
+    r = np.empty((n + 1,) + state.r.shape)
+    p = np.empty_like(r)
+    t[0], r[0], p[0] = state.t, state.r, state.p
+    meter = WorkMeter(state, forces) if with_energy else None
+    energy = {key: np.empty(n + 1) for key in ("K", "U", "E", "W_nc", "E_minus_W_nc")} if with_energy else None
+    if with_energy:
+        _store(energy, 0, report(state, forces, meter.work))
+    for i in range(1, n + 1):
+        state = step(state, forces, dt)
+        t[i], r[i], p[i] = state.t, state.r, state.p
+        if with_energy:
+            _store(energy, i, report(state, forces, meter.advance(state)))
+        if i % 256 == 0 or i == n:
+            _check(state, forces, dt, integrator, omega, scale * growth_limit)
+    return Trajectory(t=t, r=r, p=p, m=state.m, energy=energy)
+
+
+def _store(energy, i, values):
+    for key, value in values.items():
+        energy[key][i] = value
+
+
+def _motion_scale(state: State, forces, omega: float) -> float:
+    """A generous size of the motion (m): start offset, speed/ω, and the spring's own length."""
+    springs = [f for f in forces if isinstance(f, Spring)]
+    if not springs or omega == 0:
+        return math.inf
+    spring = springs[0]
+    offset = np.max(np.linalg.norm(state.r - spring.anchor, axis=-1))
+    speed = np.max(np.linalg.norm(state.p / state.m[:, None], axis=-1))
+    return float(offset + speed / omega + np.max(spring.L0) + 9.8 / omega**2 + 1.0)
+
+
+def _check(state: State, forces, dt, integrator, omega, limit):
+    finite = np.all(np.isfinite(state.r)) and np.all(np.isfinite(state.p))
+    springs = [f for f in forces if isinstance(f, Spring)]
+    too_far = finite and springs and np.max(np.linalg.norm(state.r - springs[0].anchor, axis=-1)) > limit
+    if not finite or too_far:
+        raise BlowUpError(
+            f"the simulation blew up by t = {state.t:.4g} s ({'non-finite state' if not finite else 'motion growing without bound'}): "
+            + stability_advice(integrator, dt, omega))
