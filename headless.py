@@ -1,0 +1,337 @@
+"""Running a scene without a browser, and writing down what it found.
+
+A headless run is the page's loop and nothing else: build the scene's model from its constants,
+repeat the momentum update every Δt until the question time, and report the final state
+
+    t = 0.2 s
+    r = < 0, -1.73088, 0 > m
+    p = < 0, -15.288, 0 > kg·m/s
+
+in Matter & Interactions vector notation, with the energy and, where a closed form exists, the
+exact answer and the error of the iteration. The same run can be written as one JSON object, as a
+CSV file with one row per step, or as a step table: the first few iterations, each showing
+
+    F_net,  p_f = p_i + F_net Δt,  v_f = p_f / m,  r_f = r_i + v_f Δt
+
+which is exactly the arithmetic a student does by hand. Nothing here imports vpython or matplotlib.
+"""
+from __future__ import annotations
+
+import csv
+import math
+import os
+from dataclasses import dataclass
+
+import numpy as np
+
+from physics.forces import net_force
+from physics.integrators import DEFAULT_INTEGRATOR, STABILITY_LIMIT_OMEGA_DT
+from physics.simulate import Trajectory, fastest_angular_frequency, run, stability_advice, steps_to_reach
+from physics.state import velocity
+
+UNITS = {"t": "s", "dt": "s", "r": "m", "v": "m/s", "p": "kg·m/s", "F_net": "N", "energy": "J"}
+ENERGY_KEYS = ("K", "U", "E", "W_nc")
+CSV_HEADER = ["t", "x", "y", "z", "vx", "vy", "vz", "px", "py", "pz", *ENERGY_KEYS]
+SIGNIFICANT = 6
+
+
+class OutputError(ValueError):
+    """An output file that cannot be written: a one-line message, found before the run starts."""
+
+
+# ---- numbers and vectors as a student writes them ----
+
+def number(x: float, digits: int = SIGNIFICANT) -> str:
+    """x to `digits` significant figures, with no '-0'."""
+    text = f"{float(x):.{digits}g}"
+    return "0" if text in ("-0", "0", "-0.0") else text
+
+
+def vector(v, unit: str = "", digits: int = SIGNIFICANT) -> str:
+    """`< 0, -1.73088, 0 > m`: components far below the vector's size (round-off) show as 0."""
+    v = np.asarray(v, dtype=float)
+    size = float(np.max(np.abs(v))) if v.size else 0.0
+    shown = np.where(np.abs(v) < 1e-12 * size, 0.0, v)
+    text = "< " + ", ".join(number(c, digits) for c in shown) + " >"
+    return f"{text} {unit}".rstrip()
+
+
+# ---- the run ----
+
+@dataclass(frozen=True)
+class Result:
+    """A finished headless run: the scene's setup and model, the method used, and every step."""
+
+    setup: object
+    model: object
+    integrator: object  # a name, or one name per mass for scenes that compare methods
+    trajectory: Trajectory
+
+    @property
+    def steps(self) -> int:
+        return len(self.trajectory.t) - 1
+
+    @property
+    def labels(self) -> tuple:
+        return tuple(self.model.labels)
+
+    def exact(self):
+        """(r, v) of the closed form at the final time, shape (N, 3) each, or None where unknown."""
+        if self.model.exact is None:
+            return None
+        r, v = self.model.exact(np.array([self.trajectory.t[-1]]))
+        return np.asarray(r, dtype=float)[0], np.asarray(v, dtype=float)[0]
+
+
+def method_for(model, integrator: str | None):
+    """The integrator actually used: the scene's own list if it compares methods, else the chosen one."""
+    if model.integrators is not None:
+        return tuple(model.integrators)
+    return integrator or DEFAULT_INTEGRATOR
+
+
+def simulate(setup, *, model=None, integrator: str | None = None, until: float | None = None) -> Result:
+    """Run a configured scene (scenes.catalog.Setup) from its start to `until` (default: its question time).
+
+    Raises physics.simulate.BlowUpError when Δt is too large for the method.
+    """
+    model = model if model is not None else setup.build()
+    method = method_for(model, integrator)
+    until = model.until if until is None else until
+    trajectory = run(model.state, model.forces, dt=model.dt, until=until, integrator=method,
+                     with_energy=True)
+    return Result(setup=setup, model=model, integrator=method, trajectory=trajectory)
+
+
+def stop_note(model, *, until: float) -> str | None:
+    """A note when `until` is not a whole number of steps: the run goes on to the next multiple of Δt."""
+    dt, start = model.dt, model.state.t
+    n = steps_to_reach(until - start, dt)
+    stop = start + n * dt
+    if math.isclose(stop, until, rel_tol=1e-9, abs_tol=1e-12 * dt):
+        return None
+    return (f"note: until = {number(until)} s is not a multiple of dt = {number(dt)} s; "
+            f"the run stopped at {n}·dt = {number(stop)} s")
+
+
+def stability_warning(model, integrator) -> str | None:
+    """A warning when ω·dt is past the method's stability limit on the stiffest spring, else None."""
+    omega = fastest_angular_frequency(model.forces, model.state.m)
+    if omega == 0:
+        return None
+    names = (integrator,) if isinstance(integrator, str) else tuple(integrator)
+    limits = [STABILITY_LIMIT_OMEGA_DT[name] for name in names]
+    if all(limit is not None and omega * model.dt < limit for limit in limits):
+        return None
+    if None in limits:
+        return f"warning: expect the motion to grow: {stability_advice(integrator, model.dt, omega)}"
+    return (f"warning: ω·dt = {number(omega * model.dt, 4)} is past the stability limit; "
+            f"expect the motion to grow: {stability_advice(integrator, model.dt, omega)}")
+
+
+def plural(count: int, noun: str) -> str:
+    return f"{count} {noun}{'' if count == 1 else 's'}"
+
+
+def method_name(integrator) -> str:
+    return integrator if isinstance(integrator, str) else ", ".join(integrator)
+
+
+# ---- text ----
+
+def final_report(result: Result) -> str:
+    """The final time and state in M&I vector notation, energy, and the exact answer where known."""
+    traj, model = result.trajectory, result.model
+    t, r, p, m = traj.t[-1], traj.r[-1], traj.p[-1], traj.m
+    v = velocity(p, m)
+    F_net = net_force(model.forces, t, r, v, m)
+    exact = result.exact()
+    lines = [f"{result.setup.name}: {plural(result.steps, 'step')} of dt = {number(model.dt)} s "
+             f"with {method_name(result.integrator)}",
+             f"t = {number(t)} s"]
+    single = len(m) == 1
+    for i, label in enumerate(result.labels):
+        indent = "" if single else "  "
+        if not single:
+            lines.append(f"{label} (m = {number(m[i])} kg):")
+        lines += [f"{indent}r = {vector(r[i], 'm')}",
+                  f"{indent}v = {vector(v[i], 'm/s')}",
+                  f"{indent}p = {vector(p[i], 'kg·m/s')}",
+                  f"{indent}F_net = {vector(F_net[i], 'N')} (at t = {number(t)} s)"]
+        if exact is not None and np.all(np.isfinite(exact[0][i])):
+            r_exact, v_exact = exact[0][i], exact[1][i]
+            lines += [f"{indent}exact: r = {vector(r_exact, 'm')}, v = {vector(v_exact, 'm/s')}",
+                      f"{indent}error: |r − r_exact| = {number(np.linalg.norm(r[i] - r_exact), 4)} m, "
+                      f"|v − v_exact| = {number(np.linalg.norm(v[i] - v_exact), 4)} m/s"]
+    if traj.energy is not None:
+        e = {key: values[-1] for key, values in traj.energy.items()}
+        lines.append(f"energy: K = {number(e['K'])} J, U = {number(e['U'])} J, E = {number(e['E'])} J, "
+                     f"W_nc = {number(e['W_nc'])} J, E − W_nc = {number(e['E_minus_W_nc'])} J "
+                     f"({number(traj.energy['E_minus_W_nc'][0])} J at the start)")
+    return "\n".join(lines)
+
+
+def constants_report(setup) -> str:
+    """Each constant of a configured scene: `k = 40 N/m   spring constant (stiffness)`."""
+    from scenes.constants import format_value
+
+    rows = [(f"{name} = {format_value(setup.values[name], constant.unit)}", constant.meaning)
+            for name, constant in setup.constants.items()]
+    width = max(len(left) for left, _ in rows)
+    return "\n".join(f"{left:<{width}}   {meaning}" for left, meaning in rows)
+
+
+# ---- JSON ----
+
+def _plain(value):
+    """A constant's value as JSON: numbers, lists for vectors, None for derived ones."""
+    if isinstance(value, (tuple, list, np.ndarray)):
+        return [float(x) for x in value]
+    if isinstance(value, (int, float, np.floating)):
+        return float(value)
+    return value
+
+
+def as_json(result: Result) -> dict:
+    """One JSON-ready dict: t, steps, dt, integrator, r, p, v (single mass: 3 numbers each), and more.
+
+    Multi-mass scenes give r, p, v as one 3-vector per mass and add "bodies". "exact" holds the
+    closed form at the final time and the size of the error, where a closed form exists.
+    """
+    traj, model, setup = result.trajectory, result.model, result.setup
+    r, p, m = traj.r[-1], traj.p[-1], traj.m
+    v = velocity(p, m)
+    single = len(m) == 1
+    pick = (lambda a: a[0].tolist()) if single else (lambda a: a.tolist())
+    out = {
+        "scene": setup.name,
+        "t": float(traj.t[-1]),
+        "steps": result.steps,
+        "dt": float(model.dt),
+        "integrator": result.integrator if isinstance(result.integrator, str) else list(result.integrator),
+        "r": pick(r), "p": pick(p), "v": pick(v),
+    }
+    exact = result.exact()
+    known = [exact is not None and bool(np.all(np.isfinite(exact[0][i]))) for i in range(len(m))]
+    if single and known[0]:
+        out["exact"] = _exact_entry(r[0], v[0], exact[0][0], exact[1][0])
+    if not single:
+        out["bodies"] = [
+            {"label": label, "m": float(m[i]), "r": r[i].tolist(), "p": p[i].tolist(), "v": v[i].tolist(),
+             **({"exact": _exact_entry(r[i], v[i], exact[0][i], exact[1][i])} if known[i] else {})}
+            for i, label in enumerate(result.labels)]
+    if traj.energy is not None:
+        out["energy"] = {key: float(values[-1]) for key, values in traj.energy.items()}
+    out["constants"] = {name: {"value": _plain(setup.values[name]), "unit": c.unit, "meaning": c.meaning}
+                        for name, c in setup.constants.items()}
+    out["units"] = UNITS
+    return out
+
+
+def _exact_entry(r, v, r_exact, v_exact) -> dict:
+    return {"r": r_exact.tolist(), "v": v_exact.tolist(),
+            "error": {"r": float(np.linalg.norm(r - r_exact)), "v": float(np.linalg.norm(v - v_exact))}}
+
+
+# ---- CSV ----
+
+def check_writable(path: str, *, what: str) -> None:
+    """Raise OutputError if `path` cannot be written as a file (checked before a run starts)."""
+    if os.path.isdir(path):
+        raise OutputError(f"cannot write {what} {path!r}: it is a directory")
+    folder = os.path.dirname(os.path.abspath(path))
+    if not os.path.isdir(folder):
+        raise OutputError(f"cannot write {what} {path!r}: folder {folder!r} does not exist")
+    if not os.access(folder, os.W_OK) or (os.path.exists(path) and not os.access(path, os.W_OK)):
+        raise OutputError(f"cannot write {what} {path!r}: permission denied")
+
+
+def write_csv(result: Result, path: str) -> int:
+    """One row per step (per mass): t, r, v, p, then the system's K, U, E, W_nc in J; returns rows written.
+
+    Multi-mass scenes add a `body` column with each mass's label; the energy columns are totals.
+    """
+    traj = result.trajectory
+    v = traj.v
+    single = len(traj.m) == 1
+    header = CSV_HEADER + ([] if single else ["body"])
+    rows = 0
+    with open(path, "w", newline="", encoding="utf-8") as handle:
+        writer = csv.writer(handle)
+        writer.writerow(header)
+        for n, t in enumerate(traj.t):
+            energy = [float(traj.energy[key][n]) for key in ENERGY_KEYS] if traj.energy else [""] * 4
+            for i, label in enumerate(result.labels):
+                row = [float(t), *traj.r[n, i].tolist(), *v[n, i].tolist(), *traj.p[n, i].tolist(), *energy]
+                writer.writerow(row + ([] if single else [label]))
+                rows += 1
+    return rows
+
+
+# ---- the step table ----
+
+# How each method uses F_net in its momentum update, for the table's header.
+STEP_RULES = {
+    "euler-cromer": "F_net = F(t_i, r_i, v_i) at the start of the step; p_f = p_i + F_net·Δt; "
+                    "v_f = p_f / m; r_f = r_i + v_f·Δt",
+    "euler": "F_net = F(t_i, r_i, v_i) at the start of the step; p_f = p_i + F_net·Δt; "
+             "r_f = r_i + v_i·Δt (the old velocity); v_f = p_f / m",
+    "verlet": "F_net = (p_f − p_i)/Δt, the average of the half kicks at the start and end of the step; "
+              "r_f = r_i + (p_i + F_i·Δt/2)/m·Δt",
+    "rk4": "F_net = (p_f − p_i)/Δt, RK4's weighted average of its four force samples; "
+           "r_f from RK4's weighted average of velocities",
+}
+
+
+def step_table(setup, *, model=None, integrator: str | None = None, steps: int) -> dict:
+    """The first `steps` iterations: for each step and mass, t_f, F_net, p_f, v_f and r_f.
+
+    F_net is the force the method used for its momentum update, so p_f = p_i + F_net Δt holds on
+    every row: for euler-cromer (the page) and euler it is F(t_i, r_i, v_i), for the other methods
+    the average force (p_f − p_i)/Δt of the step.
+    """
+    model = model if model is not None else setup.build()
+    method = method_for(model, integrator)
+    dt = model.dt
+    traj = run(model.state, model.forces, dt=dt, until=model.state.t + steps * dt, integrator=method)
+    v = traj.v
+    rows = []
+    for n in range(1, len(traj.t)):
+        if isinstance(method, str) and method in ("euler-cromer", "euler"):
+            F_net = net_force(model.forces, traj.t[n - 1], traj.r[n - 1], v[n - 1], traj.m)
+        else:
+            F_net = (traj.p[n] - traj.p[n - 1]) / dt
+        for i, label in enumerate(model.labels):
+            rows.append({"step": n, "body": label, "t": float(traj.t[n]), "F_net": F_net[i].tolist(),
+                         "p_f": traj.p[n, i].tolist(), "v_f": v[n, i].tolist(), "r_f": traj.r[n, i].tolist()})
+    return {"scene": setup.name, "integrator": method if isinstance(method, str) else list(method),
+            "dt": float(dt), "m": traj.m.tolist(),
+            "start": {"t": float(traj.t[0]), "r": traj.r[0].tolist(), "p": traj.p[0].tolist(),
+                      "v": v[0].tolist()},
+            "units": {"t": "s", "F_net": "N", "p_f": "kg·m/s", "v_f": "m/s", "r_f": "m"},
+            "rule": STEP_RULES.get(method, "F_net = (p_f − p_i)/Δt, the average force each mass's method used"),
+            "rows": rows}
+
+
+def format_step_table(table: dict) -> str:
+    """The step table as aligned text with units in the header, vectors in < > notation."""
+    labels = sorted({row["body"] for row in table["rows"]}, key=[row["body"] for row in table["rows"]].index)
+    multi = len(labels) > 1
+    lines = [f"{table['scene']}: first {plural(len({row['step'] for row in table['rows']}), 'step')} of "
+             f"Δt = {number(table['dt'])} s with {method_name(table['integrator'])}",
+             "each step: " + table["rule"],
+             "t is the time at the end of the step, when p_f, v_f and r_f hold"]
+    start = table["start"]
+    for i, label in enumerate(labels or ["mass"]):
+        name = f"{label} " if multi else ""
+        lines.append(f"start {name}(m = {number(table['m'][i])} kg): t = {number(start['t'])} s, "
+                     f"r = {vector(start['r'][i], 'm')}, p = {vector(start['p'][i], 'kg·m/s')}, "
+                     f"v = {vector(start['v'][i], 'm/s')}")
+    header = ["step"] + (["body"] if multi else []) + \
+        [f"{key} ({unit})" for key, unit in table["units"].items()]
+    body = [[str(row["step"])] + ([row["body"]] if multi else []) + [number(row["t"])] +
+            [vector(row[key]) for key in ("F_net", "p_f", "v_f", "r_f")] for row in table["rows"]]
+    widths = [max(len(line[c]) for line in [header] + body) for c in range(len(header))]
+    for line in [header] + body:
+        lines.append("  ".join(cell.ljust(width) for cell, width in zip(line, widths)).rstrip())
+    return "\n".join(lines)

@@ -1,0 +1,178 @@
+"""Spring-mass simulator for physics teaching: the command line.
+
+    python main.py                        the Simple Example (`vertical`) in the browser
+    python main.py SCENE                  a scene in the browser (--no-browser prints its URL, --port P)
+    python main.py --list                 the scenes, with their scenarios
+    python main.py SCENE --constants      each constant with its value, unit and meaning
+    python main.py SCENE --headless       run to the question time and print the final state
+        [--set NAME=VALUE ...] [--scenario N] [--integrator NAME] [--until T] [--json] [--csv FILE]
+    python main.py SCENE --steps N        the first N momentum updates as a table to check by hand
+    python main.py SCENE --plot FILE.png  a figure of the position and energy graphs (needs matplotlib)
+
+--steps and --plot always run headless, so they need no --headless. --json and --csv describe a
+headless run and are an error without --headless. Bad input gives one line `error: ...` and exit
+status 2; a run that blows up gives its reason (Δt and the stability limit) and exit status 1.
+"""
+from __future__ import annotations
+
+import argparse
+import math
+import sys
+
+import headless
+from physics.integrators import DEFAULT_INTEGRATOR, INTEGRATORS
+from physics.simulate import BlowUpError
+from scenes import catalog
+from scenes.constants import ConstantError
+
+
+class UsageError(ValueError):
+    """Options that do not fit together, or a value out of range: a one-line message."""
+
+
+class Parser(argparse.ArgumentParser):
+    """argparse, but a bad option is one line on stderr (no usage block), with exit status 2."""
+
+    def error(self, message):
+        self.exit(2, f"error: {message} (see 'python main.py --help')\n")
+
+
+def build_parser() -> argparse.ArgumentParser:
+    parser = Parser(prog="main.py", description="Iterative prediction of spring-mass systems: "
+                    "the momentum update p_f = p_i + F_net Δt, r_f = r_i + (p_f/m) Δt.")
+    parser.add_argument("scene", nargs="?", default=None,
+                        help=f"scene name (default {catalog.DEFAULT_SCENE}; see --list)")
+    parser.add_argument("--list", action="store_true", help="list the scenes and their scenarios")
+    parser.add_argument("--constants", action="store_true",
+                        help="print each constant with its value, unit and meaning")
+    parser.add_argument("--headless", action="store_true", help="run without a browser and print the result")
+    parser.add_argument("--set", action="append", default=[], metavar="NAME=VALUE", dest="assignments",
+                        help="change a constant, e.g. --set k=25 or --set r0=0,-1.2,0 (may repeat)")
+    parser.add_argument("--scenario", type=int, metavar="N", help="one of the scene's numbered scenarios")
+    parser.add_argument("--integrator", choices=list(INTEGRATORS), default=None,
+                        help=f"stepping method (default {DEFAULT_INTEGRATOR}, the page's update)")
+    parser.add_argument("--until", type=float, metavar="T",
+                        help="run until this time, s (default: the scene's question time)")
+    parser.add_argument("--json", action="store_true", help="with --headless: print one JSON object")
+    parser.add_argument("--csv", metavar="FILE", help="with --headless: write every step to a CSV file")
+    parser.add_argument("--steps", type=int, metavar="N",
+                        help="print the first N steps as a table (t, F_net, p_f, v_f, r_f); implies --headless")
+    parser.add_argument("--plot", metavar="FILE.png",
+                        help="save the position and energy graphs as a figure; implies --headless")
+    parser.add_argument("--no-browser", action="store_true",
+                        help="print the page's URL instead of opening a browser")
+    parser.add_argument("--port", type=int, metavar="P", help="port for the browser page")
+    return parser
+
+
+def list_scenes() -> str:
+    """Each scene with its one-line description, and its numbered scenarios if it has any."""
+    names = list(catalog.SCENE_NAMES)
+    width = max(len(name) for name in names)
+    lines = []
+    for name in names:
+        module = catalog.load(name)
+        lines.append(f"{name:<{width}}  {catalog.summary(module)}")
+        for number, (label, _) in enumerate(catalog.scenarios(module), start=1):
+            lines.append(f"{'':<{width}}    --scenario {number}: {label}")
+    return "\n".join(lines)
+
+
+def check_options(args) -> None:
+    """Combinations and ranges argparse cannot check by itself."""
+    headless = args.headless or args.steps is not None or args.plot is not None
+    for flag, given in (("--json", args.json), ("--csv", args.csv is not None)):
+        if given and not args.headless:
+            raise UsageError(f"{flag} needs --headless (it describes a run without the browser)")
+    if args.until is not None:
+        if not headless:
+            raise UsageError("--until needs --headless (the browser runs until you stop it)")
+        if not math.isfinite(args.until) or args.until < 0:
+            raise UsageError(f"--until must be a finite time of 0 s or more (got {args.until:g})")
+    if args.steps is not None and args.steps < 1:
+        raise UsageError(f"--steps needs a whole number of 1 or more (got {args.steps})")
+    if args.port is not None and not 0 <= args.port <= 65535:
+        raise UsageError(f"--port must be between 0 and 65535 (got {args.port})")
+
+
+def run_headless(args, setup) -> int:
+    """The headless paths: step table, final state (text or JSON), CSV and figure."""
+    try:
+        model = setup.build()
+    except ValueError as problem:  # a combination of constants the physics cannot take
+        raise UsageError(str(problem)) from None
+    until = model.until if args.until is None else args.until
+    if args.csv is not None:
+        headless.check_writable(args.csv, what="CSV file")
+    if args.plot is not None:
+        headless.check_writable(args.plot, what="figure")
+        import plotting
+
+        plotting.check_format(args.plot)
+    warning = headless.stability_warning(model, headless.method_for(model, args.integrator))
+
+    if args.steps is not None:
+        table = headless.step_table(setup, model=model, integrator=args.integrator, steps=args.steps)
+        if warning:
+            print(warning, file=sys.stderr)
+        if args.json:
+            import json
+
+            print(json.dumps({**table, "step_table": table.pop("rows"), "steps": args.steps},
+                             ensure_ascii=False))
+        else:
+            print(headless.format_step_table(table))
+        if args.plot is None and args.csv is None and args.until is None:
+            return 0
+
+    result = headless.simulate(setup, model=model, integrator=args.integrator, until=until)
+    if warning and args.steps is None:
+        print(warning, file=sys.stderr)
+    note = headless.stop_note(model, until=until)
+    if note:
+        print(note, file=sys.stderr)
+    if args.csv is not None:
+        headless.write_csv(result, args.csv)
+    if args.plot is not None:
+        import plotting
+
+        plotting.plot(result, args.plot)
+    if args.steps is not None:
+        return 0
+    if args.json:
+        import json
+
+        print(json.dumps(headless.as_json(result), ensure_ascii=False))
+    else:
+        print(headless.final_report(result))
+    return 0
+
+
+def main(argv=None) -> int:
+    args = build_parser().parse_args(argv)
+    if args.list:
+        print(list_scenes())
+        return 0
+    try:
+        check_options(args)
+        setup = catalog.configure(args.scene or catalog.DEFAULT_SCENE, assignments=args.assignments,
+                                  scenario=args.scenario)
+        if args.constants:
+            print(headless.constants_report(setup))
+            return 0
+        if args.headless or args.steps is not None or args.plot is not None:
+            return run_headless(args, setup)
+    except (ConstantError, UsageError, headless.OutputError) as problem:
+        print(f"error: {problem}", file=sys.stderr)
+        return 2
+    except BlowUpError as problem:
+        print(f"error: {problem}", file=sys.stderr)
+        return 1
+    from scenes.view import show
+
+    sys.exit(show(setup, integrator=args.integrator or DEFAULT_INTEGRATOR, port=args.port,
+                  open_browser=not args.no_browser))
+
+
+if __name__ == "__main__":
+    sys.exit(main())
