@@ -11,7 +11,7 @@ from dataclasses import dataclass
 from .constants import ConstantError, Constant, parse_assignments, read_constants
 from .model import Model
 
-SCENE_NAMES = ["vertical", "damped", "driven"]
+SCENE_NAMES = ["vertical", "damped", "driven", "regimes", "drag", "pendulum", "integrators", "resonance"]
 DEFAULT_SCENE = "vertical"
 
 

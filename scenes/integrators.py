@@ -1,0 +1,51 @@
+"""Four ways to step one spring: euler, euler-cromer, verlet and rk4 side by side with the exact motion.
+
+Four identical masses on identical springs (on a wall, no gravity, no damping) start from the same
+stretch. Each is advanced by a different integrator with the same Δt (physics/integrators.py):
+
+- euler moves the mass with the OLD velocity, r_f = r_i + v_i Δt: every step multiplies the energy
+  by about 1 + (ω Δt)², so the swing grows by about e^(π ω Δt) each period, at every Δt;
+- euler-cromer is the page's update, r_f = r_i + v_f Δt: its energy wobbles but stays bounded;
+- verlet (second order) wobbles much less; rk4 (fourth order) stays on the exact curve.
+
+The exact motion is x(t) = x0 cos(ω t), with ω = √(k/m). The default Δt makes ω Δt = 0.3 so that the
+difference shows within a few periods; shrink dt and the four curves close up.
+"""
+from physics.forces import Spring
+from physics.state import make_state
+
+from .model import Model
+from .row import anchors_in_a_row, exact_row, start_positions
+
+# ---- constants: edit these (unit: meaning); 0 switches a force off ----
+m = 1.0                    # kg: mass of each block
+k = 25.0                   # N/m: spring constant of each spring (ω = √(k/m) = 5 rad/s, T ≈ 1.26 s)
+L0 = 1.0                   # m: relaxed length of each spring
+x0 = 0.15                  # m: start stretch beyond the relaxed length, the same for all four
+spacing = 0.6              # m: distance between neighbouring anchors, down the wall
+dt = 0.06                  # s: time step Δt, the same for all four (ω Δt = 0.3)
+until = 3.0                # s: how long to run (about two and a half periods)
+# ---- end of constants ----
+
+METHODS = ("euler", "euler-cromer", "verlet", "rk4")
+ALONG_WALL = (0.0, -1.0, 0.0)   # the anchors go down the wall
+OUT_OF_WALL = (1.0, 0.0, 0.0)   # the springs stick out of it
+
+
+def build(*, m, k, L0, x0, spacing, dt, until):
+    """Four horizontal springs on a wall, each stepped by its own integrator."""
+    anchors = anchors_in_a_row(count=len(METHODS), spacing=spacing, along=ALONG_WALL)
+    r0 = start_positions(anchors=anchors, direction=OUT_OF_WALL, L0=L0, m=m, k=k, g=0.0, x0=x0)
+    return Model(
+        state=make_state(r=r0, m=m),
+        forces=(Spring(k=k, L0=L0, anchor=anchors),),
+        dt=float(dt),
+        until=float(until),
+        exact=exact_row(anchors=anchors, r0=r0, m=m, k=k, L0=L0, g=0.0),
+        anchors=anchors,
+        labels=METHODS,
+        integrators=METHODS,
+    )
+
+
+VIEW = {"support": "wall", "plot": "x", "trail": False, "exact": True, "energy": True}

@@ -1,0 +1,66 @@
+"""The page's damping figure: under-, critically and over-damped oscillators released side by side.
+
+Three identical masses hang on identical springs and start from the same stretch, at rest. Only the
+damping constant b in F = −b v differs. Critical damping is b_c = 2√(mk) (b² = 4mk):
+
+- under-damped (b < b_c): still oscillates, inside an envelope e^(−bt/2m);
+- critically damped (b = b_c): the fastest return to equilibrium without crossing it;
+- over-damped (b > b_c): no oscillation, but a slow creep back, slower the larger b.
+
+The middle oscillator's b is a constant (None means critical, recomputed from m and k); the preset
+"critical damping" puts it back there after a teacher has moved it. The other two are fixed
+fractions and multiples of b_c. Each curve has its exact solution from physics.exact.oscillator.
+"""
+import numpy as np
+
+from physics.exact import critical_damping, damping_regime
+from physics.forces import Gravity, LinearDamping, Spring
+from physics.state import make_state
+
+from .model import Model
+from .row import anchors_in_a_row, exact_row, start_positions
+
+# ---- constants: edit these (unit: meaning); 0 switches a force off ----
+m = 1.0                    # kg: mass of each block
+k = 16.0                   # N/m: spring constant of each spring (ω0 = √(k/m) = 4 rad/s)
+L0 = 1.0                   # m: relaxed length of each spring
+g = 9.8                    # m/s²: strength of gravity, acting along −y (it only moves the equilibrium)
+b = None                   # kg/s: damping of the middle oscillator (None: critical, b = 2√(mk))
+under_fraction = 0.1       # 1: b of the under-damped one, as a fraction of 2√(mk)
+over_multiple = 4.0        # 1: b of the over-damped one, as a multiple of 2√(mk)
+x0 = 0.5                   # m: start stretch below equilibrium, the same for all three
+spacing = 1.0              # m: distance between neighbouring anchors along x
+dt = 0.01                  # s: time step Δt of the momentum update
+until = 8.0                # s: how long to run
+# ---- end of constants ----
+
+PRESETS = {"critical damping": {"b": None}}
+
+
+def damping_constants(*, m, k, b, under_fraction, over_multiple) -> np.ndarray:
+    """b of the three oscillators, kg/s: under_fraction·b_c, b (or b_c), over_multiple·b_c."""
+    b_c = critical_damping(m=m, k=k)
+    return np.array([under_fraction * b_c, b_c if b is None else b, over_multiple * b_c])
+
+
+def build(*, m, k, L0, g, b, under_fraction, over_multiple, x0, spacing, dt, until):
+    """Three hanging oscillators, identical but for their damping constants."""
+    b_each = damping_constants(m=m, k=k, b=b, under_fraction=under_fraction, over_multiple=over_multiple)
+    anchors = anchors_in_a_row(count=3, spacing=spacing)
+    # x0 is a stretch below equilibrium: along û = −y that is +x0.
+    r0 = start_positions(anchors=anchors, L0=L0, m=m, k=k, g=g, x0=x0)
+    forces = [Spring(k=k, L0=L0, anchor=anchors), LinearDamping(b=b_each)]
+    if g:
+        forces.append(Gravity(g=g))
+    return Model(
+        state=make_state(r=r0, m=m),
+        forces=tuple(forces),
+        dt=float(dt),
+        until=float(until),
+        exact=exact_row(anchors=anchors, r0=r0, m=m, k=k, L0=L0, g=g, b=b_each),
+        anchors=anchors,
+        labels=tuple(f"{damping_regime(m=m, k=k, b=b_i)} (b = {b_i:.3g} kg/s)" for b_i in b_each),
+    )
+
+
+VIEW = {"support": "ceiling", "plot": "y", "trail": False, "exact": True}
