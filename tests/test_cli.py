@@ -1,0 +1,351 @@
+"""The real command line, run as a subprocess: answers against hand arithmetic and closed forms,
+output formats, and one clear line (exit status 2, no traceback) for every kind of bad input.
+
+The page's Simple Example by hand (m = 10 kg, k = 40 N/m, L0 = 1 m, g = 9.8 m/s², Δt = 0.1 s,
+released from rest at y = −1.5 m, so the spring pulls up with k(|y| − L0)):
+
+    step 1: F_net = 40(1.5 − 1) − 10·9.8 = 20 − 98 = −78 N
+            p1 = 0 + (−78)(0.1) = −7.8 kg·m/s,   v1 = −0.78 m/s,   y1 = −1.5 + (−0.78)(0.1) = −1.578 m
+    step 2: F_net = 40(1.578 − 1) − 98 = 23.12 − 98 = −74.88 N
+            p2 = −7.8 + (−74.88)(0.1) = −15.288,  v2 = −1.5288 m/s, y2 = −1.578 − 0.15288 = −1.73088 m
+"""
+from __future__ import annotations
+
+import csv
+import json
+import math
+import subprocess
+import sys
+from concurrent.futures import ThreadPoolExecutor
+from functools import lru_cache
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(ROOT))
+
+# The Simple Example's constants, as the page states them.
+m, k, L0, g, dt = 10.0, 40.0, 1.0, 9.8, 0.1
+
+
+def cli(*args, code: str | None = None) -> subprocess.CompletedProcess:
+    """Run `python main.py ARGS` (or `python -c CODE ARGS`) from the project root."""
+    command = [sys.executable, "-c", code, *args] if code else [sys.executable, "main.py", *args]
+    return subprocess.run(command, cwd=ROOT, capture_output=True, text=True, timeout=60)
+
+
+@lru_cache(maxsize=None)
+def cli_json(*args) -> dict:
+    """The one JSON object a headless run prints (cached: several tests read the same run)."""
+    done = cli(*args, "--headless", "--json")
+    assert done.returncode == 0, done.stderr
+    return json.loads(done.stdout)
+
+
+def y_exact(t: float) -> float:
+    """The Simple Example's closed form: y = y_eq + (y0 − y_eq) cos(√(k/m) t), y_eq = −(L0 + mg/k)."""
+    y_eq = -(L0 + m * g / k)
+    return y_eq + (-1.5 - y_eq) * math.cos(math.sqrt(k / m) * t)
+
+
+# ---- listing and constants ----
+
+def test_list_names_every_scene_with_a_description_and_the_driven_scenarios():
+    done = cli("--list")
+    assert done.returncode == 0, done.stderr
+    lines = done.stdout.splitlines()
+    for name in ("vertical", "damped", "driven"):
+        line = next(line for line in lines if line.startswith(name + " "))
+        assert len(line.split(None, 1)[1]) > 10  # a one-line description follows the name
+    assert sum("--scenario" in line for line in lines) >= 5
+
+
+def test_constants_show_value_unit_and_meaning_after_set():
+    done = cli("vertical", "--constants", "--set", "k=25", "--set", "r0=0,-2,0")
+    assert done.returncode == 0, done.stderr
+    text = done.stdout
+    assert "m = 10 kg" in text and "spring constant" in text
+    assert "k = 25 N/m" in text and "k = 40 N/m" not in text
+    assert "r0 = < 0, -2, 0 > m" in text
+    assert "dt = 0.1 s" in text
+
+
+def test_constants_default_shows_the_page_spring():
+    assert "k = 40 N/m" in cli("damped", "--constants").stdout
+
+
+# ---- the page's examples ----
+
+def test_simple_example_text_answer_matches_hand_arithmetic_and_shows_exact_and_error():
+    done = cli("vertical", "--headless")
+    assert done.returncode == 0, done.stderr
+    text = done.stdout
+    assert "t = 0.2 s" in text
+    assert "r = < 0, -1.73088, 0 > m" in text
+    assert "p = < 0, -15.288, 0 > kg·m/s" in text
+    assert "v = < 0, -1.5288, 0 > m/s" in text
+    assert f"exact: r = < 0, {y_exact(0.2):.6g}, 0 > m" in text
+    assert f"|r − r_exact| = {abs(-1.73088 - y_exact(0.2)):.4g} m" in text
+    assert "K = " in text and " J" in text and "W_nc = 0 J" in text
+
+
+def test_simple_example_json_keys_types_and_hand_values():
+    out = cli_json("vertical")
+    for key in ("t", "steps", "dt", "integrator", "r", "p", "v", "exact", "energy", "scene", "constants"):
+        assert key in out
+    assert out["steps"] == 2 and isinstance(out["steps"], int)
+    assert out["t"] == pytest.approx(0.2) and out["dt"] == 0.1
+    assert out["integrator"] == "euler-cromer"
+    for key in ("r", "p", "v"):
+        assert isinstance(out[key], list) and len(out[key]) == 3
+        assert all(isinstance(x, float) for x in out[key])
+    assert out["r"] == pytest.approx([0, -1.578 - 0.15288, 0], abs=1e-12)
+    assert out["p"] == pytest.approx([0, -7.8 + (-74.88) * 0.1, 0], abs=1e-12)
+    assert out["v"] == pytest.approx([0, -1.5288, 0], abs=1e-12)
+    assert out["exact"]["r"][1] == pytest.approx(y_exact(0.2), rel=1e-9)
+    assert out["exact"]["error"]["r"] == pytest.approx(abs(-1.73088 - y_exact(0.2)), rel=1e-9)
+    assert out["constants"]["k"] == {"value": 40.0, "unit": "N/m", "meaning": out["constants"]["k"]["meaning"]}
+    energy = out["energy"]
+    # K = |p|²/2m at the final state.
+    assert energy["K"] == pytest.approx(15.288**2 / (2 * m))
+    assert energy["E"] == pytest.approx(energy["K"] + energy["U"])
+
+
+def test_middling_example_two_steps_by_hand():
+    # The Simple Example plus F = −b v with b = 1 kg/s.
+    b = 1.0
+    F1 = k * (1.5 - L0) - m * g - b * 0.0      # at rest: no damping force yet, −78 N
+    p1 = F1 * dt                                 # −7.8 kg·m/s
+    y1 = -1.5 + (p1 / m) * dt                    # −1.578 m
+    F2 = k * (-y1 - L0) - m * g - b * (p1 / m)   # 23.12 − 98 + 0.78 = −74.1 N
+    p2 = p1 + F2 * dt                            # −15.21 kg·m/s
+    y2 = y1 + (p2 / m) * dt                      # −1.7301 m
+    out = cli_json("damped")
+    assert out["r"] == pytest.approx([0, y2, 0], abs=1e-12)
+    assert out["p"] == pytest.approx([0, p2, 0], abs=1e-12)
+    assert out["v"] == pytest.approx([0, p2 / m, 0], abs=1e-12)
+    assert y2 == pytest.approx(-1.7301)
+    assert out["energy"]["W_nc"] < 0  # damping only takes energy away
+
+
+# ---- options ----
+
+def test_set_changes_constants_and_vectors():
+    # k = 25 N/m, start 2 m below the anchor, one step: F_net = 25(2 − 1) − 98 = −73 N.
+    out = cli_json("vertical", "--set", "k=25", "--set", "r0=0,-2,0", "--until", "0.1")
+    assert out["steps"] == 1
+    assert out["p"] == pytest.approx([0, -7.3, 0])
+    assert out["r"] == pytest.approx([0, -2 - 0.073, 0])
+    assert out["constants"]["k"]["value"] == 25.0
+
+
+def test_driven_scenario_two_starts_one_metre_from_equilibrium():
+    out = cli_json("driven", "--scenario", "2", "--until", "0")
+    assert out["steps"] == 0
+    L0_driven = out["constants"]["L0"]["value"]
+    assert out["r"] == pytest.approx([L0_driven + 1.0, 0, 0])
+    assert out["constants"]["x0"]["value"] == 1.0
+    assert out["constants"]["b"]["value"] == 0.0
+
+
+def test_integrator_changes_the_answer():
+    # Euler moves with the OLD velocity: y1 = −1.5 (v0 = 0), y2 = −1.5 + (−0.78)(0.1) = −1.578 m.
+    euler = cli_json("vertical", "--integrator", "euler")
+    assert euler["integrator"] == "euler"
+    assert euler["r"] == pytest.approx([0, -1.578, 0], abs=1e-12)
+    # RK4 is fourth order: at Δt = 0.1 s its error is far below Euler-Cromer's 0.077 m.
+    rk4 = cli_json("vertical", "--integrator", "rk4")
+    assert rk4["r"][1] == pytest.approx(y_exact(0.2), abs=1e-4)
+    assert rk4["exact"]["error"]["r"] < 1e-4
+
+
+def test_until_with_small_dt_converges_to_the_exact_answer():
+    out = cli_json("vertical", "--set", "dt=0.001", "--until", "1")
+    assert out["steps"] == 1000 and out["t"] == pytest.approx(1.0)
+    # Euler-Cromer is first order: error of order ω²Δt·amplitude, a few mm here.
+    assert out["r"][1] == pytest.approx(y_exact(1.0), abs=0.01)
+    assert out["exact"]["error"]["r"] == pytest.approx(abs(out["r"][1] - y_exact(1.0)), rel=1e-6)
+
+
+def test_until_not_a_multiple_of_dt_says_where_it_stopped():
+    done = cli("vertical", "--headless", "--json", "--until", "0.25")
+    assert done.returncode == 0, done.stderr
+    out = json.loads(done.stdout)
+    assert out["steps"] == 3 and out["t"] == pytest.approx(0.3)
+    assert "3·dt = 0.3 s" in done.stderr
+
+
+def test_no_exact_value_where_no_closed_form_exists():
+    # Pulled sideways: the mass swings like a pendulum, which has no closed form here.
+    out = cli_json("vertical", "--set", "r0=0.5,-1.5,0")
+    assert "exact" not in out
+    assert out["r"][0] != 0.0
+
+
+# ---- CSV ----
+
+def test_csv_has_one_row_per_step_starting_at_the_initial_state(tmp_path):
+    path = tmp_path / "run.csv"
+    done = cli("damped", "--headless", "--json", "--until", "1", "--csv", str(path))
+    assert done.returncode == 0, done.stderr
+    out = json.loads(done.stdout)
+    with open(path, newline="", encoding="utf-8") as handle:
+        rows = list(csv.reader(handle))
+    header, data = rows[0], rows[1:]
+    assert ",".join(header).startswith("t,x,y,z,vx,vy,vz,px,py,pz")
+    assert {"K", "U", "E", "W_nc"} <= set(header)
+    assert len(data) == out["steps"] + 1 == 11
+    first = dict(zip(header, map(float, data[0])))
+    assert (first["t"], first["x"], first["y"], first["z"]) == (0.0, 0.0, -1.5, 0.0)
+    assert (first["vy"], first["py"]) == (0.0, 0.0)
+    last = dict(zip(header, map(float, data[-1])))
+    assert last["t"] == pytest.approx(out["t"])
+    assert [last[c] for c in "xyz"] == pytest.approx(out["r"])
+    assert [last["v" + c] for c in "xyz"] == pytest.approx(out["v"])
+    assert [last["p" + c] for c in "xyz"] == pytest.approx(out["p"])
+    assert last["E"] == pytest.approx(out["energy"]["E"])
+
+
+# ---- bad input: one line, exit status 2, no traceback ----
+
+BAD_INPUTS = [
+    (["nosuch"], "unknown scene"),
+    (["vertical", "--headless", "--set", "kk=3"], "did you mean 'k'"),
+    (["vertical", "--headless", "--set", "k=abc"], "k needs a number"),
+    (["vertical", "--headless", "--set", "r0=1,2"], "r0 needs a 3-vector"),
+    (["vertical", "--headless", "--set", "k"], "NAME=VALUE"),
+    (["vertical", "--headless", "--set", "m=0"], "m must be"),
+    (["vertical", "--headless", "--set", "k=-1"], "k must be"),
+    (["vertical", "--headless", "--set", "b=-1"], "b must be"),
+    (["vertical", "--headless", "--set", "C=-0.5"], "C must be"),
+    (["vertical", "--headless", "--set", "A=-1"], "A must be"),
+    (["vertical", "--headless", "--set", "rho=-1.2"], "rho must be"),
+    (["vertical", "--headless", "--set", "dt=0"], "dt must be"),
+    (["vertical", "--headless", "--set", "dt=nan"], "dt must be"),
+    (["vertical", "--headless", "--until", "-1"], "--until"),
+    (["vertical", "--headless", "--until", "nan"], "--until"),
+    (["driven", "--headless", "--scenario", "6"], "scenario 6"),
+    (["driven", "--headless", "--scenario", "0"], "scenario 0"),
+    (["vertical", "--headless", "--scenario", "1"], "no scenarios"),
+    (["vertical", "--json"], "--json needs --headless"),
+    (["vertical", "--csv", "out.csv"], "--csv needs --headless"),
+    (["vertical", "--headless", "--csv", "no/such/folder/out.csv"], "does not exist"),
+    (["vertical", "--headless", "--csv", "tests"], "is a directory"),
+    (["vertical", "--headless", "--integrator", "leapfrog"], "--integrator"),
+    (["vertical", "--steps", "0"], "--steps"),
+]
+
+
+@lru_cache(maxsize=None)
+def bad_input_runs() -> dict:
+    """Every bad input at once, a few processes at a time (each start-up mostly waits on imports)."""
+    keys = [tuple(args) for args, _ in BAD_INPUTS]
+    with ThreadPoolExecutor(max_workers=4) as pool:
+        return dict(zip(keys, pool.map(lambda args: cli(*args), keys)))
+
+
+@pytest.mark.parametrize("args, problem", BAD_INPUTS, ids=[" ".join(a) for a, _ in BAD_INPUTS])
+def test_bad_input_gives_one_line_and_status_2(args, problem):
+    done = bad_input_runs()[tuple(args)]
+    assert done.returncode == 2, (done.stdout, done.stderr)
+    assert "Traceback" not in done.stderr
+    lines = done.stderr.strip().splitlines()
+    assert len(lines) == 1, done.stderr
+    assert lines[0].startswith("error:") and problem in lines[0]
+    assert done.stdout == ""
+
+
+def test_blow_up_names_dt_and_the_limit_and_prints_no_nan():
+    done = cli("vertical", "--headless", "--set", "dt=1.5", "--until", "100")
+    assert done.returncode == 1
+    assert "Traceback" not in done.stderr
+    assert "dt = 1.5 s" in done.stderr and "ω·dt < 2" in done.stderr and "dt < 1 s" in done.stderr
+    assert "nan" not in done.stdout.lower()
+
+
+def test_warning_when_dt_is_past_the_stability_limit_even_without_blow_up():
+    # ω = √(40/10) = 2 rad/s, so Δt = 1.2 s gives ω·dt = 2.4 > 2: one step does not blow up yet.
+    done = cli("vertical", "--headless", "--set", "dt=1.2", "--until", "1.2")
+    assert done.returncode == 0, done.stderr
+    assert "warning:" in done.stderr and "ω·dt = 2.4" in done.stderr
+    assert "t = 1.2 s" in done.stdout
+
+
+# ---- start-up stays light ----
+
+def test_headless_never_imports_vpython_matplotlib_or_scipy():
+    code = ("import runpy, sys\n"
+            "sys.argv = ['main.py', 'vertical', '--headless', '--json']\n"
+            "try:\n    runpy.run_path('main.py', run_name='__main__')\n"
+            "except SystemExit:\n    pass\n"
+            "print('LOADED', *sorted(m for m in ('vpython', 'matplotlib', 'scipy') if m in sys.modules))\n")
+    done = cli(code=code)
+    assert '"r"' in done.stdout, done.stderr  # the run itself happened
+    assert done.stdout.strip().splitlines()[-1] == "LOADED"
+
+
+# ---- the figure ----
+
+def test_plot_writes_a_png(tmp_path):
+    path = tmp_path / "damped.png"
+    done = cli("damped", "--plot", str(path), "--until", "2")
+    assert done.returncode == 0, done.stderr
+    assert path.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    assert "t = 2 s" in done.stdout
+
+
+def test_plot_without_matplotlib_says_how_to_install_it(tmp_path):
+    path = tmp_path / "x.png"
+    code = ("import runpy, sys\n"
+            "sys.modules['matplotlib'] = None  # as if it were not installed\n"
+            f"sys.argv = ['main.py', 'vertical', '--headless', '--plot', {str(path)!r}]\n"
+            "runpy.run_path('main.py', run_name='__main__')\n")
+    done = cli(code=code)
+    assert done.returncode == 2
+    assert done.stderr.strip() == "error: --plot needs matplotlib: pip install matplotlib"
+    assert not path.exists()
+
+
+# ---- multi-mass output, in-process (no multi-mass scene exists yet to run through main.py) ----
+
+def two_hanging_masses():
+    """Two Simple Examples side by side (anchors 1 m apart), as a scene Setup with labels."""
+    from types import SimpleNamespace
+
+    import numpy as np
+
+    from physics.forces import Gravity, Spring
+    from physics.state import make_state
+    from scenes.catalog import Setup
+    from scenes.model import Model
+
+    anchors = np.array([[0.0, 0.0, 0.0], [1.0, 0.0, 0.0]])
+
+    def build():
+        return Model(state=make_state(r=anchors + [0.0, -1.5, 0.0], m=[m, m]),
+                     forces=(Spring(k=k, L0=L0, anchor=anchors), Gravity(g=g)),
+                     dt=dt, until=0.2, anchors=anchors, labels=("left", "right"))
+    return Setup("pair", SimpleNamespace(build=build, VIEW={}), {}, {})
+
+
+def test_multi_mass_json_text_and_csv_name_each_body(tmp_path):
+    import headless
+
+    result = headless.simulate(two_hanging_masses())
+    out = json.loads(json.dumps(headless.as_json(result)))
+    assert [body["label"] for body in out["bodies"]] == ["left", "right"]
+    for body, x in zip(out["bodies"], (0.0, 1.0)):
+        assert body["r"] == pytest.approx([x, -1.73088, 0], abs=1e-12)  # each is the Simple Example
+        assert body["p"] == pytest.approx([0, -15.288, 0], abs=1e-12)
+    assert len(out["r"]) == 2 and len(out["r"][0]) == 3
+    text = headless.final_report(result)
+    assert "left (m = 10 kg):" in text and "right (m = 10 kg):" in text
+    assert text.count("r = < ") == 2
+    path = tmp_path / "pair.csv"
+    headless.write_csv(result, str(path))
+    with open(path, newline="", encoding="utf-8") as handle:
+        rows = list(csv.DictReader(handle))
+    assert len(rows) == 2 * (out["steps"] + 1)
+    assert [row["body"] for row in rows[-2:]] == ["left", "right"]
+    assert float(rows[-1]["x"]) == 1.0 and float(rows[-1]["y"]) == pytest.approx(-1.73088)
