@@ -1,0 +1,59 @@
+"""Shared helpers for the physics tests, offered as fixtures.
+
+- ``observed_order``: the order p of a method from errors at several Δt, fitting error ∝ Δt^p.
+- ``line_oscillators``: a batch of independent masses on L0 = 0 springs at the origin, moving
+  along x with no gravity. Each row is its own m x'' + b x' + k x = F0 cos(ω t), the equation
+  physics.exact.oscillator solves, so one numpy run checks many parameter sets at once.
+- ``oscillation_energy``: E − E_equilibrium along a single-mass trajectory, from physics.energy,
+  computed for all samples at once.
+"""
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from physics.energy import kinetic, potential
+from physics.forces import Driving, LinearDamping, Spring
+from physics.state import State, make_state
+
+
+def _observed_order(dts, errors) -> float:
+    """Slope of log(error) against log(Δt): halving Δt divides the error by 2^p."""
+    return float(np.polyfit(np.log(dts), np.log(errors), 1)[0])
+
+
+def _line_oscillators(*, m, k, b=0.0, x0=0.0, v0=0.0, F0=0.0, omega=0.0):
+    """(state, forces) for len(m) masses; every parameter is a number or one value per mass."""
+    m, k, b, x0, v0, F0, omega = np.broadcast_arrays(*(np.atleast_1d(np.asarray(a, dtype=float))
+                                                      for a in (m, k, b, x0, v0, F0, omega)))
+    along_x = np.array([1.0, 0.0, 0.0])
+    state = make_state(r=x0[:, None] * along_x, v=v0[:, None] * along_x, m=m)
+    forces = (Spring(k=k, L0=0.0), LinearDamping(b=b), Driving(F0=F0, omega=omega))
+    return state, forces
+
+
+def _oscillation_energy(trajectory, forces, r_equilibrium) -> np.ndarray:
+    """E(t) − E at rest at equilibrium, J, for a one-mass trajectory (n samples).
+
+    The n samples are treated as n masses of one State, so physics.energy works on them in one call.
+    """
+    m = np.full(len(trajectory.t), trajectory.m[0])
+    samples = State(t=0.0, r=trajectory.r[:, 0, :], p=trajectory.p[:, 0, :], m=m)
+    E = kinetic(samples) + potential(samples, forces)
+    rest = make_state(r=r_equilibrium, m=trajectory.m[0])
+    return E - potential(rest, forces)[0]
+
+
+@pytest.fixture
+def observed_order():
+    return _observed_order
+
+
+@pytest.fixture
+def line_oscillators():
+    return _line_oscillators
+
+
+@pytest.fixture
+def oscillation_energy():
+    return _oscillation_energy

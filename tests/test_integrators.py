@@ -1,0 +1,112 @@
+"""Every integrator against the exact solution: order of convergence, mixed steppers, blow-up.
+
+A method of order p has a global error ∝ Δt^p: halving Δt divides the error by 2 for euler and
+euler-cromer, 4 for verlet and 16 for rk4. The order is fitted from four Δt values, on three
+systems: the undamped vertical spring with gravity (the page's Simple Example), a strongly damped
+one (where verlet's velocity predictor is what keeps it second order), and a driven damped one.
+"""
+import numpy as np
+import pytest
+
+from physics.integrators import INTEGRATORS, STABILITY_LIMIT_OMEGA_DT
+from physics.simulate import BlowUpError, run, stepper
+from scenes import catalog
+
+EXPECTED_ORDER = {"euler": 1, "euler-cromer": 1, "verlet": 2, "rk4": 4}
+ORDER_TOLERANCE = {1: 0.25, 2: 0.3, 4: 0.5}
+# Δt values in the asymptotic range of each order, yet not so small that round-off shows.
+DTS = {1: [0.02, 0.01, 0.005, 0.0025], 2: [0.04, 0.02, 0.01, 0.005], 4: [0.08, 0.04, 0.02, 0.01]}
+
+SYSTEMS = {
+    # m = 10 kg, k = 40 N/m, L0 = 1 m, g = 9.8 m/s², released from rest at 1.5 m: ω = 2 rad/s.
+    "undamped vertical": ("vertical", None, {}),
+    # b = 20 kg/s: γ = b/2m = 1 s⁻¹, half of ω, so damping dominates the velocity error.
+    "damped vertical": ("damped", None, {"b": 20.0}),
+    # the page's driven scenario 5: b = 2 kg/s, F0 = 2 N, ω = 4 rad/s, x0 = 1 m.
+    "driven damped": ("driven", 5, {}),
+}
+
+
+def max_error(model, integrator, dt, until):
+    """Largest distance |r − r_exact| over the run, m."""
+    trajectory = run(model.state, model.forces, dt=dt, until=until, integrator=integrator)
+    r_exact, _ = model.exact(trajectory.t)
+    return np.max(np.linalg.norm(trajectory.r - r_exact, axis=-1))
+
+
+@pytest.mark.parametrize("system", SYSTEMS)
+@pytest.mark.parametrize("integrator", INTEGRATORS)
+def test_order_of_convergence(integrator, system, observed_order):
+    scene, scenario, changes = SYSTEMS[system]
+    model = catalog.configure(scene, scenario=scenario).with_values(**changes).build()
+    assert model.exact is not None
+    order = EXPECTED_ORDER[integrator]
+    dts = DTS[order]
+    errors = [max_error(model, integrator, dt, until=3.0) for dt in dts]
+    assert observed_order(dts, errors) == pytest.approx(order, abs=ORDER_TOLERANCE[order]), errors
+
+
+def test_every_integrator_has_an_expected_order():
+    assert set(EXPECTED_ORDER) == set(INTEGRATORS)
+
+
+def test_a_tuple_of_names_steps_each_mass_by_its_own_method(line_oscillators):
+    names = tuple(INTEGRATORS)
+    count = len(names)
+    params = dict(m=np.linspace(1.0, 3.0, count), k=np.linspace(10.0, 40.0, count),
+                  b=np.linspace(0.0, 1.5, count), x0=np.linspace(0.5, -0.5, count), v0=0.3,
+                  F0=1.0, omega=3.0)
+    state, forces = line_oscillators(**params)
+    together = run(state, forces, dt=0.01, until=2.0, integrator=names)
+    for i, name in enumerate(names):
+        alone_state, alone_forces = line_oscillators(**{key: np.broadcast_to(value, count)[i]
+                                                        for key, value in params.items()})
+        alone = run(alone_state, alone_forces, dt=0.01, until=2.0, integrator=name)
+        np.testing.assert_allclose(together.r[:, i], alone.r[:, 0], rtol=1e-12, atol=1e-14)
+        np.testing.assert_allclose(together.p[:, i], alone.p[:, 0], rtol=1e-12, atol=1e-14)
+    # The methods really differ, so picking the wrong row would have been caught.
+    assert len({together.r[-1, i, 0] for i in range(count)}) == count
+
+
+STABLE_UP_TO = {name: limit for name, limit in STABILITY_LIMIT_OMEGA_DT.items() if limit is not None}
+
+
+@pytest.mark.parametrize("integrator", STABLE_UP_TO)
+def test_blow_up_beyond_the_stability_limit_names_dt_and_the_limit(integrator, line_oscillators):
+    """On m x'' = −k x, ω = √(k/m) = 2 rad/s; ω·Δt just above the limit grows without bound."""
+    limit = STABLE_UP_TO[integrator]
+    omega = 2.0
+    state, forces = line_oscillators(m=1.0, k=omega**2, x0=1.0)
+    span = 300 * 1.05 * limit / omega
+    dt = 1.05 * limit / omega
+    with pytest.raises(BlowUpError) as blown:
+        run(state, forces, dt=dt, until=span, integrator=integrator)
+    message = str(blown.value)
+    assert f"dt = {dt:g} s" in message
+    assert f"ω·dt < {limit:.3g}" in message
+    assert integrator in message
+
+
+@pytest.mark.parametrize("integrator", STABLE_UP_TO)
+def test_no_blow_up_just_below_the_stability_limit(integrator, line_oscillators):
+    limit = STABLE_UP_TO[integrator]
+    omega = 2.0
+    state, forces = line_oscillators(m=1.0, k=omega**2, x0=1.0)
+    span = 300 * 1.05 * limit / omega
+    trajectory = run(state, forces, dt=0.95 * limit / omega, until=span, integrator=integrator)
+    assert np.all(np.isfinite(trajectory.r))
+    assert np.max(np.abs(trajectory.r[:, 0, 0])) < 10.0
+
+
+def test_euler_blows_up_at_any_dt_and_says_so(line_oscillators):
+    """Euler multiplies the energy by 1 + (ω Δt)² every step: even ω·Δt = 0.5 soon explodes."""
+    state, forces = line_oscillators(m=1.0, k=4.0, x0=1.0)
+    with pytest.raises(BlowUpError, match="unstable on a spring at every dt"):
+        run(state, forces, dt=0.25, until=300 * 0.25, integrator="euler")
+
+
+def test_page_dt_is_well_inside_the_limit_and_does_not_blow_up():
+    """The Simple Example, ω·Δt = 2 rad/s × 0.1 s = 0.2, for 100 periods with the page's method."""
+    model = catalog.configure("vertical").build()
+    trajectory = run(model.state, model.forces, dt=model.dt, until=100 * np.pi)
+    assert np.all(np.isfinite(trajectory.r))
