@@ -11,7 +11,8 @@ stretch. The left one feels linear damping, the right one the air drag of the pa
 
 b is matched so that both lose the same energy in their first period: per period linear damping
 takes π b ω A² and quadratic drag (8/3)(½CAρ) ω² A³, equal when b = (8/3π)(½CAρ) ω A0.
-Quadratic drag has no closed form, so the scene has no exact curves.
+The linear one has its exact curve (physics.exact.oscillator); quadratic drag has no closed form,
+so its exact entries are NaN, meaning "not known".
 
 With k = 0 (the preset "falling, no spring") the balls fall instead, and each reaches its terminal
 speed, where drag balances gravity: v_t = m g / b for linear damping, v_t = √(2 m g / (C A ρ)) for
@@ -23,7 +24,7 @@ from physics.forces import Gravity, LinearDamping, QuadraticDrag, Spring
 from physics.state import make_state
 
 from .model import Model
-from .row import anchors_in_a_row, start_positions
+from .row import anchors_in_a_row, exact_row, start_positions
 
 # ---- constants: edit these (unit: meaning); 0 switches a force off ----
 m = 0.27                   # kg: mass of each ball (a volleyball)
@@ -53,6 +54,18 @@ def matched_b(*, m, k, C, A, rho, x0) -> float:
     return 8.0 / (3.0 * np.pi) * 0.5 * C * A * rho * np.sqrt(k / m) * x0
 
 
+def _linear_only(linear):
+    """The row's exact motion: the linear ball's closed form, and NaN for the quadratic one."""
+    if linear is None:
+        return None
+
+    def exact(t):
+        r, v = linear(t)
+        unknown = np.full_like(r, np.nan)
+        return np.concatenate([r, unknown], axis=1), np.concatenate([v, unknown], axis=1)
+    return exact
+
+
 def build(*, m, k, L0, g, b, C, A, rho, x0, spacing, dt, until):
     """Two hanging balls: linear damping on the left, quadratic drag on the right."""
     anchors = anchors_in_a_row(count=2, spacing=spacing)
@@ -69,7 +82,7 @@ def build(*, m, k, L0, g, b, C, A, rho, x0, spacing, dt, until):
         forces=tuple(forces),
         dt=float(dt),
         until=float(until),
-        exact=None,
+        exact=_linear_only(exact_row(anchors=anchors[:1], r0=r0[:1], m=m, k=k, L0=L0, g=g, b=b)),
         anchors=anchors,
         labels=(f"linear, b = {b:.3g} kg/s", f"quadratic, ½CAρ = {0.5 * C * A * rho:.3g} kg/m"),
     )
