@@ -1,0 +1,455 @@
+"""The browser view of any scene: support, springs and masses in 3-D, graphs, and classroom controls.
+
+This is the one shared view. A scene file names what to draw in its VIEW dict:
+
+    support   "ceiling" (a box above the anchors) or "wall" (a box beside them)
+    plot      the coordinate that moves: "x", "y", "z", or "xyz" for all three
+    trail     True leaves a fading trail behind each mass (default False)
+    exact     False hides the exact-solution curve even where a closed form exists (default True)
+    sliders   names of the constants that get a slider (default: m and k, and b, F0 and omega
+              where the scene switches them on)
+    coils     turns drawn in each helix (default 12)
+    window    seconds of simulation time the graphs show before they scroll (default 30)
+
+The view only reads the state. The physics is physics.simulate.stepper (the chosen integrator);
+energy is physics.energy; the real-time stepping and the graph windows are scenes/clock.py.
+
+How the page behaves, for the teacher:
+
+* Run/Pause, Step (one Δt, pausing first) and Reset (back to the exact initial state, empty
+  graphs, W_nc = 0).
+* Moving a slider, or picking another integrator, rebuilds the model with that choice and starts
+  again from t = 0, so the graphs and the exact curve always describe one run. The caption says so.
+* Speed ¼× to 4× scales simulation time against wall-clock time and does not restart.
+* The graphs show one point per 0.05 s of simulation time (at most 20 per simulated second), in a
+  window of the last `window` seconds that scrolls. A curve keeps at most 2 × window × 20 points
+  (1,200 for 30 s), so a 30-minute run costs the page no more than a 1-minute run.
+* If the page stops asking for updates (a hidden tab), the clock stops; it resumes without a jump.
+
+Closing the tab, or Ctrl-C, makes vpython raise SystemExit(0) in this (main) thread; nothing here
+catches it, so the program ends with status 0.
+"""
+from __future__ import annotations
+
+import math
+import queue
+import sys
+import time
+
+import numpy as np
+
+from physics.integrators import INTEGRATORS
+
+from .clock import LiveRun, RealTimeClock, StepBudget, Trace, window
+from .constants import format_value
+
+FRAME_RATE = 50           # frames per second the loop aims for
+STALE_AFTER = 0.5         # s without a message from the page before the clock stops
+SAMPLE_EVERY = 0.05       # s of simulation time between graph points
+SPEEDS = {"¼×": 0.25, "½×": 0.5, "1×": 1.0, "2×": 2.0, "4×": 4.0}
+SLIDER_CHOICES = ("m", "k", "b", "F0", "omega")
+SYMBOLS = {"omega": "ω", "rho": "ρ"}
+DEFAULT_VIEW = {"support": "ceiling", "plot": "y", "trail": False, "exact": True, "coils": 12,
+                "window": 30.0}
+
+CANVAS_SIZE = (900, 440)  # px
+GRAPH_SIZE = (580, 290)   # px
+# Larger text than vpython's default, for a projector at the back of a classroom.
+PAGE_STYLE = "<style>body { font-size: 17px; } button, select { font-size: 17px; }</style>"
+MASS_COLOURS = [(1.0, 0.55, 0.1), (0.25, 0.65, 1.0), (0.3, 0.85, 0.35), (0.95, 0.35, 0.6),
+                (0.8, 0.75, 0.2), (0.65, 0.45, 0.95)]
+ENERGY_COLOURS = {"K": (0.85, 0.1, 0.1), "U": (0.1, 0.3, 0.9), "E": (0.0, 0.0, 0.0),
+                  "E_minus_W_nc": (0.1, 0.6, 0.1)}
+ENERGY_LABELS = {"K": "K", "U": "U", "E": "E = K + U", "E_minus_W_nc": "E − W_nc"}
+
+
+def show(setup, *, integrator: str, port: int | None, open_browser: bool) -> int:
+    """Show a scene in the browser and run it in real time until the page is closed.
+
+    Returns 2 (after a one-line message) if the model or the server cannot start; otherwise the
+    program ends through SystemExit(0) when the tab closes or on Ctrl-C.
+    """
+    try:
+        model = setup.build()
+    except ValueError as problem:
+        print(f"error: {problem}", file=sys.stderr)
+        return 2
+    from .loopback_server import ServerError, start
+
+    try:
+        server = start(port=port, open_browser=open_browser)
+    except ServerError as problem:
+        print(f"error: {problem}", file=sys.stderr)
+        return 2
+    try:
+        SceneView(setup=setup, model=model, integrator=integrator, server=server).run_forever()
+    except KeyboardInterrupt:  # Ctrl-C before vpython's own handler turns it into SystemExit(0)
+        return 0
+    return 0
+
+
+def slider_names(setup, view: dict) -> list[str]:
+    """The constants that get a slider: VIEW["sliders"], else m and k and the forces switched on."""
+    if "sliders" in view:
+        return [name for name in view["sliders"] if name in setup.constants]
+    return [name for name in SLIDER_CHOICES
+            if name in setup.constants and isinstance(setup.values[name], (int, float))
+            and (name in ("m", "k") or setup.values[name])]
+
+
+def slider_range(name: str, value: float) -> tuple[float, float, float]:
+    """(min, max, step) around a constant's default: from a tenth (or 0) to three times it."""
+    low = 0.0 if name in ("b", "F0", "omega") else 0.1 * value
+    high = 3.0 * value if value > 0 else 1.0
+    step = 10 ** math.floor(math.log10((high - low) / 200))
+    return low, high, step
+
+
+def symbol(name: str) -> str:
+    return SYMBOLS.get(name, name)
+
+
+def time_decimals(dt: float) -> int:
+    """Enough decimals that one step of Δt shows: 2 for Δt = 0.01 s, 4 for Δt = 1e-4 s."""
+    return max(2, math.ceil(-math.log10(dt) - 1e-9))
+
+
+def constants_text(setup) -> str:
+    """The scene's constants that are switched on, with units: `m = 10 kg, k = 40 N/m, ...`."""
+    parts = []
+    for name, constant in setup.constants.items():
+        value = setup.values[name]
+        if name == "until" or value is None or (not isinstance(value, tuple) and value == 0):
+            continue
+        if name == "drive_axis" and not setup.values.get("F0"):
+            continue
+        parts.append(f"{symbol(name)} = {format_value(value, constant.unit)}")
+    return ", ".join(parts)
+
+
+def motion_box(model) -> tuple[np.ndarray, np.ndarray]:
+    """Corners (low, high) of the region the masses and anchors use over the first 20 s, m."""
+    if model.exact is not None:
+        r, _ = model.exact(np.linspace(0.0, 20.0, 801))
+    else:
+        from physics.simulate import BlowUpError, run
+        until = min(10.0, 4000 * model.dt)
+        try:
+            r = run(model.state, model.forces, dt=model.dt, until=until).r
+        except BlowUpError:
+            r = model.state.r[None]
+    points = np.concatenate([np.reshape(r, (-1, 3)), model.anchors, model.state.r])
+    points = points[np.all(np.isfinite(points), axis=1)]
+    return points.min(axis=0), points.max(axis=0)
+
+
+class SceneView:
+    """The page: builds every object once, then redraws from the LiveRun once per frame."""
+
+    def __init__(self, *, setup, model, integrator: str, server):
+        import vpython as vp  # already imported, loopback-only, by loopback_server.start
+
+        self.vp, self.server = vp, server
+        self.setup = setup
+        self.view = {**DEFAULT_VIEW, **getattr(setup.module, "VIEW", {})}
+        self.integrator = integrator
+        self.commands: queue.SimpleQueue = queue.SimpleQueue()
+        self.running = True
+        self.span = float(self.view["window"])
+        self.axes = ["xyz".index(axis) for axis in self.view["plot"]]
+        self.live = LiveRun(model, integrator=integrator, sample_every=SAMPLE_EVERY)
+        self.clock = RealTimeClock(dt=model.dt, now=time.perf_counter())
+        self.budget = StepBudget()
+        self._build_scene(model)
+        self._build_controls()
+        self._build_graphs(model)
+        self._restart(model)
+
+    # ---- building the page ----
+
+    def _build_scene(self, model) -> None:
+        vp = self.vp
+        scene = vp.scene
+        scene.width, scene.height = CANVAS_SIZE
+        scene.background = vp.vector(0.12, 0.13, 0.16)
+        scene.fov = 0.2  # rad: a long lens, so the support and springs look flat, as in a drawing
+        scene.title = (PAGE_STYLE + f"<b style='font-size:130%'>{self.setup.name}</b>: "
+                       f"{_summary(self.setup.module)}\n")
+        low, high = motion_box(model)
+        size = float(np.max(high - low)) or 1.0
+        anchors = model.anchors
+        gaps = [np.linalg.norm(a - b) for i, a in enumerate(anchors) for b in anchors[i + 1:]]
+        radius = min([0.06 * size] + [0.3 * gap for gap in gaps if gap > 0])
+        self.radius = radius
+        thickness = 0.4 * radius
+        pad = 3 * radius
+        centre = 0.5 * (low + high)
+        if self.view["support"] == "wall":
+            wall_x = float(anchors[:, 0].min())
+            span_y = float(high[1] - low[1]) + 2 * pad
+            vp.box(pos=vp.vector(wall_x - thickness / 2, centre[1], centre[2]),
+                   size=vp.vector(thickness, span_y, 2 * radius), color=vp.vector(0.6, 0.6, 0.65))
+            low = np.minimum(low, [wall_x - thickness, low[1] - pad, low[2]])
+        else:
+            ceiling_y = float(anchors[:, 1].max())
+            span_x = float(high[0] - low[0]) + 2 * pad
+            vp.box(pos=vp.vector(centre[0], ceiling_y + thickness / 2, centre[2]),
+                   size=vp.vector(span_x, thickness, 2 * radius), color=vp.vector(0.6, 0.6, 0.65))
+            high = np.maximum(high, [high[0], ceiling_y + thickness, high[2]])
+        low, high = low - radius, high + radius
+        self._frame_camera(low, high)
+        self.masses, self.springs = [], []
+        for i, (anchor, r) in enumerate(zip(anchors, model.state.r)):
+            colour = vp.vector(*MASS_COLOURS[i % len(MASS_COLOURS)])
+            self.springs.append(vp.helix(pos=_vec(vp, anchor), axis=_vec(vp, r - anchor),
+                                         radius=0.45 * radius, thickness=0.12 * radius,
+                                         coils=self.view["coils"], color=vp.vector(0.85, 0.85, 0.9)))
+            mass = vp.sphere(pos=_vec(vp, r), radius=radius, color=colour,
+                             make_trail=bool(self.view["trail"]), retain=300)
+            self.masses.append(mass)
+
+    def _frame_camera(self, low, high) -> None:
+        scene = self.vp.scene
+        width, height = CANVAS_SIZE
+        box = high - low
+        scene.autoscale = False
+        scene.center = _vec(self.vp, 0.5 * (low + high))
+        # range is the distance from the centre to the nearer (here: top and bottom) edge
+        self.range = 0.55 * max(box[1], box[0] * height / width, 1e-3)
+        scene.range = self.range
+        self.centre = 0.5 * (low + high)
+
+    def _build_controls(self) -> None:
+        vp, scene = self.vp, self.vp.scene
+        put = self.commands.put
+        scene.append_to_caption("\n")
+        self.run_button = vp.button(text="Pause", bind=lambda _: put(("toggle",)))
+        scene.append_to_caption("  ")
+        vp.button(text="Step", bind=lambda _: put(("step",)))
+        scene.append_to_caption("  ")
+        vp.button(text="Reset", bind=lambda _: put(("reset",)))
+        scene.append_to_caption("    integrator ")
+        if self.live.model.integrators:
+            vp.wtext(text="<i>" + ", ".join(self.live.model.integrators) + "</i> (one per mass)")
+        else:
+            vp.menu(choices=list(INTEGRATORS), selected=self.integrator,
+                    bind=lambda menu: put(("integrator", menu.selected)))
+        scene.append_to_caption("    speed ")
+        vp.menu(choices=list(SPEEDS), selected="1×", bind=lambda menu: put(("speed", menu.selected)))
+        scene.append_to_caption("\n\n")
+        self.time_text = vp.wtext(text="t = 0.00 s")
+        scene.append_to_caption("    ")
+        self.error_text = vp.wtext(text="")
+        scene.append_to_caption("\n")
+        self.sliders, self.slider_texts = {}, {}
+        for name in slider_names(self.setup, self.view):
+            low, high, step = slider_range(name, float(self.setup.values[name]))
+            scene.append_to_caption("\n")
+            self.sliders[name] = vp.slider(min=low, max=high, step=step, value=self.setup.values[name],
+                                           length=320, bind=lambda s, name=name: put(("set", name, s.value)))
+            self.slider_texts[name] = vp.wtext(text="")
+        scene.append_to_caption("\n\n")
+        self.constants_text = vp.wtext(text="")
+        scene.append_to_caption("\n<i>Moving a slider or choosing another integrator restarts "
+                                "the run from t = 0; Reset returns to the start; "
+                                "Step advances one Δt.</i>\n")
+        self.status_text = vp.wtext(text="")
+        scene.append_to_caption("\n")
+
+    def _build_graphs(self, model) -> None:
+        vp = self.vp
+        width, height = GRAPH_SIZE
+        names = ", ".join("xyz"[axis] for axis in self.axes)
+        self.position_graph = vp.graph(title="Position", xtitle="t (s)", ytitle=f"{names} (m)",
+                                       width=width, height=height, align="left", fast=True,
+                                       xmin=0, xmax=self.span)
+        self.curves = []  # (gcurve, Trace, what it plots)
+        many = model.state.count > 1
+        for i, label in enumerate(model.labels):
+            for axis in self.axes:
+                name = "xyz"[axis] + (f" {label}" if many or len(self.axes) > 1 else " (simulation)")
+                colour = vp.vector(*_shade(MASS_COLOURS[i % len(MASS_COLOURS)], axis, self.axes))
+                self._curve(self.position_graph, name, colour, ("r", i, axis), width=3)
+        self.show_exact = bool(self.view["exact"]) and model.exact is not None
+        if self.show_exact:
+            for i, label in enumerate(model.labels):
+                for axis in self.axes:
+                    name = "xyz"[axis] + (f" exact, {label}" if many else " exact")
+                    self._curve(self.position_graph, name, vp.vector(0.1, 0.1, 0.1), ("exact", i, axis), width=1)
+        self.energy_graph = vp.graph(title="Energy", xtitle="t (s)", ytitle="energy (J)",
+                                     width=width, height=height, align="left", fast=True,
+                                     xmin=0, xmax=self.span)
+        for key, colour in ENERGY_COLOURS.items():
+            # E − W_nc comes last and thinner, so it shows on top of E when no work is done
+            self._curve(self.energy_graph, ENERGY_LABELS[key], vp.vector(*colour), ("energy", key),
+                        width=4 if key == "E" else 2)
+
+    def _curve(self, graph, label, colour, what, *, width) -> None:
+        curve = self.vp.gcurve(graph=graph, label=label, color=colour, width=width)
+        self.curves.append((curve, Trace(span=self.span), what))
+
+    # ---- the loop ----
+
+    def run_forever(self) -> None:
+        """Step in real time and redraw, about FRAME_RATE times a second, until the page closes."""
+        frame = 1.0 / FRAME_RATE
+        while True:
+            start = time.perf_counter()
+            changed = self._apply_commands(now=start)
+            visible = self.server.seconds_since_contact() < STALE_AFTER
+            steps = self.clock.steps_due(now=start, running=self.running and visible and not self.live.problem,
+                                         max_steps=self.budget.max_steps)
+            if steps:
+                samples = self.live.advance(steps)
+                self.budget.record(steps=steps, seconds=time.perf_counter() - start)
+                self._plot(samples)
+            if steps or changed:
+                self._draw()
+            time.sleep(max(0.002, frame - (time.perf_counter() - start)))
+
+    def _apply_commands(self, *, now: float) -> bool:
+        """Carry out the clicks queued by the page (they arrive on vpython's server thread)."""
+        pending = []
+        while True:
+            try:
+                pending.append(self.commands.get_nowait())
+            except queue.Empty:
+                break
+        changes, integrator = {}, None
+        for command in pending:
+            kind = command[0]
+            if kind == "toggle":
+                self.running = not self.running
+            elif kind == "step":
+                self.running = False
+                self._plot(self.live.advance(1))
+            elif kind == "reset":
+                self._plot(self._clear_graphs(self.live.restart()), redraw=True)
+                self.clock.restart(now=now)
+            elif kind == "speed":
+                self.clock.speed = SPEEDS.get(command[1], 1.0)
+            elif kind == "integrator":
+                integrator = command[1]
+            elif kind == "set":
+                changes[command[1]] = float(command[2])
+        if changes or integrator:
+            self._rebuild(changes=changes, integrator=integrator or self.integrator, now=now)
+        return bool(pending)
+
+    def _rebuild(self, *, changes: dict, integrator: str, now: float) -> None:
+        """A new constant or integrator: rebuild the model and start again from t = 0."""
+        setup = self.setup.with_values(**changes)
+        try:
+            model = setup.build()
+        except ValueError as problem:
+            self.status_text.text = f"<b>Cannot use that value:</b> {problem}"
+            return
+        self.setup, self.integrator = setup, integrator
+        self.live = LiveRun(model, integrator=integrator, sample_every=SAMPLE_EVERY)
+        self.show_exact = self.show_exact and model.exact is not None
+        self._restart(model)
+        self.clock.restart(now=now)
+
+    def _restart(self, model) -> None:
+        self._plot(self._clear_graphs(self.live.restart()), redraw=True)
+        self.clock.dt = model.dt
+        self.decimals = time_decimals(model.dt)
+        self.constants_text.text = "Constants: " + constants_text(self.setup)
+        for name, text in self.slider_texts.items():
+            unit = self.setup.constants[name].unit
+            text.text = f"  {symbol(name)} = {format_value(self.setup.values[name], unit)}"
+        self._draw()
+
+    def _clear_graphs(self, samples):
+        for curve, trace, _ in self.curves:
+            trace.clear()
+        for graph in (self.position_graph, self.energy_graph):
+            graph.xmin, graph.xmax = window(0.0, span=self.span)
+        return samples
+
+    def _plot(self, samples, *, redraw: bool = False) -> None:
+        """Add samples to every curve (a whole curve is resent only when its window scrolls)."""
+        if not samples and not redraw:
+            return
+        t = np.array([s.t for s in samples])
+        r = np.array([s.r for s in samples]) if samples else np.zeros((0,) + self.live.state.r.shape)
+        exact = self.live.model.exact(t)[0] if (self.show_exact and len(t)) else None
+        for curve, trace, what in self.curves:
+            if what[0] == "r":
+                values = r[:, what[1], what[2]]
+            elif what[0] == "exact":
+                if exact is None:
+                    values = np.zeros(0)
+                else:
+                    values = exact[:, what[1], what[2]]
+            else:
+                values = [s.energy[what[1]] for s in samples]
+            points = [[float(a), float(b)] for a, b in zip(t, values)]
+            if trace.add(points) or redraw:
+                curve.delete()
+                curve._data = []  # vpython 7.6.5's delete() keeps its Python copy of the points
+                if trace.points:
+                    curve.plot(list(trace.points))
+            elif points:
+                curve.plot(points)
+        if len(t):
+            start, end = window(float(t[-1]), span=self.span)
+            if start != self.position_graph.xmin:
+                for graph in (self.position_graph, self.energy_graph):
+                    graph.xmin, graph.xmax = start, end
+
+    def _draw(self) -> None:
+        """Move the masses and springs to the state now and update the caption: once per frame."""
+        vp, state, anchors = self.vp, self.live.state, self.live.model.anchors
+        for mass, spring, anchor, r in zip(self.masses, self.springs, anchors, state.r):
+            if np.all(np.isfinite(r)):
+                mass.pos = _vec(vp, r)
+                spring.axis = _vec(vp, r - anchor)  # the helix runs from the anchor to the mass
+        self._keep_in_view(state.r)
+        self.time_text.text = f"<b style='font-size:150%'>t = {state.t:.{self.decimals}f} s</b>"
+        self.run_button.text = "Pause" if self.running else "Run"
+        self.error_text.text = self._error_readout()
+        status = self.live.problem or ""
+        if self.clock.dropped > 0.01 and not status:
+            status = (f"Running slower than real time (Δt = {self.live.model.dt:g} s is small for "
+                      f"this computer at this speed).")
+        if status != self.status_text.text:
+            self.status_text.text = status if not self.live.problem else f"<b>Stopped:</b> {status}"
+
+    def _error_readout(self) -> str:
+        if not self.show_exact:
+            return ""
+        model, state = self.live.model, self.live.state
+        exact = model.exact(np.array([state.t]))[0][0]
+        errors = state.r[:, self.axes] - exact[:, self.axes]
+        worst = float(np.max(np.abs(errors)))
+        if errors.size == 1:
+            name = "xyz"[self.axes[0]]
+            return f"error {name} − {name}<sub>exact</sub> = {float(errors.flat[0]):+.3g} m"
+        return f"largest |error| against the exact solutions = {worst:.3g} m"
+
+    def _keep_in_view(self, r) -> None:
+        """Zoom out (never in) if a mass leaves the framed region, as when a run blows up."""
+        finite = r[np.all(np.isfinite(r), axis=1)]
+        if not len(finite):
+            return
+        width, height = CANVAS_SIZE
+        reach = np.abs(finite - self.centre).max(axis=0)
+        needed = max(reach[1], reach[0] * height / width) + self.radius
+        if needed > self.range:
+            self.range = min(1.5 * needed, 1e9)
+            self.vp.scene.range = self.range
+
+
+def _vec(vp, a):
+    return vp.vector(float(a[0]), float(a[1]), float(a[2]))
+
+
+def _shade(colour, axis, axes):
+    """The mass's colour, darker for the second and third plotted coordinate."""
+    factor = 1.0 - 0.3 * axes.index(axis)
+    return tuple(c * factor for c in colour)
+
+
+def _summary(module) -> str:
+    return (module.__doc__ or "").strip().splitlines()[0]
