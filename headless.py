@@ -114,6 +114,14 @@ def stop_note(model, *, until: float) -> str | None:
             f"the run stopped at {n}·dt = {number(stop)} s")
 
 
+def ignored_integrator_note(model, integrator: str | None) -> str | None:
+    """A note when the scene picks each mass's method itself, so --integrator has no effect."""
+    if integrator is None or model.integrators is None:
+        return None
+    return (f"note: this scene steps its masses with {', '.join(model.integrators)}; "
+            f"--integrator {integrator} is ignored")
+
+
 def stability_warning(model, integrator) -> str | None:
     """A warning when ω·dt is past the method's stability limit on the stiffest spring, else None."""
     omega = fastest_angular_frequency(model.forces, model.state.m)
@@ -153,7 +161,7 @@ def final_report(result: Result) -> str:
     for i, label in enumerate(result.labels):
         indent = "" if single else "  "
         if not single:
-            lines.append(f"{label} (m = {number(m[i])} kg):")
+            lines.append(f"{label}, m = {number(m[i])} kg:")
         lines += [f"{indent}r = {vector(r[i], 'm')}",
                   f"{indent}v = {vector(v[i], 'm/s')}",
                   f"{indent}p = {vector(p[i], 'kg·m/s')}",
@@ -196,7 +204,8 @@ def as_json(result: Result) -> dict:
     """One JSON-ready dict: t, steps, dt, integrator, r, p, v (single mass: 3 numbers each), and more.
 
     Multi-mass scenes give r, p, v as one 3-vector per mass and add "bodies". "exact" holds the
-    closed form at the final time and the size of the error, where a closed form exists.
+    closed form at the final time and the size of the error, where a closed form exists. A scene
+    module may add its own keys with a function extra_json(setup) -> dict.
     """
     traj, model, setup = result.trajectory, result.model, result.setup
     r, p, m = traj.r[-1], traj.p[-1], traj.m
@@ -225,6 +234,9 @@ def as_json(result: Result) -> dict:
     out["constants"] = {name: {"value": _plain(setup.values[name]), "unit": c.unit, "meaning": c.meaning}
                         for name, c in setup.constants.items()}
     out["units"] = UNITS
+    extra = getattr(setup.module, "extra_json", None)  # a scene's own results, e.g. a resonance curve
+    if extra is not None:
+        out.update(extra(setup))
     return out
 
 

@@ -110,6 +110,9 @@ def run_headless(args, setup) -> int:
 
         plotting.check_format(args.plot)
     warning = headless.stability_warning(model, headless.method_for(model, args.integrator))
+    ignored = headless.ignored_integrator_note(model, args.integrator)
+    if ignored:
+        print(ignored, file=sys.stderr)
 
     if args.steps is not None:
         table = headless.step_table(setup, model=model, integrator=args.integrator, steps=args.steps)

@@ -42,13 +42,40 @@ def check_format(path: str) -> None:
                          f"{', '.join('.' + kind for kind in sorted(kinds))}")
 
 
+MAX_LEGEND = 8  # more curves than this (a row of 25 springs) get no legend
+
+
 def moving_axes(r: np.ndarray, preferred: str | None = None) -> list[int]:
-    """The coordinates worth plotting: the scene's chosen one ('x', 'y' or 'z'), else those that move."""
-    if preferred and preferred in "xyz" and len(preferred) == 1:
-        return ["xyz".index(preferred)]
+    """The coordinates worth plotting: the scene's choice ('y', or 'xyz'), else those that move."""
+    if preferred and set(preferred) <= set("xyz"):
+        return ["xyz".index(c) for c in dict.fromkeys(preferred)]
     span = np.ptp(r.reshape(-1, 3), axis=0)
     moving = [axis for axis in range(3) if span[axis] > 1e-12 * max(1.0, float(np.max(np.abs(r))))]
     return moving or [1]
+
+
+def energy_per_body(traj, forces):
+    """E = K + U and E − W_nc of each mass at every sample, (n, N) arrays in J."""
+    from physics.energy import WorkMeter, kinetic, potential
+    from physics.state import State
+
+    states = [State(t=float(t), r=r, p=p, m=traj.m) for t, r, p in zip(traj.t, traj.r, traj.p)]
+    meter = WorkMeter(states[0], forces)
+    work = [meter.work] + [meter.advance(state) for state in states[1:]]
+    E = np.array([kinetic(state) + potential(state, forces) for state in states])
+    return E, E - np.array(work)
+
+
+def resonance_panel(ax, curve: dict) -> None:
+    """Measured steady-state amplitudes (dots) on the exact F0/√((k − mω²)² + (bω)²) (lines), per b."""
+    omega = np.asarray(curve["omega_rad_per_s"])
+    for b, measured, exact in zip(curve["b_kg_per_s"], curve["amplitude_m"], curve["exact_amplitude_m"]):
+        line, = ax.plot(omega, exact, label=f"exact, b = {b:.3g} kg/s")
+        ax.plot(omega, measured, "o", ms=4, color=line.get_color(), label=f"measured, b = {b:.3g} kg/s")
+    ax.set_xlabel("driving angular frequency ω (rad/s)")
+    ax.set_ylabel("amplitude (m)")
+    ax.legend(loc="best", fontsize="small")
+    ax.grid(alpha=0.3)
 
 
 def plot(result, path: str) -> None:
@@ -58,20 +85,36 @@ def plot(result, path: str) -> None:
     preferred = getattr(result.setup.module, "VIEW", {}).get("plot")
     axes_shown = moving_axes(traj.r, preferred if isinstance(preferred, str) else None)
     exact = model.exact(traj.t) if model.exact is not None else None
-    fig, (ax_r, ax_e) = plt.subplots(2, 1, figsize=(8, 7), sharex=True)
+    extra = getattr(result.setup.module, "extra_json", None)
+    curve = extra(result.setup).get("resonance") if extra is not None else None
+    fig, axes = plt.subplots(3 if curve else 2, 1, figsize=(8, 10 if curve else 7))
+    ax_r, ax_e = axes[0], axes[1]
+    ax_e.sharex(ax_r)
+    if curve:
+        resonance_panel(axes[2], curve)
     for i, label in enumerate(model.labels):
         for axis in axes_shown:
             name = "xyz"[axis]
             tag = f"{label}: {name}" if len(model.labels) > 1 or len(axes_shown) > 1 else name
-            line, = ax_r.plot(traj.t, traj.r[:, i, axis], lw=2.5, alpha=0.7, label=tag)
-            if exact is not None and np.all(np.isfinite(exact[0][:, i, axis])):
-                ax_r.plot(traj.t, exact[0][:, i, axis], "--", lw=1.2, color="black", label=f"{tag} exact")
+            crowded = len(model.labels) * len(axes_shown) > MAX_LEGEND
+            line, = ax_r.plot(traj.t, traj.r[:, i, axis], lw=0.8 if crowded else 2.5, alpha=0.7, label=tag)
+            if exact is not None and not crowded and np.all(np.isfinite(exact[0][:, i, axis])):
+                first = not any(line.get_label() == "exact" for line in ax_r.lines)
+                ax_r.plot(traj.t, exact[0][:, i, axis], "--", lw=1.2, color="black",
+                          label="exact" if first else "_nolegend_")
     ax_r.set_ylabel("position (m)")
     ax_r.set_title(f"{result.setup.name}: dt = {model.dt:g} s, "
                    f"{result.integrator if isinstance(result.integrator, str) else ', '.join(result.integrator)}")
-    ax_r.legend(loc="best", fontsize="small")
+    if len(ax_r.lines) <= MAX_LEGEND:
+        ax_r.legend(loc="best", fontsize="small")
     ax_r.grid(alpha=0.3)
-    if traj.energy is not None:
+    if 1 < len(model.labels) <= MAX_LEGEND // 2:
+        E, E_minus_W = energy_per_body(traj, model.forces)
+        for i, label in enumerate(model.labels):
+            line, = ax_e.plot(traj.t, E[:, i], label=f"{label}: E")
+            ax_e.plot(traj.t, E_minus_W[:, i], ":", color=line.get_color(), label=f"{label}: E − W_nc")
+        ax_e.legend(loc="best", fontsize="small")
+    elif traj.energy is not None:
         for key, label in (("K", "K"), ("U", "U"), ("E", "E = K + U"), ("E_minus_W_nc", "E − W_nc")):
             ax_e.plot(traj.t, traj.energy[key], label=label)
         ax_e.legend(loc="best", fontsize="small")

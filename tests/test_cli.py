@@ -307,6 +307,16 @@ def test_plot_without_matplotlib_says_how_to_install_it(tmp_path):
     assert not path.exists()
 
 
+def test_scene_that_compares_integrators_reports_each_body_and_ignores_integrator():
+    done = cli("integrators", "--headless", "--json", "--integrator", "rk4")
+    assert done.returncode == 0, done.stderr
+    out = json.loads(done.stdout)
+    assert isinstance(out["integrator"], list) and len(out["bodies"]) == len(out["integrator"])
+    assert "--integrator rk4 is ignored" in done.stderr
+    errors = {name: body["exact"]["error"]["r"] for name, body in zip(out["integrator"], out["bodies"])}
+    assert errors["rk4"] < errors["euler-cromer"] < errors["euler"]  # higher order, smaller error
+
+
 # ---- multi-mass output, in-process (no multi-mass scene exists yet to run through main.py) ----
 
 def two_hanging_masses():
@@ -326,7 +336,9 @@ def two_hanging_masses():
         return Model(state=make_state(r=anchors + [0.0, -1.5, 0.0], m=[m, m]),
                      forces=(Spring(k=k, L0=L0, anchor=anchors), Gravity(g=g)),
                      dt=dt, until=0.2, anchors=anchors, labels=("left", "right"))
-    return Setup("pair", SimpleNamespace(build=build, VIEW={}), {}, {})
+    def extra_json(setup):  # a scene may add its own results to --json
+        return {"pair_spacing_m": 1.0}
+    return Setup("pair", SimpleNamespace(build=build, extra_json=extra_json, VIEW={}), {}, {})
 
 
 def test_multi_mass_json_text_and_csv_name_each_body(tmp_path):
@@ -339,8 +351,9 @@ def test_multi_mass_json_text_and_csv_name_each_body(tmp_path):
         assert body["r"] == pytest.approx([x, -1.73088, 0], abs=1e-12)  # each is the Simple Example
         assert body["p"] == pytest.approx([0, -15.288, 0], abs=1e-12)
     assert len(out["r"]) == 2 and len(out["r"][0]) == 3
+    assert out["pair_spacing_m"] == 1.0
     text = headless.final_report(result)
-    assert "left (m = 10 kg):" in text and "right (m = 10 kg):" in text
+    assert "left, m = 10 kg:" in text and "right, m = 10 kg:" in text
     assert text.count("r = < ") == 2
     path = tmp_path / "pair.csv"
     headless.write_csv(result, str(path))
