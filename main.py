@@ -16,6 +16,7 @@ status 2; a run that blows up gives its reason (Δt and the stability limit) and
 from __future__ import annotations
 
 import argparse
+import json
 import math
 import sys
 
@@ -96,12 +97,14 @@ def check_options(args) -> None:
 
 
 def run_headless(args, setup) -> int:
-    """The headless paths: step table, final state (text or JSON), CSV and figure."""
+    """The headless paths: the step table, the final state (text or JSON), the CSV file and the figure.
+
+    Output files are checked before anything runs, so a typo in a path costs no computing time.
+    """
     try:
         model = setup.build()
     except ValueError as problem:  # a combination of constants the physics cannot take
         raise UsageError(str(problem)) from None
-    until = model.until if args.until is None else args.until
     if args.csv is not None:
         headless.check_writable(args.csv, what="CSV file")
     if args.plot is not None:
@@ -109,28 +112,24 @@ def run_headless(args, setup) -> int:
         import plotting
 
         plotting.check_format(args.plot)
-    warning = headless.stability_warning(model, headless.method_for(model, args.integrator))
-    ignored = headless.ignored_integrator_note(model, args.integrator)
-    if ignored:
-        print(ignored, file=sys.stderr)
+    method = headless.method_for(model, args.integrator)
+    for line in (headless.ignored_integrator_note(model, args.integrator),
+                 headless.stability_warning(model, method)):
+        if line:
+            print(line, file=sys.stderr)
 
     if args.steps is not None:
         table = headless.step_table(setup, model=model, integrator=args.integrator, steps=args.steps)
-        if warning:
-            print(warning, file=sys.stderr)
         if args.json:
-            import json
-
-            print(json.dumps({**table, "step_table": table.pop("rows"), "steps": args.steps},
-                             ensure_ascii=False))
+            rows = table.pop("rows")
+            print(json.dumps({**table, "steps": args.steps, "step_table": rows}, ensure_ascii=False))
         else:
             print(headless.format_step_table(table))
-        if args.plot is None and args.csv is None and args.until is None:
+        if args.csv is None and args.plot is None:
             return 0
 
+    until = model.until if args.until is None else args.until
     result = headless.simulate(setup, model=model, integrator=args.integrator, until=until)
-    if warning and args.steps is None:
-        print(warning, file=sys.stderr)
     note = headless.stop_note(model, until=until)
     if note:
         print(note, file=sys.stderr)
@@ -140,14 +139,9 @@ def run_headless(args, setup) -> int:
         import plotting
 
         plotting.plot(result, args.plot)
-    if args.steps is not None:
-        return 0
-    if args.json:
-        import json
-
-        print(json.dumps(headless.as_json(result), ensure_ascii=False))
-    else:
-        print(headless.final_report(result))
+    if args.steps is None:
+        print(json.dumps(headless.as_json(result), ensure_ascii=False) if args.json
+              else headless.final_report(result))
     return 0
 
 
