@@ -48,4 +48,4 @@ def build(*, m, k, L0, x0, spacing, dt, until):
     )
 
 
-VIEW = {"support": "wall", "plot": "x", "trail": False, "exact": True, "energy": True}
+VIEW = {"support": "wall", "plot": "x", "trail": False, "exact": True, "sliders": ["dt", "m", "k"]}

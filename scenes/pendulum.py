@@ -44,4 +44,4 @@ def build(**constants):
     return build_single_mass(label="bob", **constants)
 
 
-VIEW = {"support": "ceiling", "plot": "xyz", "trail": True}
+VIEW = {"support": "ceiling", "plot": "xyz", "trail": True, "sliders": ["m", "k", "g", "b"]}

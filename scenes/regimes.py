@@ -7,8 +7,9 @@ damping constant b in F = −b v differs. Critical damping is b_c = 2√(mk) (b�
 - critically damped (b = b_c): the fastest return to equilibrium without crossing it;
 - over-damped (b > b_c): no oscillation, but a slow creep back, slower the larger b.
 
-The middle oscillator's b is a constant (None means critical, recomputed from m and k); the preset
-"critical damping" puts it back there after a teacher has moved it. The other two are fixed
+The middle oscillator's b is a constant, critical by default (8 kg/s = 2√(mk) for the default m and
+k), so a teacher can slide it through the three regimes. b = None means "critical for whatever m
+and k are now", and that is what the preset "critical damping" sets. The other two are fixed
 fractions and multiples of b_c. Each curve has its exact solution from physics.exact.oscillator.
 """
 import numpy as np
@@ -25,7 +26,7 @@ m = 1.0                    # kg: mass of each block
 k = 16.0                   # N/m: spring constant of each spring (ω0 = √(k/m) = 4 rad/s)
 L0 = 1.0                   # m: relaxed length of each spring
 g = 9.8                    # m/s²: strength of gravity, acting along −y (it only moves the equilibrium)
-b = None                   # kg/s: damping of the middle oscillator (None: critical, b = 2√(mk))
+b = 8.0                    # kg/s: damping of the middle oscillator, critical 2√(mk) (None: recompute that)
 under_fraction = 0.1       # 1: b of the under-damped one, as a fraction of 2√(mk)
 over_multiple = 4.0        # 1: b of the over-damped one, as a multiple of 2√(mk)
 x0 = 0.5                   # m: start stretch below equilibrium, the same for all three
@@ -63,4 +64,4 @@ def build(*, m, k, L0, g, b, under_fraction, over_multiple, x0, spacing, dt, unt
     )
 
 
-VIEW = {"support": "ceiling", "plot": "y", "trail": False, "exact": True}
+VIEW = {"support": "ceiling", "plot": "y", "trail": False, "exact": True, "sliders": ["m", "k", "b", "x0"]}

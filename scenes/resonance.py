@@ -164,4 +164,5 @@ def extra_json(setup) -> dict:
 
 PRESETS = {"critical damping": {"b": None}}
 
-VIEW = {"support": "ceiling", "plot": "y", "trail": False, "exact": True}
+# The resonance curve itself is sweep(); the row's 25 exact curves would only crowd the graph.
+VIEW = {"support": "ceiling", "plot": "y", "trail": False, "exact": False, "sliders": ["b", "F0", "m", "k"]}

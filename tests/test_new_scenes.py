@@ -59,6 +59,9 @@ def test_scene_is_listed_and_described(name):
     assert name in SCENE_NAMES
     assert module.__doc__.strip().splitlines()[0]
     assert module.VIEW["support"] in {"ceiling", "wall"} and module.VIEW["plot"] in {"x", "y", "z", "xyz"}
+    defaults = configure(name).values
+    for slider in module.VIEW.get("sliders", []):      # a slider needs a number to start from
+        assert isinstance(defaults[slider], (int, float)), slider
 
 
 @pytest.mark.parametrize("name", NEW_SCENES)
