@@ -35,10 +35,25 @@ def cli(*args, code: str | None = None) -> subprocess.CompletedProcess:
     return subprocess.run(command, cwd=ROOT, capture_output=True, text=True, timeout=60)
 
 
+# The headless --json runs the tests below read, started together a few at a time (each process
+# mostly waits on its imports, so this keeps the suite quick on two cores).
+JSON_RUNS = [
+    ("vertical",), ("damped",), ("vertical", "--integrator", "euler"), ("vertical", "--integrator", "rk4"),
+    ("vertical", "--set", "k=25", "--set", "r0=0,-2,0", "--until", "0.1"),
+    ("driven", "--scenario", "2", "--until", "0"), ("vertical", "--set", "dt=0.001", "--until", "1"),
+    ("vertical", "--set", "r0=0.5,-1.5,0"),
+]
+
+
 @lru_cache(maxsize=None)
+def json_runs() -> dict:
+    with ThreadPoolExecutor(max_workers=4) as pool:
+        return dict(zip(JSON_RUNS, pool.map(lambda args: cli(*args, "--headless", "--json"), JSON_RUNS)))
+
+
 def cli_json(*args) -> dict:
-    """The one JSON object a headless run prints (cached: several tests read the same run)."""
-    done = cli(*args, "--headless", "--json")
+    """The one JSON object that `main.py ARGS --headless --json` prints."""
+    done = json_runs()[args] if args in JSON_RUNS else cli(*args, "--headless", "--json")
     assert done.returncode == 0, done.stderr
     return json.loads(done.stdout)
 
