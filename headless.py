@@ -327,7 +327,7 @@ def step_table(setup, *, model=None, integrator: str | None = None, steps: int) 
 
 def format_step_table(table: dict) -> str:
     """The step table as aligned text with units in the header, vectors in < > notation."""
-    labels = sorted({row["body"] for row in table["rows"]}, key=[row["body"] for row in table["rows"]].index)
+    labels = list(dict.fromkeys(row["body"] for row in table["rows"]))
     multi = len(labels) > 1
     lines = [f"{table['scene']}: first {plural(len({row['step'] for row in table['rows']}), 'step')} of "
              f"Δt = {number(table['dt'])} s with {method_name(table['integrator'])}",
@@ -335,8 +335,8 @@ def format_step_table(table: dict) -> str:
              "t is the time at the end of the step, when p_f, v_f and r_f hold"]
     start = table["start"]
     for i, label in enumerate(labels or ["mass"]):
-        name = f"{label} " if multi else ""
-        lines.append(f"start {name}(m = {number(table['m'][i])} kg): t = {number(start['t'])} s, "
+        name = f", {label}" if multi else ""
+        lines.append(f"start{name}, m = {number(table['m'][i])} kg: t = {number(start['t'])} s, "
                      f"r = {vector(start['r'][i], 'm')}, p = {vector(start['p'][i], 'kg·m/s')}, "
                      f"v = {vector(start['v'][i], 'm/s')}")
     header = ["step"] + (["body"] if multi else []) + \
