@@ -44,16 +44,16 @@ def _oscillation_energy(trajectory, forces, r_equilibrium) -> np.ndarray:
     return E - potential(rest, forces)[0]
 
 
-@pytest.fixture
+@pytest.fixture(scope="session")
 def observed_order():
     return _observed_order
 
 
-@pytest.fixture
+@pytest.fixture(scope="session")
 def line_oscillators():
     return _line_oscillators
 
 
-@pytest.fixture
+@pytest.fixture(scope="session")
 def oscillation_energy():
     return _oscillation_energy
