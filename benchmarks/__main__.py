@@ -1,0 +1,74 @@
+"""Run the benchmarks: `python -m benchmarks [--quick] [--only NAME ...] [--list]`.
+
+Every figure is measured in this one run and compared with a reference measured in the same
+run (the page-style vpython-vector loop, a bare interpreter, scipy), so the ratios mean something
+even on a busy machine. The full run takes about 3 minutes on 2 cores; --quick about 30 s.
+"""
+from __future__ import annotations
+
+import argparse
+import os
+import platform
+import subprocess
+import sys
+import time
+
+from . import accuracy, batches, resonance_sweep, single_mass, startup
+from .common import Settings
+
+BENCHMARKS = {
+    "single-mass": (single_mass, "part 1: one mass, 10⁶ steps, against the page-style vpython-vector loop"),
+    "batches": (batches, "part 2: N = 10³…10⁶ oscillators in one array, 1-D and 3-D"),
+    "resonance": (resonance_sweep, "part 3: 1,000 driving frequencies in one batch, against solve_ivp"),
+    "accuracy": (accuracy, "part 4: error after 10 periods against CPU time, with a plot"),
+    "startup": (startup, "part 6: wall time of `python main.py vertical --headless`"),
+}
+
+
+def machine() -> str:
+    """CPU model, core count, Python and numpy versions: what the figures were measured on."""
+    import numpy
+
+    model = platform.processor() or "unknown CPU"
+    try:
+        lscpu = subprocess.run(["lscpu"], capture_output=True, text=True, timeout=10).stdout
+        model = next(line.split(":", 1)[1].strip() for line in lscpu.splitlines() if line.startswith("Model name"))
+    except (OSError, subprocess.SubprocessError, StopIteration):
+        pass
+    return (f"{model}, {os.cpu_count()} cores, Python {platform.python_version()}, numpy {numpy.__version__}, "
+            f"{platform.system()} {platform.release()}")
+
+
+def parse_arguments(argv=None):
+    parser = argparse.ArgumentParser(prog="python -m benchmarks", description=__doc__.splitlines()[0])
+    parser.add_argument("--quick", action="store_true", help="fewer steps and repeats: about 30 s in all")
+    parser.add_argument("--only", metavar="NAME", action="append", choices=list(BENCHMARKS),
+                        help="run only this benchmark (repeatable): " + ", ".join(BENCHMARKS))
+    parser.add_argument("--list", action="store_true", help="list the benchmarks and exit")
+    return parser.parse_args(argv)
+
+
+def main(argv=None) -> int:
+    arguments = parse_arguments(argv)
+    if arguments.list:
+        for name, (_, summary) in BENCHMARKS.items():
+            print(f"{name:12s} {summary}")
+        return 0
+    settings = Settings(quick=arguments.quick)
+    chosen = arguments.only or list(BENCHMARKS)
+    print(f"machine: {machine()}")
+    print(f"command: python -m benchmarks {' '.join(argv if argv is not None else sys.argv[1:])}".rstrip())
+    start = time.perf_counter()
+    for name in chosen:
+        print()
+        module, _ = BENCHMARKS[name]
+        try:
+            module.main(settings)
+        except ImportError as error:
+            print(f"{name} skipped: {error} (pip install -r requirements-bench.txt)")
+    print(f"\ntotal wall time {time.perf_counter() - start:.0f} s")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
