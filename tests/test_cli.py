@@ -224,6 +224,7 @@ def test_csv_has_one_row_per_step_starting_at_the_initial_state(tmp_path):
 
 # ---- bad input: one line, exit status 2, no traceback ----
 
+# Each kind of bad input through the real command line, as a subprocess.
 BAD_INPUTS = [
     (["nosuch"], "unknown scene"),
     (["vertical", "--headless", "--set", "kk=3"], "did you mean 'k'"),
@@ -231,18 +232,10 @@ BAD_INPUTS = [
     (["vertical", "--headless", "--set", "r0=1,2"], "r0 needs a 3-vector"),
     (["vertical", "--headless", "--set", "k"], "NAME=VALUE"),
     (["vertical", "--headless", "--set", "m=0"], "m must be"),
-    (["vertical", "--headless", "--set", "k=-1"], "k must be"),
-    (["vertical", "--headless", "--set", "b=-1"], "b must be"),
-    (["vertical", "--headless", "--set", "C=-0.5"], "C must be"),
-    (["vertical", "--headless", "--set", "A=-1"], "A must be"),
     (["vertical", "--headless", "--set", "rho=-1.2"], "rho must be"),
-    (["vertical", "--headless", "--set", "dt=0"], "dt must be"),
     (["vertical", "--headless", "--set", "dt=nan"], "dt must be"),
     (["vertical", "--headless", "--until", "-1"], "--until"),
-    (["vertical", "--headless", "--until", "nan"], "--until"),
     (["driven", "--headless", "--scenario", "6"], "scenario 6"),
-    (["driven", "--headless", "--scenario", "0"], "scenario 0"),
-    (["vertical", "--headless", "--scenario", "1"], "no scenarios"),
     (["vertical", "--json"], "--json needs --headless"),
     (["vertical", "--csv", "out.csv"], "--csv needs --headless"),
     (["vertical", "--headless", "--csv", "no/such/folder/out.csv"], "does not exist"),
@@ -250,6 +243,35 @@ BAD_INPUTS = [
     (["vertical", "--headless", "--integrator", "leapfrog"], "--integrator"),
     (["vertical", "--steps", "0"], "--steps"),
 ]
+# The same checks for more values, calling main.main in this process (same code, no start-up cost).
+MORE_BAD_INPUTS = [
+    (["vertical", "--headless", "--set", "m=-2"], "m must be"),
+    (["vertical", "--headless", "--set", "k=-1"], "k must be"),
+    (["vertical", "--headless", "--set", "b=-1"], "b must be"),
+    (["vertical", "--headless", "--set", "C=-0.5"], "C must be"),
+    (["vertical", "--headless", "--set", "A=-1"], "A must be"),
+    (["vertical", "--headless", "--set", "dt=0"], "dt must be"),
+    (["vertical", "--headless", "--set", "dt=-0.1"], "dt must be"),
+    (["vertical", "--headless", "--set", "dt=inf"], "dt must be"),
+    (["vertical", "--headless", "--set", "v0=1,x,0"], "v0 needs a 3-vector"),
+    (["vertical", "--headless", "--until", "nan"], "--until"),
+    (["vertical", "--headless", "--until", "inf"], "--until"),
+    (["driven", "--headless", "--scenario", "0"], "scenario 0"),
+    (["vertical", "--headless", "--scenario", "1"], "no scenarios"),
+    (["vertical", "--headless", "--scenario", "one"], "--scenario"),
+    (["vertical", "--steps", "2", "--json"], "--json needs --headless"),
+    (["vertical", "--until", "1"], "--until needs --headless"),
+    (["vertical", "--headless", "--plot", "tests"], "is a directory"),
+]
+
+
+def assert_one_line_error(code, stdout, stderr, problem):
+    assert code == 2, (stdout, stderr)
+    assert "Traceback" not in stderr
+    lines = stderr.strip().splitlines()
+    assert len(lines) == 1, stderr
+    assert lines[0].startswith("error:") and problem in lines[0]
+    assert stdout == ""
 
 
 @lru_cache(maxsize=None)
@@ -263,12 +285,20 @@ def bad_input_runs() -> dict:
 @pytest.mark.parametrize("args, problem", BAD_INPUTS, ids=[" ".join(a) for a, _ in BAD_INPUTS])
 def test_bad_input_gives_one_line_and_status_2(args, problem):
     done = bad_input_runs()[tuple(args)]
-    assert done.returncode == 2, (done.stdout, done.stderr)
-    assert "Traceback" not in done.stderr
-    lines = done.stderr.strip().splitlines()
-    assert len(lines) == 1, done.stderr
-    assert lines[0].startswith("error:") and problem in lines[0]
-    assert done.stdout == ""
+    assert_one_line_error(done.returncode, done.stdout, done.stderr, problem)
+
+
+@pytest.mark.parametrize("args, problem", MORE_BAD_INPUTS, ids=[" ".join(a) for a, _ in MORE_BAD_INPUTS])
+def test_more_bad_input_gives_one_line_and_status_2(args, problem, capsys, monkeypatch):
+    import main
+
+    monkeypatch.chdir(ROOT)
+    try:
+        code = main.main(args)
+    except SystemExit as stop:  # argparse's own errors
+        code = stop.code
+    out, err = capsys.readouterr()
+    assert_one_line_error(code, out, err, problem)
 
 
 def test_blow_up_names_dt_and_the_limit_and_prints_no_nan():
