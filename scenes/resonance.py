@@ -49,6 +49,7 @@ until = 50.0               # s: how long the row runs in the view and headless
 # ---- end of constants ----
 
 DRIVE_AXIS = (0.0, 1.0, 0.0)   # F0 cos(ω t) acts up and down, along the springs
+SMOOTH_POINTS = 401            # ω values on which extra_json gives the exact curves as lines
 SWEEP_INTEGRATOR = "rk4"       # fourth order, so amplitude errors stay far below 1 % at the default Δt
 
 
@@ -152,13 +153,21 @@ def build(*, m, k, L0, g, F0, b, b_ratio, curves, omega_min, omega_max, count, s
 
 
 def extra_json(setup) -> dict:
-    """The resonance curves for headless --json: the ω grid, and measured and exact amplitudes per b."""
-    result = sweep(**setup.values)
+    """The resonance curves for headless --json: the ω grid, and measured and exact amplitudes per b.
+
+    The exact curves are also given on a fine grid ("smooth_..."), for drawing them as lines.
+    """
+    v = setup.values
+    result = sweep(**v)
+    smooth = np.linspace(v["omega_min"], v["omega_max"], SMOOTH_POINTS)
     return {"resonance": {
         "omega_rad_per_s": result.omega.tolist(),
         "b_kg_per_s": result.b.tolist(),
         "amplitude_m": result.amplitude.tolist(),
         "exact_amplitude_m": result.exact.tolist(),
+        "smooth_omega_rad_per_s": smooth.tolist(),
+        "smooth_exact_amplitude_m": [steady_state_amplitude(m=v["m"], k=v["k"], b=b_j, F0=v["F0"], omega=smooth).tolist()
+                                     for b_j in result.b],
     }}
 
 

@@ -335,6 +335,11 @@ def test_resonance_extra_json_gives_grid_and_amplitudes():
     assert data["omega_rad_per_s"] == pytest.approx([2.0, 4.0, 6.0, 8.0])
     assert data["b_kg_per_s"] == pytest.approx([0.5, 1.0])
     assert np.shape(data["amplitude_m"]) == np.shape(data["exact_amplitude_m"]) == (2, 4)
+    omega, smooth = np.array(data["smooth_omega_rad_per_s"]), np.array(data["smooth_exact_amplitude_m"])
+    assert smooth.shape == (2, len(omega)) and omega[0] == 2.0 and omega[-1] == 8.0
+    assert smooth[0][omega == 5.0] == pytest.approx(1.0 / (0.5 * 5.0))   # F0 / (b ω0) at ω = ω0
+    # the peak sits a little below ω0, at √(k/m − b²/2m²)
+    assert omega[np.argmax(smooth[0])] == pytest.approx(np.sqrt(25.0 - 0.5**2 / 2), abs=0.015)
 
 
 @pytest.mark.parametrize("changes, message", [
