@@ -27,6 +27,17 @@ from scenes import catalog
 from scenes.constants import ConstantError
 
 
+EXAMPLES = """examples:
+  python main.py --list
+  python main.py vertical --constants
+  python main.py vertical --headless                  the Simple Example: y = -1.73088 m at t = 0.2 s
+  python main.py damped --headless --set dt=0.001     the Middling Example with a smaller step
+  python main.py driven --headless --scenario 3 --json
+  python main.py vertical --steps 2                   the first two updates, to check by hand
+  python main.py regimes --plot regimes.png           the page's damping figure
+"""
+
+
 class UsageError(ValueError):
     """Options that do not fit together, or a value out of range: a one-line message."""
 
@@ -39,8 +50,10 @@ class Parser(argparse.ArgumentParser):
 
 
 def build_parser() -> argparse.ArgumentParser:
-    parser = Parser(prog="main.py", description="Iterative prediction of spring-mass systems: "
-                    "the momentum update p_f = p_i + F_net Δt, r_f = r_i + (p_f/m) Δt.")
+    parser = Parser(prog="main.py", formatter_class=argparse.RawDescriptionHelpFormatter,
+                    description="Iterative prediction of spring-mass systems: the momentum update\n"
+                    "p_f = p_i + F_net Δt, v_f = p_f / m, r_f = r_i + v_f Δt.",
+                    epilog=EXAMPLES)
     parser.add_argument("scene", nargs="?", default=None,
                         help=f"scene name (default {catalog.DEFAULT_SCENE}; see --list)")
     parser.add_argument("--list", action="store_true", help="list the scenes and their scenarios")
@@ -172,4 +185,10 @@ def main(argv=None) -> int:
 
 
 if __name__ == "__main__":
-    sys.exit(main())
+    try:
+        sys.exit(main())
+    except BrokenPipeError:  # output piped into `head` and cut short: not an error of ours
+        import os
+
+        os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
+        sys.exit(0)
