@@ -18,6 +18,7 @@ from physics.exact import critical_damping, damping_regime
 from physics.forces import Gravity, LinearDamping, Spring
 from physics.state import make_state
 
+from .constants import ConstantError
 from .model import Model
 from .row import anchors_in_a_row, exact_row, start_positions
 
@@ -40,6 +41,9 @@ PRESETS = {"critical damping": {"b": None}}
 
 def damping_constants(*, m, k, b, under_fraction, over_multiple) -> np.ndarray:
     """b of the three oscillators, kg/s: under_fraction·b_c, b (or b_c), over_multiple·b_c."""
+    for name, value in (("under_fraction", under_fraction), ("over_multiple", over_multiple)):
+        if value < 0:
+            raise ConstantError(f"{name} must be 0 or more (got {value:g}): a negative b would feed energy in")
     b_c = critical_damping(m=m, k=k)
     return np.array([under_fraction * b_c, b_c if b is None else b, over_multiple * b_c])
 

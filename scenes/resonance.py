@@ -84,6 +84,8 @@ def frequency_grid(*, omega_min, omega_max, count) -> np.ndarray:
 
 def damping_values(*, m, k, b, b_ratio, curves) -> np.ndarray:
     """b, b·ratio, b·ratio², … (curves of them), kg/s; b = None means critical, 2√(mk)."""
+    if b_ratio <= 0:
+        raise ConstantError(f"b_ratio must be greater than 0 (got {b_ratio:g})")
     b = critical_damping(m=m, k=k) if b is None else b
     return b * b_ratio ** np.arange(_whole("curves", curves, 1))
 
@@ -112,6 +114,8 @@ def sweep(*, m, k, L0, g, F0, b, b_ratio, curves, omega_min, omega_max, count, s
     which for a steady swing x = A cos(ωt − δ) equals A at every instant (cos² + sin² = 1), so
     the answer does not depend on catching the sampled peak; any transient left makes it wobble.
     """
+    if settle < 0 or periods <= 0:
+        raise ConstantError(f"need settle ≥ 0 s and periods > 0 (got {settle:g} s and {periods:g})")
     omega = frequency_grid(omega_min=omega_min, omega_max=omega_max, count=count)
     b_each = damping_values(m=m, k=k, b=b, b_ratio=b_ratio, curves=curves)
     omega_all, b_all = np.tile(omega, len(b_each)), np.repeat(b_each, len(omega))

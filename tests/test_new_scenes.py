@@ -130,6 +130,11 @@ def test_regimes_are_under_critical_over_with_the_set_fractions():
     assert [label.split(" (")[0] for label in model.labels] == ["under-damped", "critically damped", "over-damped"]
 
 
+def test_regimes_reject_negative_fractions_in_one_line():
+    with pytest.raises(ConstantError, match="under_fraction must be 0 or more"):
+        build("regimes", under_fraction=-0.1)
+
+
 def test_regimes_follow_their_exact_curves():
     setup = configure("regimes")
     model = setup.build()
@@ -346,6 +351,7 @@ def test_resonance_extra_json_gives_grid_and_amplitudes():
     ({"count": 2.5}, "count must be a whole number"),
     ({"curves": 0}, "curves must be a whole number"),
     ({"omega_min": 6.0, "omega_max": 3.0}, "omega_min < omega_max"),
+    ({"b_ratio": 0.0}, "b_ratio must be greater than 0"),
 ])
 def test_resonance_rejects_bad_grids_in_one_line(changes, message):
     with pytest.raises(ConstantError, match=message):
