@@ -53,15 +53,22 @@ class Constant:
         return self.name in VECTOR_NAMES
 
 
+END_OF_CONSTANTS = "# ---- end of constants ----"
+
+
 def read_constants(module) -> dict[str, Constant]:
-    """The constants block of a scene module: top-level assignments with a `# unit: meaning` comment."""
+    """The constants block of a scene module: top-level assignments with a `# unit: meaning` comment,
+    up to the line `# ---- end of constants ----` (or the first function or class)."""
     source = inspect.getsource(module)
     comments = {tok.start[0]: tok.string.lstrip("#").strip()
                 for tok in tokenize.generate_tokens(io.StringIO(source).readline)
                 if tok.type == tokenize.COMMENT}
+    lines = source.splitlines()
+    block_end = next((number for number, line in enumerate(lines, start=1)
+                      if line.strip() == END_OF_CONSTANTS), len(lines) + 1)
     constants = {}
     for node in ast.parse(source).body:
-        if isinstance(node, (ast.FunctionDef, ast.ClassDef)):
+        if isinstance(node, (ast.FunctionDef, ast.ClassDef)) or node.lineno > block_end:
             break
         if not (isinstance(node, ast.Assign) and len(node.targets) == 1
                 and isinstance(node.targets[0], ast.Name)):
