@@ -2,7 +2,8 @@
 
 A run is the page's loop: repeat the chosen integrator's step until the question time. It also
 watches for blow-up, which an explicit method hits when Δt is too large for the spring
-(ω Δt > 2 for Euler-Cromer, with ω = √(k/m)), so that a run never returns NaN as an answer.
+(ω Δt > 2 for Euler-Cromer, with ω = √(k/m)) or for strong damping ((ω Δt)² + 2 (b/m) Δt > 4 for
+Euler-Cromer), so that a run never returns NaN as an answer.
 """
 from __future__ import annotations
 
@@ -12,7 +13,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from .energy import WorkMeter, report
-from .forces import Spring
+from .forces import LinearDamping, Spring
 from .integrators import INTEGRATORS, STABILITY_LIMIT_OMEGA_DT
 from .state import State
 
@@ -28,18 +29,38 @@ def fastest_angular_frequency(forces, m) -> float:
     return float(max(omegas, default=0.0))
 
 
-def stability_advice(integrator, dt: float, omega: float) -> str:
-    """One sentence naming Δt and the stability limit of the method on this spring."""
+def fastest_damping_rate(forces, m) -> float:
+    """b/m, the largest over linear damping and masses, s⁻¹ (0 without damping)."""
+    rates = [np.max(np.broadcast_to(f.b, (len(m), 1))[:, 0] / m)
+             for f in forces if isinstance(f, LinearDamping)]
+    return float(max(rates, default=0.0))
+
+
+def stability_advice(integrator, dt: float, omega: float, *, damping_rate: float = 0.0) -> str:
+    """One sentence naming Δt and the stability limit of the method on this spring.
+
+    damping_rate is b/m in s⁻¹. Damping is stepped explicitly too, so strong damping also limits
+    Δt: one Euler-Cromer step multiplies (x, v) by a matrix with trace 2 − (ωΔt)² − bΔt/m and
+    determinant 1 − bΔt/m, which is stable exactly while (ωΔt)² + 2 (b/m) Δt < 4.
+    """
     if not isinstance(integrator, str):  # several methods side by side: the strictest one
         integrator = min(integrator, key=lambda name: STABILITY_LIMIT_OMEGA_DT[name] or 0.0)
     limit = STABILITY_LIMIT_OMEGA_DT[integrator]
+    # The root of (ωΔt)² + 2 (b/m) Δt = 4, named when damping lowers the limit by over 1 %.
+    dt_max = 4.0 / (damping_rate + math.sqrt(damping_rate**2 + 4.0 * omega**2)) if damping_rate > 0 else 0
+    if integrator == "euler-cromer" and damping_rate > 0 and dt_max * omega < 0.99 * limit:
+        return (f"dt = {dt:g} s, but euler-cromer with damping is stable here only for "
+                f"(ω·dt)² + 2·(b/m)·dt < 4, i.e. dt < {dt_max:.4g} s "
+                f"(ω = √(k/m) = {omega:.4g} rad/s, b/m = {damping_rate:.4g} s⁻¹)")
+    damping_note = (f"; strong damping also limits dt: here b·dt/m = {damping_rate * dt:.3g}, "
+                    f"and every method needs it below about 2" if damping_rate * dt > 1 else "")
     if omega == 0:
-        return f"dt = {dt:g} s"
+        return f"dt = {dt:g} s" + damping_note
     if limit is None:
         return (f"dt = {dt:g} s; {integrator} is unstable on a spring at every dt "
-                f"(ω = √(k/m) = {omega:.4g} rad/s): use euler-cromer, verlet or rk4")
+                f"(ω = √(k/m) = {omega:.4g} rad/s): use euler-cromer, verlet or rk4" + damping_note)
     return (f"dt = {dt:g} s, but {integrator} is stable on this spring only for ω·dt < {limit:.3g}, "
-            f"i.e. dt < {limit / omega:.4g} s (ω = √(k/m) = {omega:.4g} rad/s)")
+            f"i.e. dt < {limit / omega:.4g} s (ω = √(k/m) = {omega:.4g} rad/s)" + damping_note)
 
 
 def steps_to_reach(until: float, dt: float) -> int:
@@ -138,4 +159,5 @@ def _check(state: State, forces, dt, integrator, omega, limit):
     if not finite or too_far:
         raise BlowUpError(
             f"the simulation blew up by t = {state.t:.4g} s ({'non-finite state' if not finite else 'motion growing without bound'}): "
-            + stability_advice(integrator, dt, omega))
+            + stability_advice(integrator, dt, omega,
+                               damping_rate=fastest_damping_rate(forces, state.m)))
