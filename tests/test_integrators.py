@@ -110,3 +110,21 @@ def test_page_dt_is_well_inside_the_limit_and_does_not_blow_up():
     model = catalog.configure("vertical").build()
     trajectory = run(model.state, model.forces, dt=model.dt, until=100 * np.pi)
     assert np.all(np.isfinite(trajectory.r))
+
+
+@pytest.mark.parametrize("rate", [5.0, 20.0])
+def test_strong_damping_limits_euler_cromer_dt_too(rate, line_oscillators):
+    """Damping is stepped explicitly as well: a step multiplies (x, v) by a matrix of trace
+    2 − (ωΔt)² − bΔt/m and determinant 1 − bΔt/m, stable exactly while (ωΔt)² + 2 (b/m) Δt < 4.
+    With ω = 2 rad/s and b/m = 5 or 20 s⁻¹ that limit is far below ω·Δt = 2."""
+    omega = 2.0
+    dt_max = (-rate + np.sqrt(rate**2 + 4 * omega**2)) / omega**2
+    state, forces = line_oscillators(m=1.0, k=omega**2, b=rate, x0=1.0)
+    inside = run(state, forces, dt=0.97 * dt_max, until=300 * dt_max, integrator="euler-cromer")
+    assert np.max(np.abs(inside.r[:, 0, 0])) <= 1.0
+    dt = 1.05 * dt_max
+    with pytest.raises(BlowUpError) as blown:
+        run(state, forces, dt=dt, until=300 * dt_max, integrator="euler-cromer")
+    message = str(blown.value)
+    assert f"dt = {dt:g} s" in message
+    assert "(ω·dt)² + 2·(b/m)·dt < 4" in message and f"dt < {dt_max:.4g} s" in message
