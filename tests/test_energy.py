@@ -31,7 +31,7 @@ def simple_example():
 ])
 def test_symplectic_energy_stays_bounded_for_1000_periods(integrator, band, simple_example,
                                                           oscillation_energy):
-    dt = 0.1  # the page's Δt: ωΔt = 0.2, 31 steps per period
+    dt = 0.2  # ωΔt = 0.4, 16 steps per period: coarse, to keep 1,000 periods quick
     trajectory = run(simple_example.state, simple_example.forces, dt=dt, until=1000 * PERIOD,
                      integrator=integrator)
     E = oscillation_energy(trajectory, simple_example.forces, (0.0, Y_EQUILIBRIUM, 0.0))
@@ -69,7 +69,7 @@ def test_each_step_multiplies_the_undamped_energy_by_the_amplification_factor(
 
 def energy_drift(model, integrator, dt):
     """max |E − W_nc − E(0)| over the run, J."""
-    trajectory = run(model.state, model.forces, dt=dt, until=5.0, integrator=integrator,
+    trajectory = run(model.state, model.forces, dt=dt, until=3.0, integrator=integrator,
                      with_energy=True)
     conserved = trajectory.energy["E_minus_W_nc"]
     return np.max(np.abs(conserved - conserved[0]))
@@ -89,8 +89,8 @@ def test_e_minus_w_nc_is_constant_to_integrator_accuracy(integrator, system):
         assert fine < omega * 0.005 * scale
 
 
-def energy_steps(model, integrator, dt, oscillation_energy, y_equilibrium):
-    trajectory = run(model.state, model.forces, dt=dt, until=10.0, integrator=integrator)
+def energy_steps(model, integrator, dt, oscillation_energy, y_equilibrium, until=5.0):
+    trajectory = run(model.state, model.forces, dt=dt, until=until, integrator=integrator)
     return np.diff(oscillation_energy(trajectory, model.forces, (0.0, y_equilibrium, 0.0)))
 
 
@@ -102,7 +102,7 @@ def test_with_damping_the_energy_never_increases(integrator, dt, oscillation_ene
     model = catalog.configure("damped").build()
     dE = energy_steps(model, integrator, dt, oscillation_energy, Y_EQUILIBRIUM)
     assert np.all(dE <= 1e-12)
-    assert np.sum(dE) < -10  # and a good part of the 76 J is gone after 10 s
+    assert np.sum(dE) < -10  # and a good part of the 76 J is gone after 5 s
 
 
 def test_euler_cromer_can_gain_energy_when_dt_exceeds_2b_over_k(oscillation_energy):
@@ -117,7 +117,9 @@ def test_euler_cromer_can_gain_energy_when_dt_exceeds_2b_over_k(oscillation_ener
 
 def test_euler_gains_energy_at_turning_points_even_with_damping_and_tiny_dt(oscillation_energy):
     """At a turning point v = 0, so damping does nothing, while euler's step multiplies the
-    energy by 1 + (ωΔt)²: some steps always raise E, however small Δt is."""
+    energy by 1 + (ωΔt)²: some steps always raise E, however small Δt is. The first turning
+    point after the release is at t = π/2 s."""
     model = catalog.configure("damped").build()
-    dE = energy_steps(model, "euler", 0.001, oscillation_energy, Y_EQUILIBRIUM)
-    assert np.any(dE > 0)
+    dE = energy_steps(model, "euler", 0.001, oscillation_energy, Y_EQUILIBRIUM, until=2.0)
+    t = 0.001 * np.arange(1, len(dE) + 1)
+    assert np.any(dE[(t > 1.4) & (t < 1.7)] > 0)
