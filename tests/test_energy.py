@@ -1,7 +1,8 @@
 """Energy: what each integrator does to E = K + U, and the energy principle E − W_nc = E(0).
 
-On the undamped spring, with x the displacement from equilibrium and z = ω x + i v, one step of
-euler or rk4 multiplies z by a complex amplification factor R(iωΔt), so the oscillation energy is
+On the undamped spring, with x the displacement from equilibrium and z = ω x − i v (so that
+z' = iω z), one step of euler or rk4 multiplies z by a complex amplification factor R(iωΔt),
+the method's update applied to z' = iω z, so the oscillation energy ½ m |z|² is
 multiplied by |R|² every step: 1 + (ωΔt)² for euler (it always grows), slightly below 1 for rk4
 (it slowly leaks away). euler-cromer and verlet are symplectic: their energy wobbles within a
 fixed band but never drifts, however long the run.
@@ -28,7 +29,7 @@ def simple_example():
 @pytest.mark.parametrize("integrator, band", [
     ("euler-cromer", lambda h: h),        # wobble ≈ ωΔt/2 of the energy
     ("verlet", lambda h: h * h / 2),      # wobble ≈ (ωΔt)²/4
-])
+], ids=["euler-cromer", "verlet"])
 def test_symplectic_energy_stays_bounded_for_1000_periods(integrator, band, simple_example,
                                                           oscillation_energy):
     dt = 0.2  # ωΔt = 0.4, 16 steps per period: coarse, to keep 1,000 periods quick
@@ -47,7 +48,7 @@ def test_symplectic_energy_stays_bounded_for_1000_periods(integrator, band, simp
 @pytest.mark.parametrize("integrator, factor", [
     ("euler", lambda z: abs(1 + z) ** 2),
     ("rk4", lambda z: abs(1 + z + z**2 / 2 + z**3 / 6 + z**4 / 24) ** 2),
-])
+], ids=["euler", "rk4"])
 def test_each_step_multiplies_the_undamped_energy_by_the_amplification_factor(
         integrator, factor, oscillation_energy):
     """L0 = 0 keeps the spring linear however far the mass swings, so the factor is exact."""
