@@ -5,11 +5,13 @@ euler-cromer, 4 for verlet and 16 for rk4. The order is fitted from four Δt val
 systems: the undamped vertical spring with gravity (the page's Simple Example), a strongly damped
 one (where verlet's velocity predictor is what keeps it second order), and a driven damped one.
 """
+import warnings
+
 import numpy as np
 import pytest
 
 from physics.integrators import INTEGRATORS, STABILITY_LIMIT_OMEGA_DT
-from physics.simulate import BlowUpError, run, stepper
+from physics.simulate import BlowUpError, run
 from scenes import catalog
 
 EXPECTED_ORDER = {"euler": 1, "euler-cromer": 1, "verlet": 2, "rk4": 4}
@@ -128,3 +130,14 @@ def test_strong_damping_limits_euler_cromer_dt_too(rate, line_oscillators):
     message = str(blown.value)
     assert f"dt = {dt:g} s" in message
     assert "(ω·dt)² + 2·(b/m)·dt < 4" in message and f"dt < {dt_max:.4g} s" in message
+
+
+@pytest.mark.parametrize("with_energy", [False, True])
+def test_a_run_that_overflows_gives_one_clear_error_and_no_numpy_warnings(with_energy, line_oscillators):
+    """ω·Δt = 20: each Euler-Cromer step multiplies x by about −(ωΔt)² ≈ −400, so the state
+    overflows to inf and NaN long before the 256th step, where the blow-up guard looks."""
+    state, forces = line_oscillators(m=1.0, k=4.0, x0=1.0)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        with pytest.raises(BlowUpError, match="non-finite state"):
+            run(state, forces, dt=10.0, until=300 * 10.0, with_energy=with_energy)
