@@ -119,7 +119,7 @@ def main(settings) -> dict:
     scipy_total = scipy_seconds * len(omega) / subset
     rows.append([f"solve_ivp RK45 rtol 1e-6, loop (timed {subset}, ×{len(omega) // subset})",
                  f"{scipy_total:.1f} s", f"{scipy_error * 100:.3f} %", "-"])
-    print(table(["method", "time for 1000 ω", "max |A/A_exact − 1|", "spread in window"], rows))
+    print(table(["method", "CPU time, 1000 ω", "max |A/A_exact − 1|", "spread in window"], rows))
     speedup = scipy_total / results[3][0]
     print(f"speed-up of the 3-D batch over the solve_ivp loop: {speedup:.0f}× (1-D: "
           f"{scipy_total / results[1][0]:.0f}×); target ≥ 100×: {verdict(speedup >= 100)}")
