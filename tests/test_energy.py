@@ -10,6 +10,7 @@ fixed band but never drifts, however long the run.
 import numpy as np
 import pytest
 
+from physics.energy import kinetic, potential
 from physics.integrators import INTEGRATORS
 from physics.simulate import run
 from scenes import catalog
@@ -108,12 +109,34 @@ def test_with_damping_the_energy_never_increases(integrator, dt, oscillation_ene
 
 def test_euler_cromer_can_gain_energy_when_dt_exceeds_2b_over_k(oscillation_energy):
     """As the mass passes equilibrium one step changes E by about Δt v² (kΔt/2 − b), so
-    Euler-Cromer loses energy at every step only while Δt < 2b/k. For the Middling Example
-    2b/k = 0.05 s: at the page's own Δt = 0.1 s some steps raise E, a numerical artefact."""
+    Euler-Cromer loses energy at every step only while Δt < 2b/k (exactly: see the next test).
+    For the Middling Example 2b/k = 0.05 s: at the page's own Δt = 0.1 s some steps raise E,
+    a numerical artefact."""
     model = catalog.configure("damped").build()
     dE = energy_steps(model, "euler-cromer", 0.1, oscillation_energy, Y_EQUILIBRIUM)
     assert np.any(dE > 0.1)
     assert np.sum(dE) < 0  # overall the damping still wins
+
+
+@pytest.mark.parametrize("m, k, b", [(10.0, 40.0, 1.0), (1.0, 1.0, 0.1), (5.0, 2.0, 0.3), (1.0, 100.0, 0.5)])
+def test_euler_cromer_never_gains_energy_exactly_while_dt_is_below_2bm_over_mk_plus_b2(
+        m, k, b, line_oscillators):
+    """One damped Euler-Cromer step maps (x, v) linearly, so its change of E = ½kx² + ½mv² is a
+    quadratic form in (x, v); working it out, that form is ≤ 0 for every state exactly while
+    Δt ≤ 2bm / (mk + b²) (≈ 2b/k for light damping). Check one step from 3,600 states all round
+    the energy ellipse, just inside and just outside that Δt."""
+    dt_max = 2 * b * m / (m * k + b * b)
+    angle = np.linspace(0, 2 * np.pi, 3600, endpoint=False)
+    x0, v0 = np.cos(angle) / np.sqrt(k), np.sin(angle) / np.sqrt(m)     # E = ½ J for each
+    state, forces = line_oscillators(m=m, k=k, b=b, x0=x0, v0=v0)
+    step = INTEGRATORS["euler-cromer"]
+
+    def energy_change(dt):
+        after = step(state, forces, dt)
+        return (kinetic(after) + potential(after, forces)) - (kinetic(state) + potential(state, forces))
+
+    assert np.max(energy_change(0.99 * dt_max)) <= 1e-12
+    assert np.max(energy_change(1.01 * dt_max)) > 0
 
 
 def test_euler_gains_energy_at_turning_points_even_with_damping_and_tiny_dt(oscillation_energy):
