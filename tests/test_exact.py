@@ -11,8 +11,10 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from physics import exact
+from physics.forces import Driving, Gravity, LinearDamping, Spring
 from physics.integrators import INTEGRATORS
 from physics.simulate import run
+from physics.state import make_state
 from scenes import catalog
 
 FAST = settings(max_examples=40, deadline=None)
@@ -66,7 +68,7 @@ def test_euler_cromer_approaches_all_three_regimes_as_dt_shrinks(line_oscillator
         assert observed_order(dts, errors[:, column]) == pytest.approx(1, abs=0.25), regime
 
 
-def test_the_closed_forms_start_where_they_are_told(line_oscillators):
+def test_the_closed_forms_start_where_they_are_told():
     for b in REGIME_B.values():
         x, v = exact.oscillator(np.array([0.0]), m=1.0, k=1.0, b=b, x0=0.7, v0=-0.3, F0=0.4, omega=1.7)
         assert (x[0], v[0]) == pytest.approx((0.7, -0.3))
@@ -192,9 +194,6 @@ def test_single_mass_motion_exists_on_the_line():
          r0=(1.5, 3.0, 4.0), v0=(0.1, 0.2, 0.2)),
 ])
 def test_single_mass_motion_matches_a_fine_rk4_run(case):
-    from physics.forces import Driving, Gravity, LinearDamping, Spring
-    from physics.state import make_state
-
     p = {**MOTION, **case}
     motion = exact.single_mass_motion(**p)
     assert motion is not None
