@@ -60,7 +60,7 @@ def main(argv=None) -> int:
     print(f"command: python -m benchmarks {' '.join(argv if argv is not None else sys.argv[1:])}".rstrip())
     print(f"load average at start: {os.getloadavg()[0]:.1f} (other work on the machine slows every figure; "
           "the ratios within one run are fairer)")
-    start = time.perf_counter()
+    start, cpu_start = time.perf_counter(), time.process_time()
     for name in chosen:
         print()
         module, _ = BENCHMARKS[name]
@@ -68,7 +68,8 @@ def main(argv=None) -> int:
             module.main(settings)
         except ImportError as error:
             print(f"{name} skipped: {error} (pip install -r requirements-bench.txt)")
-    print(f"\ntotal wall time {time.perf_counter() - start:.0f} s; load average at the end: {os.getloadavg()[0]:.1f}")
+    print(f"\ntotal wall time {time.perf_counter() - start:.0f} s, CPU time of this process "
+          f"{time.process_time() - cpu_start:.0f} s; load average at the end: {os.getloadavg()[0]:.1f}")
     return 0
 
 
