@@ -89,18 +89,25 @@ def show(setup, *, integrator: str, port: int | None, open_browser: bool) -> int
 
 
 def slider_names(setup, view: dict) -> list[str]:
-    """The constants that get a slider: VIEW["sliders"], else m and k and the forces switched on."""
-    if "sliders" in view:
-        return [name for name in view["sliders"] if name in setup.constants]
-    return [name for name in SLIDER_CHOICES
-            if name in setup.constants and isinstance(setup.values[name], (int, float))
-            and (name in ("m", "k") or setup.values[name])]
+    """The constants that get a slider: VIEW["sliders"], else m and k and the forces switched on.
+
+    Only plain numbers get one (a vector, or None meaning "derived", does not).
+    """
+    names = view.get("sliders") or [name for name in SLIDER_CHOICES
+                                    if name in ("m", "k") or setup.values.get(name)]
+    return [name for name in names if name in setup.constants
+            and isinstance(setup.values[name], (int, float)) and not isinstance(setup.values[name], bool)]
 
 
 def slider_range(name: str, value: float) -> tuple[float, float, float]:
-    """(min, max, step) around a constant's default: from a tenth (or 0) to three times it."""
-    low = 0.0 if name in ("b", "F0", "omega") else 0.1 * value
-    high = 3.0 * value if value > 0 else 1.0
+    """(min, max, step) around a constant's default: from a tenth of it (or 0) to three times it.
+
+    Constants that must stay positive (m, k, dt, ...) start at a tenth; those where 0 means "off"
+    (b, F0, ω, C, g, x0) start at 0.
+    """
+    low = 0.0 if name in ("b", "F0", "omega", "C", "g", "x0") else 0.1 * abs(value)
+    high = 3.0 * abs(value) if value else 1.0
+    low = min(low, value)
     step = 10 ** math.floor(math.log10((high - low) / 200))
     return low, high, step
 
@@ -179,7 +186,7 @@ class SceneView:
         size = float(np.max(high - low)) or 1.0
         anchors = model.anchors
         gaps = [np.linalg.norm(a - b) for i, a in enumerate(anchors) for b in anchors[i + 1:]]
-        radius = min([0.06 * size] + [0.3 * gap for gap in gaps if gap > 0])
+        radius = min([0.08 * size] + [0.3 * gap for gap in gaps if gap > 0])
         self.radius = radius
         thickness = 0.4 * radius
         pad = 3 * radius
@@ -199,11 +206,13 @@ class SceneView:
         low, high = low - radius, high + radius
         self._frame_camera(low, high)
         self.masses, self.springs = [], []
+        # A long row gets fewer turns per spring: each turn is many triangles for the browser.
+        coils = max(4, min(self.view["coils"], round(4 * self.view["coils"] / len(anchors))))
         for i, (anchor, r) in enumerate(zip(anchors, model.state.r)):
             colour = vp.vector(*MASS_COLOURS[i % len(MASS_COLOURS)])
             self.springs.append(vp.helix(pos=_vec(vp, anchor), axis=_vec(vp, r - anchor),
                                          radius=0.45 * radius, thickness=0.12 * radius,
-                                         coils=self.view["coils"], color=vp.vector(0.85, 0.85, 0.9)))
+                                         coils=coils, color=vp.vector(0.85, 0.85, 0.9)))
             mass = vp.sphere(pos=_vec(vp, r), radius=radius, color=colour,
                              make_trail=bool(self.view["trail"]), retain=300)
             self.masses.append(mass)
@@ -216,6 +225,7 @@ class SceneView:
         scene.center = _vec(self.vp, 0.5 * (low + high))
         # range is the distance from the centre to the nearer (here: top and bottom) edge
         self.range = 0.55 * max(box[1], box[0] * height / width, 1e-3)
+        self.max_range = 2 * self.range
         scene.range = self.range
         self.centre = 0.5 * (low + high)
 
@@ -270,11 +280,13 @@ class SceneView:
                 name = "xyz"[axis] + (f" {label}" if many or len(self.axes) > 1 else " (simulation)")
                 colour = vp.vector(*_shade(MASS_COLOURS[i % len(MASS_COLOURS)], axis, self.axes))
                 self._curve(self.position_graph, name, colour, ("r", i, axis), width=3)
-        self.show_exact = bool(self.view["exact"]) and model.exact is not None
+        self.exact_curves = bool(self.view["exact"]) and model.exact is not None
+        self.show_exact = self.exact_curves
         if self.show_exact:
             for i, label in enumerate(model.labels):
                 for axis in self.axes:
-                    name = "xyz"[axis] + (f" exact, {label}" if many else " exact")
+                    # one legend entry for all the exact curves: they share a colour
+                    name = f"{'xyz'[axis]} exact" if i == 0 else ""
                     self._curve(self.position_graph, name, vp.vector(0.1, 0.1, 0.1), ("exact", i, axis), width=1)
         self.energy_graph = vp.graph(title="Energy", xtitle="t (s)", ytitle="energy (J)",
                                      width=width, height=height, align="left", fast=True,
@@ -346,7 +358,7 @@ class SceneView:
             return
         self.setup, self.integrator = setup, integrator
         self.live = LiveRun(model, integrator=integrator, sample_every=SAMPLE_EVERY)
-        self.show_exact = self.show_exact and model.exact is not None
+        self.show_exact = self.exact_curves and model.exact is not None
         self._restart(model)
         self.clock.restart(now=now)
 
@@ -361,6 +373,9 @@ class SceneView:
         self._draw()
 
     def _clear_graphs(self, samples):
+        if getattr(self, "position_axis", None) is not None:  # back to autoscale until refitted
+            self.position_graph.ymin = self.position_graph.ymax = None
+        self.exact_range, self.position_axis = (math.inf, -math.inf), None
         for curve, trace, _ in self.curves:
             trace.clear()
         for graph in (self.position_graph, self.energy_graph):
@@ -392,11 +407,29 @@ class SceneView:
                     curve.plot(list(trace.points))
             elif points:
                 curve.plot(points)
+        if exact is not None:
+            self._fit_position_axis(exact[..., self.axes])
         if len(t):
             start, end = window(float(t[-1]), span=self.span)
             if start != self.position_graph.xmin:
                 for graph in (self.position_graph, self.energy_graph):
                     graph.xmin, graph.xmax = start, end
+
+    def _fit_position_axis(self, values) -> None:
+        """Scale the position axis to the exact motion so far (padded, rounded outward).
+
+        A numerical curve that strays far from the exact one runs off the graph, rather than
+        squashing every other curve flat, as euler's growing swing would.
+        """
+        low = min(self.exact_range[0], float(np.min(values)))
+        high = max(self.exact_range[1], float(np.max(values)))
+        self.exact_range = (low, high)
+        pad = 0.25 * (high - low) + 1e-3
+        grid = 10 ** math.floor(math.log10(high - low + 2 * pad)) / 2
+        ymin, ymax = math.floor((low - pad) / grid) * grid, math.ceil((high + pad) / grid) * grid
+        if (ymin, ymax) != self.position_axis:
+            self.position_axis = (ymin, ymax)
+            self.position_graph.ymin, self.position_graph.ymax = ymin, ymax
 
     def _draw(self) -> None:
         """Move the masses and springs to the state now and update the caption: once per frame."""
@@ -429,15 +462,19 @@ class SceneView:
         return f"largest |error| against the exact solutions = {worst:.3g} m"
 
     def _keep_in_view(self, r) -> None:
-        """Zoom out (never in) if a mass leaves the framed region, as when a run blows up."""
+        """Zoom out (never in) if a mass leaves the framed region, up to twice the first view.
+
+        A mass that runs away further (euler blowing up) leaves the picture instead of shrinking
+        every other mass to a dot.
+        """
         finite = r[np.all(np.isfinite(r), axis=1)]
         if not len(finite):
             return
         width, height = CANVAS_SIZE
         reach = np.abs(finite - self.centre).max(axis=0)
         needed = max(reach[1], reach[0] * height / width) + self.radius
-        if needed > self.range:
-            self.range = min(1.5 * needed, 1e9)
+        if self.range < needed and self.range < self.max_range:
+            self.range = min(1.5 * needed, self.max_range)
             self.vp.scene.range = self.range
 
 
