@@ -1,0 +1,352 @@
+"""Start VPython's browser view on this computer only (127.0.0.1), without its two holes.
+
+VPython 7.6.5 (outside Jupyter) runs its own two servers, started by the module-level code of
+``vpython/no_notebook.py`` when that module is first imported, which vpython does when the first
+object other than the canvas is made (``import vpython`` alone does not start them):
+
+* an HTTP server for the page (``glowcomm.html``) and its scripts, fonts and textures;
+* a websocket server that the page talks to about every 17 ms.
+
+Both listen on every network interface (``''`` and ``'0.0.0.0'``), and:
+
+1. The HTTP handler glues the requested path onto the current directory (then onto its library
+   folders) without checking it, so anyone who can reach the port can read any
+   .html/.js/.css/.png/.jpg/.ttf/.otf/.ico file on the disk:
+   ``curl --path-as-is http://HOST:PORT/../secret.png``.
+2. The websocket server accepts any Origin, and when *any* connection to it closes, even a bare
+   TCP connect or a refused handshake, it sends SIGINT to its own process. So any web page the
+   user visits, or any machine on the network, can stop the program.
+
+We don't fork vpython. ``start()`` imports ``vpython.no_notebook`` itself, with temporary
+patches in place (its servers are made by import-time code, so later would be too late):
+
+* ``http.server.HTTPServer`` becomes a server bound to 127.0.0.1 whose handler answers ``/``
+  (vpython's page) and the files that exist in vpython's own ``vpython_libraries/`` (and its
+  ``images/``) and ``vpython_data/`` folders, looked up by exact name. Anything else is 404, so no
+  path can climb out, and nothing is served from the current directory.
+* asyncio's ``create_server``, for vpython's websocket factory only, binds 127.0.0.1 and uses a
+  protocol subclass that refuses foreign Origins, lets only a connection that really opened stop
+  the program, and notes when the page last spoke (``ServerInfo.last_contact()``).
+* vpython's server threads are made daemons and its SIGINT handler is wrapped, so that Ctrl-C
+  also quits cleanly before the page has connected (vpython's own handler can raise NameError
+  or wait forever if its servers are only half made).
+
+That import blocks until a browser connects (vpython waits in a silent loop), so ``start()``
+prints the URL first and reminds on stderr while it waits. Once connected, vpython's own SIGINT
+handler ends the program with status 0 on Ctrl-C or when the page is closed (its websocket
+onClose sends SIGINT to its own process).
+
+Importing this module does not import vpython.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import errno
+import importlib
+import os
+import signal
+import socket
+import sys
+import threading
+import time
+import webbrowser
+from dataclasses import dataclass, field
+from urllib.parse import unquote
+
+LOOPBACK = "127.0.0.1"
+
+# What the page may fetch besides "/", by file extension.
+_CONTENT_TYPES = {
+    ".html": "text/html",
+    ".js": "application/javascript",
+    ".css": "text/css",
+    ".png": "image/png",
+    ".gif": "image/gif",
+    ".jpg": "image/jpeg",
+    ".ttf": "font/ttf",
+    ".otf": "font/otf",
+    ".ico": "image/x-icon",
+}
+
+_last_contact: float | None = None  # time.monotonic() of the page's last message
+
+
+class ServerError(RuntimeError):
+    """The view cannot start: a bad or busy port, or vpython was imported too early."""
+
+
+@dataclass(frozen=True)
+class ServerInfo:
+    """Where the view is served, and when the page last spoke."""
+
+    url: str
+    http_port: int
+    socket_port: int
+
+    def last_contact(self) -> float:
+        """time.monotonic() of the page's last message (or of its connecting, before any).
+
+        The page asks for updates about every 17 ms while it is visible; browsers slow or stop
+        that when the tab is hidden, so a scene can use this to pause its clock.
+        """
+        return _last_contact if _last_contact is not None else time.monotonic()
+
+    def seconds_since_contact(self) -> float:
+        return time.monotonic() - self.last_contact()
+
+
+def start(*, port: int | None = None, open_browser: bool = True,
+          remind_after: float = 10.0) -> ServerInfo:
+    """Serve the VPython page on 127.0.0.1 and return once a browser page has connected.
+
+    port None picks a free port. A busy or invalid port raises ServerError before vpython is
+    imported (vpython itself would swallow the bind error and crash later with a NameError).
+    Call this before anything else makes a vpython object: the servers start only once.
+    Ctrl-C, or closing the page once connected, ends the program with status 0.
+    """
+    if "vpython.no_notebook" in sys.modules:
+        raise ServerError("vpython's server is already running; call start() before making "
+                          "any vpython object")
+    state = _State(reservation=_reserve(port))
+    http_port = state.reservation.getsockname()[1]
+    state.url = url = f"http://{LOOPBACK}:{http_port}/"
+    state.origins = {f"http://{host}:{http_port}" for host in (LOOPBACK, "localhost")}
+    state.open_browser = open_browser
+    waiting = threading.Event()
+    # Until vpython installs its own SIGINT handler, Ctrl-C only sets a flag: a KeyboardInterrupt
+    # raised in the middle of importing numpy/pkg_resources can be swallowed or turned into
+    # another error, leaving the program waiting for a browser.
+    previous_handler = signal.signal(signal.SIGINT, lambda *_: setattr(state, "interrupted", True))
+    try:
+        os.environ["VPYTHON_HTTP_PORT"] = str(http_port)
+        os.environ["VPYTHON_NO_LAUNCH_BROWSER"] = "1"  # we open 127.0.0.1 ourselves
+        print(f"Opening {url} in your browser" if open_browser else f"Open {url} in a browser",
+              flush=True)
+        if remind_after and remind_after > 0:
+            threading.Thread(target=_remind, args=(url, remind_after, waiting),
+                             name="vpython-wait-reminder", daemon=True).start()
+        with _patched(state):
+            importlib.import_module("vpython")  # slow (numpy, pkg_resources); no server yet
+            if state.interrupted:
+                raise SystemExit(0)
+            # Starts both servers, then blocks until the page has fetched "/" and connected.
+            importlib.import_module("vpython.no_notebook")
+    except Exception as exc:
+        if state.interrupted:  # our SystemExit landed in one of vpython's bare `except: pass`
+            raise SystemExit(0) from None
+        signal.signal(signal.SIGINT, previous_handler)
+        if state.bind_error is not None:
+            raise ServerError(f"cannot serve on port {http_port}: {state.bind_error.strerror}; "
+                              "pick another with --port") from exc
+        raise
+    finally:
+        waiting.set()
+        state.reservation.close()
+    return ServerInfo(url=url, http_port=http_port, socket_port=state.socket_port)
+
+
+@dataclass
+class _State:
+    reservation: socket.socket
+    url: str = ""
+    origins: set[str] = field(default_factory=set)  # the page's own Origin header values
+    open_browser: bool = False
+    socket_port: int = 0
+    bind_error: OSError | None = None
+    connected: bool = False  # the page's websocket has opened
+    interrupted: bool = False  # Ctrl-C came before that
+
+
+def _reserve(port: int | None) -> socket.socket:
+    """Bind 127.0.0.1:port (0 = any free one) now, to fail early with a clear message.
+
+    The socket is held until vpython's HTTP server takes the port over, so that vpython's own
+    pick of a free websocket port cannot land on it.
+    """
+    if port is None:
+        port = 0
+    elif isinstance(port, bool) or not isinstance(port, int) or not 1 <= port <= 65535:
+        raise ServerError(f"invalid port {port!r}: use a whole number from 1 to 65535")
+    sock = socket.socket()
+    sock.setsockopt(socket.SOL_SOCKET, socket.SO_REUSEADDR, 1)  # as HTTPServer does
+    try:
+        sock.bind((LOOPBACK, port))
+    except OSError as exc:
+        sock.close()
+        if exc.errno == errno.EADDRINUSE:
+            reason = "is already in use"
+        elif exc.errno == errno.EACCES:
+            reason = "needs administrator rights"
+        else:
+            reason = f"cannot be used ({exc.strerror})"
+        raise ServerError(f"port {port} {reason}; pick another with --port") from None
+    return sock
+
+
+def _remind(url: str, every: float, stop: threading.Event) -> None:
+    while not stop.wait(every):
+        print(f"Still waiting for a browser: open {url} (Ctrl-C to quit)",
+              file=sys.stderr, flush=True)
+
+
+@contextlib.contextmanager
+def _patched(state: _State):
+    """While vpython starts its servers: loopback servers, daemon threads, a safe Ctrl-C."""
+    import asyncio.base_events
+    import http.server
+
+    saved = (http.server.HTTPServer, asyncio.base_events.BaseEventLoop.create_server,
+             threading.Thread, signal.signal)
+    real_thread, real_signal = threading.Thread, signal.signal
+
+    class Thread(real_thread):
+        # vpython's server threads are not daemons (except on Windows), so a Ctrl-C before the
+        # page connects, when vpython's handler can't stop them cleanly yet, would hang at exit.
+        def __init__(self, *args, **kwargs):
+            if sys._getframe(1).f_globals.get("__name__") == "vpython.no_notebook":
+                kwargs["daemon"] = True
+            super().__init__(*args, **kwargs)
+
+    def set_signal(signum, handler):
+        if signum != signal.SIGINT or getattr(handler, "__module__", "") != "vpython.no_notebook":
+            return real_signal(signum, handler)
+        previous = real_signal(signum, _sigint_handler(handler, state))
+        if state.interrupted:  # Ctrl-C while vpython was loading; no server started yet
+            raise SystemExit(0)
+        return previous
+
+    http.server.HTTPServer = _http_server_class(state)
+    asyncio.base_events.BaseEventLoop.create_server = _create_server(saved[1], state)
+    threading.Thread = Thread
+    signal.signal = set_signal
+    try:
+        yield
+    finally:
+        (http.server.HTTPServer, asyncio.base_events.BaseEventLoop.create_server,
+         threading.Thread, signal.signal) = saved
+
+
+def _sigint_handler(vpython_handler, state: _State):
+    """vpython's SIGINT handler once the page is connected; a plain exit before that.
+
+    vpython's handler (stop both servers, sys.exit(0)) is also how it quits when the page
+    closes: its websocket onClose sends SIGINT to the process. Before the page connects,
+    its servers may be half made (NameError, or a shutdown() that waits forever).
+    """
+    def handler(signum, frame):
+        if state.connected:
+            return vpython_handler(signum, frame)
+        state.interrupted = True
+        raise SystemExit(0)  # our patches made vpython's threads daemons: nothing to stop
+
+    return handler
+
+
+def _http_server_class(state: _State):
+    from http.server import ThreadingHTTPServer
+
+    class LoopbackHTTPServer(ThreadingHTTPServer):
+        """Replaces vpython's HTTPServer(('', port), serveHTTP)."""
+
+        daemon_threads = True
+
+        def __init__(self, address, handler_class):
+            state.reservation.close()  # hand the port over
+            try:
+                super().__init__((LOOPBACK, address[1]), _safe_handler(handler_class))
+            except OSError as exc:
+                state.bind_error = exc  # vpython swallows it; start() reports it
+                raise
+            if state.open_browser:  # now listening, so the page's first request will queue
+                webbrowser.open(state.url)
+
+        def serve_forever(self, poll_interval=0.05):
+            # vpython's quit path calls shutdown(), which waits for this loop to notice; with
+            # the default 0.5 s poll that alone could take half a second.
+            super().serve_forever(poll_interval)
+
+    return LoopbackHTTPServer
+
+
+def _safe_handler(vpython_handler):
+    """vpython's request handler, answering only "/" and its own library and data files."""
+    package_dir = os.path.dirname(sys.modules[vpython_handler.__module__].__file__)
+    files = {}  # URL path -> file on disk
+    for folder, prefix in (("vpython_data", "/"), ("vpython_libraries", "/"),
+                           (os.path.join("vpython_libraries", "images"), "/images/")):
+        for entry in os.scandir(os.path.join(package_dir, folder)):
+            if entry.is_file() and os.path.splitext(entry.name)[1] in _CONTENT_TYPES:
+                files[prefix + entry.name] = entry.path
+
+    class SafeHandler(vpython_handler):
+        timeout = 10  # seconds; drop idle connections
+
+        def do_GET(self):
+            path = unquote(self.path.split("?", 1)[0])
+            if path == "/":
+                self.path = "/"
+                return super().do_GET()  # vpython's page, with its websocket port filled in
+            file = files.get(path)  # exact names only: "..", "%2e%2e", "//", "\\" never match
+            if file is None:
+                return self.send_error(404)
+            with open(file, "rb") as f:
+                body = f.read()
+            self.send_response(200)
+            self.send_header("Content-Type", _CONTENT_TYPES[os.path.splitext(file)[1]])
+            self.send_header("Content-Length", str(len(body)))
+            self.end_headers()
+            self.wfile.write(body)
+
+    return SafeHandler
+
+
+def _create_server(original, state: _State):
+    """asyncio's create_server, binding vpython's websocket server to 127.0.0.1 only."""
+
+    async def create_server(loop, protocol_factory, host=None, port=None, *args, **kwargs):
+        protocol = getattr(protocol_factory, "protocol", None)
+        if getattr(protocol, "__module__", None) != "vpython.no_notebook":
+            return await original(loop, protocol_factory, host, port, *args, **kwargs)
+        protocol_factory.protocol = _guarded_protocol(protocol, state)
+        server = await original(loop, protocol_factory, LOOPBACK, port, *args, **kwargs)
+        state.socket_port = server.sockets[0].getsockname()[1]
+        return server
+
+    return create_server
+
+
+def _guarded_protocol(vpython_protocol, state: _State):
+    from autobahn.exception import Disconnected
+    from autobahn.websocket.types import ConnectionDeny
+
+    class GuardedWSserver(vpython_protocol):
+        opened = False
+
+        def onConnect(self, request):
+            # Browsers always send Origin; a page from anywhere else must not drive (or stop) us.
+            if request.origin not in state.origins:
+                raise ConnectionDeny(ConnectionDeny.FORBIDDEN, "origin not allowed")
+            return super().onConnect(request)
+
+        def onOpen(self):
+            global _last_contact
+            self.opened = state.connected = True
+            _last_contact = time.monotonic()
+            super().onOpen()
+
+        async def onMessage(self, data, isBinary):
+            global _last_contact
+            _last_contact = time.monotonic()
+            try:
+                await super().onMessage(data, isBinary)
+            except Disconnected:  # the page closed while vpython was replying; onClose follows
+                pass
+
+        def onClose(self, wasClean, code, reason):
+            # vpython's onClose sends SIGINT to the process; autobahn calls it for every lost
+            # connection, even refused ones. Only the page's own connection may end the program.
+            if self.opened:
+                super().onClose(wasClean, code, reason)
+
+    return GuardedWSserver
