@@ -87,7 +87,7 @@ class StepBudget:
     stays responsive even when Δt is too small for the computer to keep up in real time.
     """
 
-    def __init__(self, *, seconds_per_frame: float = 0.012, first_guess: float = 50e-6):
+    def __init__(self, *, seconds_per_frame: float = 0.015, first_guess: float = 50e-6):
         self.seconds_per_frame = seconds_per_frame
         self.seconds_per_step = first_guess
 

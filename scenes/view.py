@@ -46,6 +46,7 @@ from .constants import format_value
 FRAME_RATE = 50           # frames per second the loop aims for
 STALE_AFTER = 0.5         # s without a message from the page before the clock stops
 SAMPLE_EVERY = 0.05       # s of simulation time between graph points
+LEGEND_MASSES = 6         # more masses than this: no legend entry per mass
 SPEEDS = {"¼×": 0.25, "½×": 0.5, "1×": 1.0, "2×": 2.0, "4×": 4.0}
 SLIDER_CHOICES = ("m", "k", "b", "F0", "omega")
 SYMBOLS = {"omega": "ω", "rho": "ρ"}
@@ -131,7 +132,13 @@ def constants_text(setup) -> str:
         if name == "drive_axis" and not setup.values.get("F0"):
             continue
         parts.append(f"{symbol(name)} = {format_value(value, constant.unit)}")
-    return ", ".join(parts)
+    lines, line = [], ""
+    for part in parts:  # wrapped by hand: the caption keeps line breaks but does not wrap
+        if line and len(line) + len(part) > 95:
+            lines.append(line + ",")
+            line = ""
+        line = f"{line}, {part}" if line else part
+    return "\n".join(lines + [line])
 
 
 def motion_box(model) -> tuple[np.ndarray, np.ndarray]:
@@ -189,21 +196,24 @@ class SceneView:
         radius = min([0.08 * size] + [0.3 * gap for gap in gaps if gap > 0])
         self.radius = radius
         thickness = 0.4 * radius
-        pad = 3 * radius
+        pad = 2 * radius
+        low, high = low - radius, high + radius  # the spheres' own size
         centre = 0.5 * (low + high)
         if self.view["support"] == "wall":
             wall_x = float(anchors[:, 0].min())
             span_y = float(high[1] - low[1]) + 2 * pad
             vp.box(pos=vp.vector(wall_x - thickness / 2, centre[1], centre[2]),
                    size=vp.vector(thickness, span_y, 2 * radius), color=vp.vector(0.6, 0.6, 0.65))
-            low = np.minimum(low, [wall_x - thickness, low[1] - pad, low[2]])
+            low = np.minimum(low, [wall_x - thickness, centre[1] - span_y / 2, low[2]])
+            high = np.maximum(high, [high[0], centre[1] + span_y / 2, high[2]])
         else:
             ceiling_y = float(anchors[:, 1].max())
             span_x = float(high[0] - low[0]) + 2 * pad
             vp.box(pos=vp.vector(centre[0], ceiling_y + thickness / 2, centre[2]),
                    size=vp.vector(span_x, thickness, 2 * radius), color=vp.vector(0.6, 0.6, 0.65))
-            high = np.maximum(high, [high[0], ceiling_y + thickness, high[2]])
-        low, high = low - radius, high + radius
+            low = np.minimum(low, [centre[0] - span_x / 2, low[1], low[2]])
+            high = np.maximum(high, [centre[0] + span_x / 2, ceiling_y + thickness, high[2]])
+        low, high = low - 0.3 * radius, high + 0.3 * radius
         self._frame_camera(low, high)
         self.masses, self.springs = [], []
         # A long row gets fewer turns per spring: each turn is many triangles for the browser.
@@ -270,7 +280,9 @@ class SceneView:
         vp = self.vp
         width, height = GRAPH_SIZE
         names = ", ".join("xyz"[axis] for axis in self.axes)
-        self.position_graph = vp.graph(title="Position", xtitle="t (s)", ytitle=f"{names} (m)",
+        legend = model.state.count <= LEGEND_MASSES  # a long row's legend would hide the graph
+        title = "Position" if legend else f"Position of each of the {model.state.count} masses"
+        self.position_graph = vp.graph(title=title, xtitle="t (s)", ytitle=f"{names} (m)",
                                        width=width, height=height, align="left", fast=True,
                                        xmin=0, xmax=self.span)
         self.curves = []  # (gcurve, Trace, what it plots)
@@ -278,6 +290,7 @@ class SceneView:
         for i, label in enumerate(model.labels):
             for axis in self.axes:
                 name = "xyz"[axis] + (f" {label}" if many or len(self.axes) > 1 else " (simulation)")
+                name = name if legend else ""
                 colour = vp.vector(*_shade(MASS_COLOURS[i % len(MASS_COLOURS)], axis, self.axes))
                 self._curve(self.position_graph, name, colour, ("r", i, axis), width=3)
         self.exact_curves = bool(self.view["exact"]) and model.exact is not None
@@ -286,7 +299,7 @@ class SceneView:
             for i, label in enumerate(model.labels):
                 for axis in self.axes:
                     # one legend entry for all the exact curves: they share a colour
-                    name = f"{'xyz'[axis]} exact" if i == 0 else ""
+                    name = f"{'xyz'[axis]} exact" if i == 0 and legend else ""
                     self._curve(self.position_graph, name, vp.vector(0.1, 0.1, 0.1), ("exact", i, axis), width=1)
         self.energy_graph = vp.graph(title="Energy", xtitle="t (s)", ytitle="energy (J)",
                                      width=width, height=height, align="left", fast=True,
