@@ -8,10 +8,15 @@ The net force is the sum over a list of forces (:func:`net_force`). Conservative
 their potential energy per mass; the others are counted in the non-conservative work W_nc
 (see physics/energy.py). Parameters may be one number for all masses or one value per mass
 (an (N,) array, or (N, 3) for anchors), which is how a batch of oscillators is stepped at once.
+
+Every call returns a new array laid out like r (net_force adds into the first one). Anything that
+does not change in time, such as m g's direction times g, is worked out once when the force is made.
+For motion along one line, give r the shape (N, 1) and the forces 1-component vectors:
+Spring(anchor=(0.0,)), Gravity(direction=(-1.0,)), Driving(axis=(1.0,)).
 """
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -20,6 +25,11 @@ def _per_mass(value) -> np.ndarray | float:
     """A scalar parameter, or an (N,) array reshaped to (N, 1) so it multiplies (N, 3) rows."""
     array = np.asarray(value, dtype=float)
     return float(array) if array.ndim == 0 else array.reshape(-1, 1)
+
+
+def magnitude(vectors: np.ndarray) -> np.ndarray:
+    """|a| of each row of an (N, D) array, shape (N, 1): √(a_x² + a_y² + a_z²)."""
+    return np.sqrt((vectors * vectors).sum(axis=-1, keepdims=True))
 
 
 def _unit(vector) -> np.ndarray:
@@ -48,20 +58,26 @@ class Spring:
         object.__setattr__(self, "k", _per_mass(self.k))
         object.__setattr__(self, "L0", _per_mass(self.L0))
         object.__setattr__(self, "anchor", np.asarray(self.anchor, dtype=float))
+        # With L0 = 0 the law is simply F = −k L (a linear spring, no direction needed).
+        object.__setattr__(self, "_zero_length", bool(np.all(self.L0 == 0)))
 
     def stretch(self, r: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """L = r − anchor and its length |L| (shape (N, 1))."""
         L = r - self.anchor
-        return L, np.sqrt(np.sum(L * L, axis=-1, keepdims=True))
+        return L, magnitude(L)
 
     def __call__(self, t, r, v, m):
         k, L0 = self.k, self.L0
+        if self._zero_length:
+            return -k * (r - self.anchor)
         L, length = self.stretch(r)
-        # F = −k(|L| − L0) L̂ = −k (1 − L0/|L|) L; at |L| = 0 the direction is undefined, so F = 0 there.
-        if np.all(L0 == 0):
-            return -k * L
-        safe = np.where(length > 0, length, 1.0)
-        return np.where(length > 0, -k * (1.0 - L0 / safe) * L, 0.0)
+        if length.all():
+            # F = −k (|L| − L0) L̂ = k (L0/|L| − 1) L
+            return (k * (L0 / length - 1.0)) * L
+        # At |L| = 0 the direction L̂ is undefined, so F = 0 there.
+        stretched = length > 0
+        safe = np.where(stretched, length, 1.0)
+        return np.where(stretched, (k * (L0 / safe - 1.0)) * L, 0.0)
 
     def potential_energy(self, r, m):
         """U = ½ k (|L| − L0)² for each mass, J."""
@@ -118,9 +134,11 @@ class Gravity:
 
     def __post_init__(self):
         object.__setattr__(self, "direction", _unit(self.direction))
+        object.__setattr__(self, "g_vector", self.g * self.direction)   # g ĝ, m/s²
 
     def __call__(self, t, r, v, m):
-        return m[:, None] * (self.g * self.direction)
+        # F = m g ĝ for every mass, written straight into a new array laid out like r
+        return np.multiply(m[:, None], self.g_vector, out=np.empty_like(r, dtype=float))
 
     def potential_energy(self, r, m):
         """U = m g h, with h measured up from the origin, J."""
@@ -164,7 +182,7 @@ class QuadraticDrag:
             object.__setattr__(self, name, _per_mass(getattr(self, name)))
 
     def __call__(self, t, r, v, m):
-        speed = np.sqrt(np.sum(v * v, axis=-1, keepdims=True))
+        speed = magnitude(v)
         return -0.5 * self.C * self.A * self.rho * speed * v
 
 
@@ -188,12 +206,17 @@ class Driving:
         object.__setattr__(self, "axis", _unit(self.axis))
 
     def __call__(self, t, r, v, m):
-        return np.broadcast_to(self.F0 * np.cos(self.omega * t) * self.axis, r.shape)
+        # F = F0 cos(ω t) â for every mass, written into a new array laid out like r
+        return np.multiply(self.F0 * np.cos(self.omega * t), self.axis, out=np.empty_like(r, dtype=float))
 
 
 def net_force(forces, t, r, v, m) -> np.ndarray:
-    """F_net = the sum of every force in the list, shape (N, 3), N."""
-    F_net = np.zeros_like(r)
+    """F_net = the sum of every force in the list, shape (N, 3), N (zero for an empty list)."""
+    F_net = None
     for force in forces:
-        F_net += force(t, r, v, m)
-    return F_net
+        F = force(t, r, v, m)
+        if F_net is None:
+            F_net = F          # each force returns a new array, so we may add into it
+        else:
+            F_net += F
+    return np.zeros_like(r) if F_net is None else F_net
