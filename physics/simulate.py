@@ -13,7 +13,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from .energy import WorkMeter, report
-from .forces import LinearDamping, Spring
+from .forces import LinearDamping, Spring, SpringBetween
 from .integrators import INTEGRATORS, STABILITY_LIMIT_OMEGA_DT
 from .state import State
 
@@ -23,10 +23,40 @@ class BlowUpError(RuntimeError):
 
 
 def fastest_angular_frequency(forces, m) -> float:
-    """ω = √(k/m), the largest over springs and masses, rad/s (0 without springs)."""
-    omegas = [np.sqrt(np.max(np.broadcast_to(f.k, (len(m), 1))[:, 0] / m))
-              for f in forces if isinstance(f, Spring)]
-    return float(max(omegas, default=0.0))
+    """The fastest natural angular frequency of the springs and masses, rad/s (0 without springs).
+
+    One mass on a spring from an anchor: ω = √(k/m). Masses joined by springs between them (a
+    chain) move in normal modes, and the fastest one is faster than any single √(k/m): for a
+    uniform chain it approaches 2√(k/m). Along the springs the motion obeys M x'' = −K x, with
+    the stiffness matrix
+
+        K_ii = Σ k of the springs on mass i,   K_ij = −k of the spring joining i and j,
+
+    and the normal modes' ω² are the eigenvalues of M^(−1/2) K M^(−1/2); we return the largest ω.
+    (Sideways, a stretched spring is softer, k (1 − L0/|L|), so the modes along the springs are the
+    fastest.) Euler-Cromer steps each normal mode on its own, so ω·Δt < 2 must hold for this ω.
+    """
+    m = np.asarray(m, dtype=float)
+    k_anchor = np.zeros(len(m))          # N/m: springs from a fixed anchor, per mass
+    for force in forces:
+        if isinstance(force, Spring):
+            k_anchor += np.broadcast_to(force.k, (len(m), 1))[:, 0]
+    joints = [force for force in forces if isinstance(force, SpringBetween)]
+    omega_sq = float(np.max(k_anchor / m, initial=0.0))
+    if joints:
+        # Only the masses joined to others are coupled; the rest stay √(k/m) each.
+        coupled = sorted({index % len(m) for joint in joints for index in (joint.i, joint.j)})
+        row = {mass: n for n, mass in enumerate(coupled)}
+        K = np.diag(k_anchor[coupled])
+        for joint in joints:
+            i, j = row[joint.i % len(m)], row[joint.j % len(m)]
+            K[i, i] += joint.k
+            K[j, j] += joint.k
+            K[i, j] -= joint.k
+            K[j, i] -= joint.k
+        scale = 1.0 / np.sqrt(m[coupled])
+        omega_sq = max(omega_sq, float(np.linalg.eigvalsh(scale[:, None] * K * scale[None, :])[-1]))
+    return float(np.sqrt(max(omega_sq, 0.0)))
 
 
 def fastest_damping_rate(forces, m) -> float:
@@ -51,16 +81,20 @@ def stability_advice(integrator, dt: float, omega: float, *, damping_rate: float
     if integrator == "euler-cromer" and damping_rate > 0 and dt_max * omega < 0.99 * limit:
         return (f"dt = {dt:g} s, but euler-cromer with damping is stable here only for "
                 f"(ω·dt)² + 2·(b/m)·dt < 4, i.e. dt < {dt_max:.4g} s "
-                f"(ω = √(k/m) = {omega:.4g} rad/s, b/m = {damping_rate:.4g} s⁻¹)")
+                f"({_omega_words(omega)}, b/m = {damping_rate:.4g} s⁻¹)")
     damping_note = (f"; strong damping also limits dt: here b·dt/m = {damping_rate * dt:.3g}, "
                     f"and every method needs it below about 2" if damping_rate * dt > 1 else "")
     if omega == 0:
         return f"dt = {dt:g} s" + damping_note
     if limit is None:
         return (f"dt = {dt:g} s; {integrator} is unstable on a spring at every dt "
-                f"(ω = √(k/m) = {omega:.4g} rad/s): use euler-cromer, verlet or rk4" + damping_note)
+                f"({_omega_words(omega)}): use euler-cromer, verlet or rk4" + damping_note)
     return (f"dt = {dt:g} s, but {integrator} is stable on this spring only for ω·dt < {limit:.3g}, "
-            f"i.e. dt < {limit / omega:.4g} s (ω = √(k/m) = {omega:.4g} rad/s)" + damping_note)
+            f"i.e. dt < {limit / omega:.4g} s ({_omega_words(omega)})" + damping_note)
+
+
+def _omega_words(omega: float) -> str:
+    return f"ω = {omega:.4g} rad/s, the fastest natural angular frequency: √(k/m) for one mass on a spring"
 
 
 def steps_to_reach(until: float, dt: float) -> int:
@@ -108,35 +142,55 @@ def stepper(integrator):
 
 
 def run(state: State, forces, *, dt: float, until: float, integrator="euler-cromer",
-        with_energy: bool = False, growth_limit: float = 1e6) -> Trajectory:
-    """Step from state.t to `until` with fixed dt and record every step.
+        with_energy: bool = False, growth_limit: float = 1e6, record_every: int | None = 1) -> Trajectory:
+    """Step from state.t to `until` with fixed dt, recording the state every `record_every` steps.
+
+    record_every = 1 (the default) records every step; n records every n-th step and always the
+    final one; None records only the start and the final state, for big batches and long runs
+    where the samples in between are not wanted. The steps themselves are the same either way.
 
     Raises BlowUpError if the state stops being finite, or any mass strays more than
     `growth_limit` times the starting size of the motion from its spring's anchor.
     """
     step = stepper(integrator)
     n = steps_to_reach(until - state.t, dt)
+    every = _recording_interval(n, record_every)
+    samples = 1 + n // every + (n % every != 0)       # the start, every n-th step, the last one
     omega = fastest_angular_frequency(forces, state.m)
     scale = _motion_scale(state, forces, omega)
-    t = np.empty(n + 1)
-    r = np.empty((n + 1,) + state.r.shape)
+    t = np.empty(samples)
+    r = np.empty((samples,) + state.r.shape)
     p = np.empty_like(r)
     t[0], r[0], p[0] = state.t, state.r, state.p
     meter = WorkMeter(state, forces) if with_energy else None
-    energy = {key: np.empty(n + 1) for key in ("K", "U", "E", "W_nc", "E_minus_W_nc")} if with_energy else None
+    energy = {key: np.empty(samples) for key in ("K", "U", "E", "W_nc", "E_minus_W_nc")} if with_energy else None
     if with_energy:
         _store(energy, 0, report(state, forces, meter.work))
+    sample = 0
     # A blow-up may overflow to inf and NaN between two checks; _check then reports it in one
     # sentence, so numpy's overflow warnings would only print noise.
     with np.errstate(over="ignore", invalid="ignore"):
         for i in range(1, n + 1):
             state = step(state, forces, dt)
-            t[i], r[i], p[i] = state.t, state.r, state.p
             if with_energy:
-                _store(energy, i, report(state, forces, meter.advance(state)))
+                work = meter.advance(state)      # W_nc = ∫ P_nc dt needs every step
+            if i % every == 0 or i == n:
+                sample += 1
+                t[sample], r[sample], p[sample] = state.t, state.r, state.p
+                if with_energy:
+                    _store(energy, sample, report(state, forces, work))
             if i % 256 == 0 or i == n:
                 _check(state, forces, dt, integrator, omega, scale * growth_limit)
     return Trajectory(t=t, r=r, p=p, m=state.m, energy=energy)
+
+
+def _recording_interval(n: int, record_every: int | None) -> int:
+    """Steps between recorded states: record_every, or n when only the final state is wanted."""
+    if record_every is None:
+        return max(n, 1)
+    if isinstance(record_every, bool) or not isinstance(record_every, (int, np.integer)) or record_every < 1:
+        raise ValueError("record_every must be a whole number ≥ 1, or None for the final state only")
+    return int(record_every)
 
 
 def _store(energy, i, values):

@@ -141,3 +141,69 @@ def test_a_run_that_overflows_gives_one_clear_error_and_no_numpy_warnings(with_e
         warnings.simplefilter("error")
         with pytest.raises(BlowUpError, match="non-finite state"):
             run(state, forces, dt=10.0, until=300 * 10.0, with_energy=with_energy)
+
+
+# ---- chains: the fastest normal mode sets the limit ----
+
+def two_mass_chain(*, k1, k2, m1, m2, L0=1.0, stretch=(0.2, -0.1)):
+    """anchor —k1— m1 —k2— m2, hanging along −y without gravity, both springs stretched."""
+    from physics.forces import Spring, SpringBetween
+    from physics.state import make_state
+    y1 = -(L0 + stretch[0])
+    y2 = y1 - (L0 + stretch[1])
+    state = make_state(r=[[0.0, y1, 0.0], [0.0, y2, 0.0]], m=[m1, m2])
+    forces = (Spring(k=[k1, 0.0], L0=L0), SpringBetween(k=k2, L0=L0, i=0, j=1))
+    return state, forces
+
+
+def two_mass_fastest_omega(*, k1, k2, m1, m2):
+    """The larger normal-mode ω of the two-mass chain, from det(K − ω² M) = 0:
+
+        ω⁴ − ((k1 + k2)/m1 + k2/m2) ω² + k1 k2/(m1 m2) = 0.
+    """
+    s = (k1 + k2) / m1 + k2 / m2
+    return np.sqrt(0.5 * (s + np.sqrt(s * s - 4 * k1 * k2 / (m1 * m2))))
+
+
+@pytest.mark.parametrize("k1, k2, m1, m2", [(40.0, 40.0, 10.0, 10.0), (10.0, 70.0, 2.0, 0.5), (100.0, 3.0, 1.0, 9.0)])
+def test_fastest_angular_frequency_of_a_two_mass_chain_is_its_fast_normal_mode(k1, k2, m1, m2):
+    from physics.simulate import fastest_angular_frequency
+    state, forces = two_mass_chain(k1=k1, k2=k2, m1=m1, m2=m2)
+    omega = fastest_angular_frequency(forces, state.m)
+    assert omega == pytest.approx(two_mass_fastest_omega(k1=k1, k2=k2, m1=m1, m2=m2), rel=1e-12)
+    assert omega > max(np.sqrt(k1 / m1), np.sqrt(k2 / m2))   # faster than any lone spring
+
+
+def test_equal_two_mass_chain_is_the_golden_ratio_times_sqrt_k_over_m():
+    """k1 = k2 = k, m1 = m2 = m: ω² = (3 ± √5)/2 · k/m, so the fast mode is φ √(k/m), φ = 1.618…."""
+    from physics.simulate import fastest_angular_frequency
+    state, forces = two_mass_chain(k1=40.0, k2=40.0, m1=10.0, m2=10.0)
+    golden = (1 + np.sqrt(5)) / 2
+    assert fastest_angular_frequency(forces, state.m) == pytest.approx(golden * 2.0, rel=1e-12)
+
+
+def test_long_uniform_chain_approaches_two_sqrt_k_over_m():
+    """A chain of n equal masses and springs, fixed at the top, free at the bottom: ω_max =
+    2 √(k/m) sin((2n − 1)π / (2(2n + 1))), just under 2 √(k/m)."""
+    from physics.forces import Spring, SpringBetween
+    from physics.simulate import fastest_angular_frequency
+    n, k, m = 30, 40.0, 10.0
+    forces = [Spring(k=[k] + [0.0] * (n - 1), L0=0.5)] + [SpringBetween(k=k, L0=0.5, i=i, j=i + 1) for i in range(n - 1)]
+    expected = 2 * np.sqrt(k / m) * np.sin((2 * n - 1) * np.pi / (2 * (2 * n + 1)))
+    assert fastest_angular_frequency(forces, np.full(n, m)) == pytest.approx(expected, rel=1e-12)
+
+
+def test_euler_cromer_on_a_chain_is_stable_just_below_two_over_its_fastest_mode_and_not_above():
+    """Euler-Cromer steps each normal mode on its own, so the chain needs ω_fast·Δt < 2. With
+    k = 40 N/m and m = 10 kg, √(k/m)·Δt is only 2/φ = 1.24 at the limit: the lone-spring ω would miss it."""
+    state, forces = two_mass_chain(k1=40.0, k2=40.0, m1=10.0, m2=10.0)
+    omega = two_mass_fastest_omega(k1=40.0, k2=40.0, m1=10.0, m2=10.0)
+    span = 400 * 2 / omega
+    inside = run(state, forces, dt=0.97 * 2 / omega, until=span)
+    assert np.max(np.abs(inside.r[:, :, 1])) < 5.0
+    dt = 1.03 * 2 / omega
+    with pytest.raises(BlowUpError) as blown:
+        run(state, forces, dt=dt, until=span)
+    message = str(blown.value)
+    assert f"dt = {dt:g} s" in message and "ω·dt < 2" in message
+    assert f"dt < {2 / omega:.4g} s" in message and f"ω = {omega:.4g} rad/s" in message
