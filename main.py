@@ -5,10 +5,13 @@
     python main.py --list                 the scenes, with their scenarios
     python main.py SCENE --constants      each constant with its value, unit and meaning
     python main.py SCENE --headless       run to the question time and print the final state
-        [--set NAME=VALUE ...] [--scenario N] [--integrator NAME] [--until T] [--json] [--csv FILE]
+        [--set NAME=VALUE ...] [--scenario N] [--preset NAME] [--integrator NAME] [--until T]
+        [--json] [--csv FILE]
     python main.py SCENE --steps N        the first N momentum updates as a table to check by hand
     python main.py SCENE --plot FILE.png  a figure of the position and energy graphs (needs matplotlib)
 
+--preset NAME applies one of the scene's presets ("Moon gravity", "critical damping", ...; --constants
+lists them) in the browser and headless alike, after --scenario and before --set.
 --steps and --plot always run headless, so they need no --headless. --json and --csv describe a
 headless run and are an error without --headless. Bad input gives one line `error: ...` and exit
 status 2; a run that blows up gives its reason (Δt and the stability limit) and exit status 1.
@@ -33,6 +36,8 @@ EXAMPLES = """examples:
   python main.py vertical --headless                  the Simple Example: y = -1.73088 m at t = 0.2 s
   python main.py damped --headless --set dt=0.001     the Middling Example with a smaller step
   python main.py driven --headless --scenario 3 --json
+  python main.py vertical --headless --preset "Moon gravity"
+  python main.py damped --preset "critical damping"    no overshoot, in the browser
   python main.py vertical --steps 2                   the first two updates, to check by hand
   python main.py regimes --plot regimes.png           the page's damping figure
 """
@@ -63,6 +68,9 @@ def build_parser() -> argparse.ArgumentParser:
     parser.add_argument("--set", action="append", default=[], metavar="NAME=VALUE", dest="assignments",
                         help="change a constant, e.g. --set k=25 or --set r0=0,-1.2,0 (may repeat)")
     parser.add_argument("--scenario", type=int, metavar="N", help="one of the scene's numbered scenarios")
+    parser.add_argument("--preset", metavar="NAME",
+                        help="one of the scene's presets, e.g. \"Moon gravity\" or \"critical damping\" "
+                             "(a unique beginning is enough; --constants lists them)")
     parser.add_argument("--integrator", choices=list(INTEGRATORS), default=None,
                         help=f"stepping method (default {DEFAULT_INTEGRATOR}, the page's update)")
     parser.add_argument("--until", type=float, metavar="T",
@@ -89,6 +97,28 @@ def list_scenes() -> str:
         lines.append(f"{name:<{width}}  {catalog.summary(module)}")
         for number, (label, _) in enumerate(catalog.scenarios(module), start=1):
             lines.append(f"{'':<{width}}    --scenario {number}: {label}")
+    return "\n".join(lines)
+
+
+def presets_report(setup) -> str:
+    """The scene's presets with what each changes, for --constants: `critical damping   b = 2√(mk) = 40 kg/s`."""
+    from scenes.constants import format_value
+
+    options = catalog.presets(setup)
+    if not options:
+        return "presets: none for this scene"
+    width = max(len(label) for label, _ in options)
+    lines = ["presets (--preset NAME):"]
+    for label, overrides in options:
+        changes = []
+        for name, value in overrides.items():
+            unit = setup.constants[name].unit
+            if value is None:  # critical damping, from the m and k set now
+                value = catalog.resolve({**setup.values, name: None})[name]
+                changes.append(f"{name} = 2√(mk) = {format_value(value, unit)}")
+            else:
+                changes.append(f"{name} = {format_value(value, unit)}")
+        lines.append(f"  {label:<{width}}   {', '.join(changes)}")
     return "\n".join(lines)
 
 
@@ -166,9 +196,10 @@ def main(argv=None) -> int:
     try:
         check_options(args)
         setup = catalog.configure(args.scene or catalog.DEFAULT_SCENE, assignments=args.assignments,
-                                  scenario=args.scenario)
+                                  scenario=args.scenario, preset=args.preset)
         if args.constants:
             print(headless.constants_report(setup))
+            print(presets_report(setup))
             return 0
         if args.headless or args.steps is not None or args.plot is not None:
             return run_headless(args, setup)
@@ -180,8 +211,9 @@ def main(argv=None) -> int:
         return 1
     from scenes.view import show
 
+    preset = catalog.find_preset(setup, args.preset)[0] if args.preset else None
     sys.exit(show(setup, integrator=args.integrator or DEFAULT_INTEGRATOR, port=args.port,
-                  open_browser=not args.no_browser))
+                  open_browser=not args.no_browser, preset=preset))
 
 
 if __name__ == "__main__":

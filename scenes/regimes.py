@@ -9,7 +9,8 @@ damping constant b in F = −b v differs. Critical damping is b_c = 2√(mk) (b�
 
 The middle oscillator's b is a constant, critical by default (8 kg/s = 2√(mk) for the default m and
 k), so a teacher can slide it through the three regimes. b = None means "critical for whatever m
-and k are now", and that is what the preset "critical damping" sets. The other two are fixed
+and k are", and the preset "critical damping" sets b = 2√(mk) for the m and k of the moment
+(scenes/catalog.py). The other two are fixed
 fractions and multiples of b_c. Each curve has its exact solution from physics.exact.oscillator.
 """
 import numpy as np
