@@ -9,8 +9,9 @@ their potential energy per mass; the others are counted in the non-conservative 
 (see physics/energy.py). Parameters may be one number for all masses or one value per mass
 (an (N,) array, or (N, 3) for anchors), which is how a batch of oscillators is stepped at once.
 
-Every call returns a new array laid out like r (net_force adds into the first one). Anything that
-does not change in time, such as m g's direction times g, is worked out once when the force is made.
+Every call returns a new array laid out like r (net_force adds into the first one). Anything
+that does not change in time, such as g times the direction of gravity, is worked out once when
+the force is made. A force whose uses_velocity is False never reads v, so a step may pass v = None.
 For motion along one line, give r the shape (N, 1) and the forces 1-component vectors:
 Spring(anchor=(0.0,)), Gravity(direction=(-1.0,)), Driving(axis=(1.0,)).
 """
@@ -208,6 +209,12 @@ class Driving:
     def __call__(self, t, r, v, m):
         # F = F0 cos(ω t) â for every mass, written into a new array laid out like r
         return np.multiply(self.F0 * np.cos(self.omega * t), self.axis, out=np.empty_like(r, dtype=float))
+
+
+def uses_velocity(forces) -> bool:
+    """Whether any force in the list depends on v (damping, drag). If none does, the integrators
+    may pass v = None."""
+    return any(force.uses_velocity for force in forces)
 
 
 def net_force(forces, t, r, v, m) -> np.ndarray:

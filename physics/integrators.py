@@ -5,7 +5,7 @@ v = p / m (physics/state.py). F(t, r, v) below means the net force of the list o
 """
 from __future__ import annotations
 
-from .forces import net_force
+from .forces import net_force, uses_velocity
 from .state import State, velocity
 
 
@@ -19,9 +19,11 @@ def euler_cromer(state: State, forces, dt: float) -> State:
 
     First order. On an undamped spring its energy stays bounded (it is symplectic), as long as
     ω Δt < 2 with ω = √(k/m); beyond that the motion grows without bound.
+    Only damping and drag read v_i, so without them the step does not work it out.
     """
     t, r, p, m = state.t, state.r, state.p, state.m
-    F_net = net_force(forces, t, r, velocity(p, m), m)
+    v_i = velocity(p, m) if uses_velocity(forces) else None
+    F_net = net_force(forces, t, r, v_i, m)
     p_f = p + F_net * dt
     v_f = velocity(p_f, m)
     r_f = r + v_f * dt
@@ -63,7 +65,7 @@ def verlet(state: State, forces, dt: float) -> State:
     v_half = velocity(p_half, m)
     r_f = r + v_half * dt
     v_guess = v_half
-    if any(force.uses_velocity for force in forces):
+    if uses_velocity(forces):
         v_guess = velocity(p_half + net_force(forces, t + dt, r_f, v_half, m) * half, m)
     p_f = p_half + net_force(forces, t + dt, r_f, v_guess, m) * half
     return State(t=t + dt, r=r_f, p=p_f, m=m)

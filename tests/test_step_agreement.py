@@ -125,3 +125,13 @@ def test_one_dimensional_batches_need_one_component_vectors():
     assert F.shape == (2, 1)
     # spring 40 · 0.5 up, gravity 98 down, drive 1 along +x (here the line's direction): −77 N; mass 2: 8 − 49 + 1.
     np.testing.assert_allclose(F, [[-77.0], [-40.0]], rtol=1e-14)
+
+
+def test_forces_that_do_not_use_velocity_never_read_it():
+    """euler_cromer passes v = None when no force in the list uses velocity."""
+    from physics.forces import SpringBetween, uses_velocity
+    r, m = np.array([[0.1, -1.2, 0.0], [0.0, -2.5, 0.3]]), np.array([2.0, 3.0])
+    quiet = [Spring(k=40.0, L0=1.0), SpringBetween(k=10.0, L0=1.0, i=0, j=1), Gravity(g=9.8), Driving(F0=2.0, omega=3.0)]
+    assert not uses_velocity(quiet)
+    np.testing.assert_array_equal(net_force(quiet, 0.4, r, None, m), net_force(quiet, 0.4, r, np.ones_like(r), m))
+    assert uses_velocity(quiet + [LinearDamping(b=1.0)]) and uses_velocity([QuadraticDrag(C=1.0, A=0.1, rho=1.2)])
