@@ -32,7 +32,9 @@ patches in place (its servers are made by import-time code, so later would be to
   or wait forever if its servers are only half made).
 
 That import blocks until a browser connects (vpython waits in a silent loop), so ``start()``
-prints the URL first and reminds on stderr while it waits. Once connected, vpython's own SIGINT
+prints the URL first and reminds on stderr while it waits. The port is bound and listening before
+the URL is printed, and vpython's HTTP server takes over that very socket: a browser pointed at the
+URL at once connects, and its request waits in the socket's queue while vpython loads. Once connected, vpython's own SIGINT
 handler ends the program with status 0 on Ctrl-C or when the page is closed (its websocket
 onClose sends SIGINT to its own process).
 
@@ -55,6 +57,7 @@ from dataclasses import dataclass, field
 from urllib.parse import unquote
 
 LOOPBACK = "127.0.0.1"
+LISTEN_QUEUE = 64  # connections that may wait for the HTTP server (a browser opens several)
 
 # What the page may fetch besides "/", by file extension.
 _CONTENT_TYPES = {
@@ -142,13 +145,15 @@ def start(*, port: int | None = None, open_browser: bool = True,
         raise
     finally:
         waiting.set()
-        state.reservation.close()
+        if not state.handed_over:
+            state.reservation.close()
     return ServerInfo(url=url, http_port=http_port, socket_port=state.socket_port)
 
 
 @dataclass
 class _State:
     reservation: socket.socket
+    handed_over: bool = False  # the HTTP server has taken the reservation socket over
     url: str = ""
     origins: set[str] = field(default_factory=set)  # the page's own Origin header values
     open_browser: bool = False
@@ -159,10 +164,11 @@ class _State:
 
 
 def _reserve(port: int | None) -> socket.socket:
-    """Bind 127.0.0.1:port (0 = any free one) now, to fail early with a clear message.
+    """Bind and listen on 127.0.0.1:port (0 = any free one) now, to fail early with a clear message.
 
-    The socket is held until vpython's HTTP server takes the port over, so that vpython's own
-    pick of a free websocket port cannot land on it.
+    vpython's HTTP server later serves from this same socket (see _http_server_class), so the URL
+    works from the moment it is printed: connections made while vpython still loads wait in the
+    listen queue. Holding the port also keeps vpython's own pick of a free websocket port off it.
     """
     if port is None:
         port = 0
@@ -181,6 +187,7 @@ def _reserve(port: int | None) -> socket.socket:
         else:
             reason = f"cannot be used ({exc.strerror})"
         raise ServerError(f"port {port} {reason}; pick another with --port") from None
+    sock.listen(LISTEN_QUEUE)
     return sock
 
 
@@ -252,13 +259,18 @@ def _http_server_class(state: _State):
         daemon_threads = True
 
         def __init__(self, address, handler_class):
-            state.reservation.close()  # hand the port over
+            # Serve from the socket start() bound and has listened on since it printed the URL
+            # (vpython asks for ('', port); we ignore the address). No new bind, so no bind error.
             try:
-                super().__init__((LOOPBACK, address[1]), _safe_handler(handler_class))
+                super().__init__((LOOPBACK, 0), _safe_handler(handler_class), bind_and_activate=False)
             except OSError as exc:
                 state.bind_error = exc  # vpython swallows it; start() reports it
                 raise
-            if state.open_browser:  # now listening, so the page's first request will queue
+            self.socket.close()
+            self.socket, state.handed_over = state.reservation, True
+            self.server_address = self.socket.getsockname()
+            self.server_name, self.server_port = LOOPBACK, self.server_address[1]
+            if state.open_browser:  # the page's first request queues until serve_forever
                 webbrowser.open(state.url)
 
         def serve_forever(self, poll_interval=0.05):

@@ -41,6 +41,20 @@ while True:
         reported = True
 """
 
+# Prepended to DRIVER to hold `import vpython` for a while, so that a test can act while vpython
+# is still loading, after start() has printed the URL.
+SLOW_VPYTHON = """
+import importlib.abc, sys, time
+class SlowVpython(importlib.abc.MetaPathFinder):
+    def find_spec(self, name, path, target=None):
+        if name == "vpython":
+            print("LOADING VPYTHON", flush=True)
+            time.sleep(float(sys.argv[2]))
+            print("VPYTHON LOADING GOES ON", flush=True)
+        return None
+sys.meta_path.insert(0, SlowVpython())
+"""
+
 CWD_SECRET = b"CWD-SECRET-7f3a91"
 PARENT_SECRET = b"PARENT-SECRET-c2d804"
 DECOY_JS = b"// DECOY-JS-55e1 from the working directory"
@@ -49,11 +63,12 @@ DECOY_JS = b"// DECOY-JS-55e1 from the working directory"
 class Driver:
     """The driver program, with its stdout/stderr read by threads so no read can hang."""
 
-    def __init__(self, cwd: Path, remind_after: float = 60.0):
+    def __init__(self, cwd: Path, remind_after: float = 60.0, slow_vpython: float = 0.0):
         env = dict(os.environ, PYTHONPATH=str(ROOT))
         env.pop("VPYTHON_HTTP_PORT", None)
+        code = (SLOW_VPYTHON if slow_vpython else "") + DRIVER
         self.proc = subprocess.Popen(
-            [sys.executable, "-c", DRIVER, str(remind_after)], cwd=cwd, env=env,
+            [sys.executable, "-c", code, str(remind_after), str(slow_vpython)], cwd=cwd, env=env,
             stdin=subprocess.DEVNULL, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
         self.lines = {"out": queue.Queue(), "err": queue.Queue()}
         self.seen = {"out": [], "err": []}
@@ -87,6 +102,17 @@ class Driver:
     def http_port(self) -> int:
         match = self.expect(r"^Open http://127\.0\.0\.1:(\d+)/ in a browser$", timeout=10)
         return int(match.group(1))
+
+    def drain(self, stream: str = "out") -> list[str]:
+        """Every line seen so far on a stream, without waiting for more."""
+        while True:
+            try:
+                line = self.lines[stream].get_nowait()
+            except queue.Empty:
+                return self.seen[stream]
+            if line is None:
+                return self.seen[stream]
+            self.seen[stream].append(line)
 
     def stderr_text(self) -> str:
         """All of stderr; call only once the process has ended."""
@@ -124,8 +150,8 @@ def sandbox(tmp_path: Path) -> Path:
 def run_driver(sandbox):
     drivers = []
 
-    def run(remind_after: float = 60.0) -> Driver:
-        driver = Driver(sandbox, remind_after)
+    def run(remind_after: float = 60.0, slow_vpython: float = 0.0) -> Driver:
+        driver = Driver(sandbox, remind_after, slow_vpython)
         drivers.append(driver)
         return driver
 
@@ -136,9 +162,9 @@ def run_driver(sandbox):
 
 # ---------------------------------------------------------------------------------- helpers
 
-def raw_get(port: int, path: str) -> tuple[int, bytes]:
+def raw_get(port: int, path: str, timeout: float = 5) -> tuple[int, bytes]:
     """GET with the path sent byte for byte (no client-side normalising)."""
-    with socket.create_connection(("127.0.0.1", port), timeout=5) as sock:
+    with socket.create_connection(("127.0.0.1", port), timeout=timeout) as sock:
         sock.sendall(f"GET {path} HTTP/1.0\r\nHost: 127.0.0.1:{port}\r\n\r\n".encode("latin-1"))
         data = b""
         while chunk := sock.recv(65536):
@@ -220,12 +246,34 @@ def assert_clean_exit(driver: Driver, timeout: float, since: float | None = None
 
 # ------------------------------------------------------------------------------------ tests
 
-def test_prints_the_loopback_url_promptly(run_driver):
-    driver = run_driver()
-    t0 = time.monotonic()
+def test_the_printed_url_already_accepts_connections_while_vpython_loads(run_driver):
+    # The driver holds `import vpython` for 4 s, after start() prints the URL. A browser pointed at
+    # the URL in that time must connect; its request is answered once vpython has loaded.
+    driver = run_driver(slow_vpython=4.0)
     port = driver.http_port()
-    assert time.monotonic() - t0 < 5
     assert 1 <= port <= 65535
+    assert ("tcp", "127.0.0.1", port) in listening_sockets(driver.proc.pid)
+    driver.expect(r"^LOADING VPYTHON$")
+    with socket.create_connection(("127.0.0.1", port), timeout=5) as early:
+        early.sendall(f"GET / HTTP/1.0\r\nHost: 127.0.0.1:{port}\r\n\r\n".encode())
+        assert "VPYTHON LOADING GOES ON\n" not in driver.drain()  # connected while it loads
+        early.settimeout(60)
+        reply = b""
+        while chunk := early.recv(65536):
+            reply += chunk
+    assert reply.startswith(b"HTTP/1.0 200") and b"glow" in reply
+    assert driver.proc.poll() is None
+
+
+def test_the_reminder_names_a_url_that_accepts_connections(run_driver):
+    driver = run_driver(remind_after=0.5, slow_vpython=4.0)
+    port = driver.http_port()
+    match = driver.expect(r"Still waiting for a browser: open http://127\.0\.0\.1:(\d+)/ ",
+                          stream="err", timeout=10)
+    assert int(match.group(1)) == port
+    with socket.create_connection(("127.0.0.1", port), timeout=5):
+        pass
+    assert raw_get(port, "/", timeout=60)[0] == 200
 
 
 def test_both_servers_listen_on_loopback_only_before_any_browser(run_driver):
