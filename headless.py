@@ -20,23 +20,40 @@ from __future__ import annotations
 import csv
 import math
 import os
+import sys
 from dataclasses import dataclass
 
 import numpy as np
 
 from physics.forces import net_force
 from physics.integrators import DEFAULT_INTEGRATOR, STABILITY_LIMIT_OMEGA_DT
-from physics.simulate import Trajectory, fastest_angular_frequency, run, stability_advice, steps_to_reach
+from physics.simulate import (Trajectory, fastest_angular_frequency, fastest_damping_rate, run,
+                              stability_advice, steps_to_reach)
 from physics.state import velocity
+from scenes.constants import ConstantError
 
-UNITS = {"t": "s", "dt": "s", "r": "m", "v": "m/s", "p": "kg·m/s", "F_net": "N", "energy": "J"}
+UNITS = {"t": "s", "dt": "s", "r": "m", "v": "m/s", "p": "kg·m/s", "F_net": "N", "energy": "J",
+         "exact_valid_until": "s"}
 ENERGY_KEYS = ("K", "U", "E", "W_nc")
 CSV_HEADER = ["t", "x", "y", "z", "vx", "vy", "vz", "px", "py", "pz", *ENERGY_KEYS]
 SIGNIFICANT = 6
 
 
+# A headless run keeps every step in memory (for the CSV file and the figure): about 100 bytes per
+# step and mass, and a few tens of microseconds each. Longer runs are refused before they start;
+# runs past PROGRESS_AFTER report their progress on stderr.
+MAX_MASS_STEPS = 2_000_000     # steps × masses
+PROGRESS_AFTER = 200_000       # steps × masses
+MAX_TABLE_ROWS = 10_000        # rows of the step table (steps × masses)
+STDOUT = "-"                   # the file name that means standard output
+
+
 class OutputError(ValueError):
     """An output file that cannot be written: a one-line message, found before the run starts."""
+
+
+class TooManySteps(ConstantError):
+    """until / dt asks for more steps than a headless run takes: a one-line message with the count."""
 
 
 # ---- numbers and vectors as a student writes them ----
@@ -75,12 +92,29 @@ class Result:
     def labels(self) -> tuple:
         return tuple(self.model.labels)
 
+    def exact_valid_until(self) -> float:
+        """When the closed form stops holding, s: math.inf if it holds up to the final time."""
+        check = self.model.exact_valid_until
+        return math.inf if check is None else check(float(self.trajectory.t[-1]))
+
     def exact(self):
-        """(r, v) of the closed form at the final time, shape (N, 3) each, or None where unknown."""
-        if self.model.exact is None:
+        """(r, v) of the closed form at the final time, shape (N, 3) each, or None where unknown.
+
+        None also where the closed form stopped holding before the final time (exact_note says why).
+        """
+        if self.model.exact is None or self.exact_valid_until() < self.trajectory.t[-1]:
             return None
         r, v = self.model.exact(np.array([self.trajectory.t[-1]]))
         return np.asarray(r, dtype=float)[0], np.asarray(v, dtype=float)[0]
+
+    def exact_note(self) -> str | None:
+        """Why a scene with a closed form gives no exact value at the final time, or None."""
+        if self.model.exact is None:
+            return None
+        t_break = self.exact_valid_until()
+        if t_break >= self.trajectory.t[-1]:
+            return None
+        return f"the closed form stops holding at t = {number(t_break, 4)} s, {self.model.exact_limit}"
 
 
 def method_for(model, integrator: str | None):
@@ -90,17 +124,80 @@ def method_for(model, integrator: str | None):
     return integrator or DEFAULT_INTEGRATOR
 
 
-def simulate(setup, *, model=None, integrator: str | None = None, until: float | None = None) -> Result:
+def step_count(model, *, until: float) -> int:
+    """How many steps of Δt a run from the model's start to `until` takes.
+
+    Raises TooManySteps, naming the count and what to change, past MAX_MASS_STEPS (steps × masses).
+    """
+    dt, start, masses = model.dt, model.state.t, model.state.count
+    ratio = (until - start) / dt
+    n = steps_to_reach(until - start, dt) if math.isfinite(ratio) else math.inf
+    if n * masses <= MAX_MASS_STEPS:
+        return n
+    count = f"{n:,} steps" if math.isfinite(n) else "more than 10³⁰⁸ steps"
+    if masses > 1:
+        total = f"{n * masses:,}" if math.isfinite(n) else "more than 10³⁰⁸"
+        count += f" of {masses} masses, {total} mass-steps"
+    longest = start + MAX_MASS_STEPS // masses * dt
+    raise TooManySteps(
+        f"a run to t = {number(until)} s with dt = {number(dt)} s is {count}, more than the "
+        f"{MAX_MASS_STEPS:,} a headless run takes; use a larger dt, or a smaller --until "
+        f"(at most {number(longest)} s with dt = {number(dt)} s)")
+
+
+def simulate(setup, *, model=None, integrator: str | None = None, until: float | None = None,
+             progress=sys.stderr) -> Result:
     """Run a configured scene (scenes.catalog.Setup) from its start to `until` (default: its question time).
 
-    Raises physics.simulate.BlowUpError when Δt is too large for the method.
+    Runs longer than PROGRESS_AFTER steps × masses write their progress to the stream `progress`
+    (None: silently). Raises TooManySteps past MAX_MASS_STEPS, before any step is taken, and
+    physics.simulate.BlowUpError when Δt is too large for the method.
     """
     model = model if model is not None else setup.build()
     method = method_for(model, integrator)
     until = model.until if until is None else until
-    trajectory = run(model.state, model.forces, dt=model.dt, until=until, integrator=method,
-                     with_energy=True)
+    n = step_count(model, until=until)
+    if progress is None or n * model.state.count <= PROGRESS_AFTER:
+        trajectory = run(model.state, model.forces, dt=model.dt, until=until, integrator=method,
+                         with_energy=True)
+    else:
+        trajectory = _run_in_parts(model, method, steps=n, progress=progress)
     return Result(setup=setup, model=model, integrator=method, trajectory=trajectory)
+
+
+def _run_in_parts(model, method, *, steps: int, progress, parts: int = 10) -> Trajectory:
+    """The same run as physics.simulate.run, in `parts` stretches with a progress line after each.
+
+    Each stretch starts from the state the one before ended with, so the steps are exactly those
+    of one long run. The work meter starts again at 0 for each stretch, so the work done before it
+    is added back in. Only the blow-up guard differs: it measures growth from each stretch's start.
+    """
+    dt, m = model.dt, model.state.m
+    t = np.empty(steps + 1)
+    r = np.empty((steps + 1,) + model.state.r.shape)
+    p = np.empty_like(r)
+    energy = {key: np.empty(steps + 1) for key in ("K", "U", "E", "W_nc", "E_minus_W_nc")}
+    state, done, work_before = model.state, 0, 0.0
+    tty = hasattr(progress, "isatty") and progress.isatty()
+    for part in range(1, parts + 1):
+        length = steps * part // parts - done
+        if length == 0:
+            continue
+        piece = run(state, model.forces, dt=dt, until=state.t + length * dt, integrator=method,
+                    with_energy=True)
+        rows = slice(done, done + length + 1)
+        t[rows], r[rows], p[rows] = piece.t, piece.r, piece.p
+        for key in ("K", "U", "E"):
+            energy[key][rows] = piece.energy[key]
+        energy["W_nc"][rows] = piece.energy["W_nc"] + work_before
+        energy["E_minus_W_nc"][rows] = piece.energy["E_minus_W_nc"] - work_before
+        work_before = float(energy["W_nc"][done + length])
+        state, done = piece.final, done + length
+        line = (f"running: {done:,} of {steps:,} steps ({100 * done // steps} %), "
+                f"t = {number(state.t)} s")
+        print(("\r" + line) if tty else line, end="" if tty and done < steps else "\n",
+              file=progress, flush=True)
+    return Trajectory(t=t, r=r, p=p, m=m, energy=energy)
 
 
 def stop_note(model, *, until: float) -> str | None:
@@ -122,19 +219,36 @@ def ignored_integrator_note(model, integrator: str | None) -> str | None:
             f"--integrator {integrator} is ignored")
 
 
+def _stable(name: str, *, omega: float, rate: float, dt: float) -> bool:
+    """Whether one method's step is stable on the stiffest spring (ω, rad/s) with damping rate b/m (s⁻¹).
+
+    Euler-Cromer, the page's method, is stable exactly while (ω·dt)² + 2·(b/m)·dt < 4 (which is
+    ω·dt < 2 without damping). For the others we use ω·dt below their limit, and b·dt/m below 2,
+    the bound every explicit method needs on a strongly damped mass.
+    """
+    limit = STABILITY_LIMIT_OMEGA_DT[name]
+    if name == "euler-cromer":
+        return (omega * dt) ** 2 + 2.0 * rate * dt < limit**2
+    spring_ok = omega == 0 or (limit is not None and omega * dt < limit)
+    return spring_ok and rate * dt < 2.0
+
+
 def stability_warning(model, integrator) -> str | None:
-    """A warning when ω·dt is past the method's stability limit on the stiffest spring, else None."""
+    """A warning when dt is past the method's stability limit on the stiffest spring and the
+    strongest damping, else None."""
     omega = fastest_angular_frequency(model.forces, model.state.m)
-    if omega == 0:
+    rate = fastest_damping_rate(model.forces, model.state.m)
+    if omega == 0 and rate == 0:
         return None
     names = (integrator,) if isinstance(integrator, str) else tuple(integrator)
-    limits = [STABILITY_LIMIT_OMEGA_DT[name] for name in names]
-    if all(limit is not None and omega * model.dt < limit for limit in limits):
+    if all(_stable(name, omega=omega, rate=rate, dt=model.dt) for name in names):
         return None
-    if None in limits:
-        return f"warning: expect the motion to grow: {stability_advice(integrator, model.dt, omega)}"
-    return (f"warning: ω·dt = {number(omega * model.dt, 4)} is past the stability limit; "
-            f"expect the motion to grow: {stability_advice(integrator, model.dt, omega)}")
+    advice = stability_advice(integrator, model.dt, omega, damping_rate=rate)
+    limits = [STABILITY_LIMIT_OMEGA_DT[name] for name in names]
+    if omega > 0 and None not in limits and any(omega * model.dt >= limit for limit in limits):
+        return (f"warning: ω·dt = {number(omega * model.dt, 4)} is past the stability limit; "
+                f"expect the motion to grow: {advice}")
+    return f"warning: expect the motion to grow: {advice}"
 
 
 def plural(count: int, noun: str) -> str:
@@ -171,6 +285,8 @@ def final_report(result: Result) -> str:
             lines += [f"{indent}exact: r = {vector(r_exact, 'm')}, v = {vector(v_exact, 'm/s')}",
                       f"{indent}error: |r − r_exact| = {number(np.linalg.norm(r[i] - r_exact), 4)} m, "
                       f"|v − v_exact| = {number(np.linalg.norm(v[i] - v_exact), 4)} m/s"]
+    if result.exact_note():
+        lines.append(f"exact: none at t = {number(t)} s: {result.exact_note()}")
     if traj.energy is not None:
         e = {key: values[-1] for key, values in traj.energy.items()}
         lines.append(f"energy: K = {number(e['K'])} J, U = {number(e['U'])} J, E = {number(e['E'])} J, "
@@ -204,7 +320,9 @@ def as_json(result: Result) -> dict:
     """One JSON-ready dict: t, steps, dt, integrator, r, p, v (single mass: 3 numbers each), and more.
 
     Multi-mass scenes give r, p, v as one 3-vector per mass and add "bodies". "exact" holds the
-    closed form at the final time and the size of the error, where a closed form exists. A scene
+    closed form at the final time and the size of the error, where a closed form exists. Where
+    it stopped holding before the final time, "exact" is left out and "exact_note" says why, with
+    "exact_valid_until" the time it stopped holding, s. A scene
     module may add its own keys with a function extra_json(setup) -> dict.
     """
     traj, model, setup = result.trajectory, result.model, result.setup
@@ -224,6 +342,9 @@ def as_json(result: Result) -> dict:
     known = [exact is not None and bool(np.all(np.isfinite(exact[0][i]))) for i in range(len(m))]
     if single and known[0]:
         out["exact"] = _exact_entry(r[0], v[0], exact[0][0], exact[1][0])
+    if result.exact_note():  # a closed form exists, but stopped holding before the final time
+        out["exact_note"] = result.exact_note()
+        out["exact_valid_until"] = result.exact_valid_until()
     if not single:
         out["bodies"] = [
             {"label": label, "m": float(m[i]), "r": r[i].tolist(), "p": p[i].tolist(), "v": v[i].tolist(),
@@ -247,36 +368,65 @@ def _exact_entry(r, v, r_exact, v_exact) -> dict:
 
 # ---- CSV ----
 
-def check_writable(path: str, *, what: str) -> None:
-    """Raise OutputError if `path` cannot be written as a file (checked before a run starts)."""
+def check_writable(path: str, *, what: str, allow_stdout: bool = False) -> None:
+    """Raise OutputError if `path` cannot be written as a file (checked before a run starts).
+
+    The check opens the file for writing, without changing one that exists and removing one it
+    had to create, so it also catches what permission bits do not show (a read-only file system,
+    /proc, a file standing where a folder should be, or running as root). "-" means standard
+    output where allow_stdout is True, and is refused otherwise.
+    """
+    if path == STDOUT:
+        if allow_stdout:
+            return
+        raise OutputError(f"cannot write {what} to '-' (standard output) here: give a file name, "
+                          f"like run.csv")
+    if not path:
+        raise OutputError(f"cannot write {what} '': give a file name, like run.csv")
     if os.path.isdir(path):
         raise OutputError(f"cannot write {what} {path!r}: it is a directory")
     folder = os.path.dirname(os.path.abspath(path))
     if not os.path.isdir(folder):
         raise OutputError(f"cannot write {what} {path!r}: folder {folder!r} does not exist")
-    if not os.access(folder, os.W_OK) or (os.path.exists(path) and not os.access(path, os.W_OK)):
-        raise OutputError(f"cannot write {what} {path!r}: permission denied")
+    existed = os.path.exists(path)
+    try:
+        with open(path, "ab"):
+            pass
+    except OSError as problem:
+        raise OutputError(f"cannot write {what} {path!r}: {problem.strerror or problem}") from None
+    if not existed:
+        os.remove(path)
 
 
 def write_csv(result: Result, path: str) -> int:
     """One row per step (per mass): t, r, v, p, then the system's K, U, E, W_nc in J; returns rows written.
 
     Multi-mass scenes add a `body` column with each mass's label; the energy columns are totals.
+    path "-" writes to standard output. A file that cannot be written raises OutputError.
     """
+    if path == STDOUT:
+        return _write_rows(result, sys.stdout)
+    try:
+        with open(path, "w", newline="", encoding="utf-8") as handle:
+            return _write_rows(result, handle)
+    except OSError as problem:
+        raise OutputError(f"cannot write CSV file {path!r}: {problem.strerror or problem}") from None
+
+
+def _write_rows(result: Result, handle) -> int:
     traj = result.trajectory
     v = traj.v
     single = len(traj.m) == 1
     header = CSV_HEADER + ([] if single else ["body"])
     rows = 0
-    with open(path, "w", newline="", encoding="utf-8") as handle:
-        writer = csv.writer(handle)
-        writer.writerow(header)
-        for n, t in enumerate(traj.t):
-            energy = [float(traj.energy[key][n]) for key in ENERGY_KEYS] if traj.energy else [""] * 4
-            for i, label in enumerate(result.labels):
-                row = [float(t), *traj.r[n, i].tolist(), *v[n, i].tolist(), *traj.p[n, i].tolist(), *energy]
-                writer.writerow(row + ([] if single else [label]))
-                rows += 1
+    writer = csv.writer(handle)
+    writer.writerow(header)
+    for n, t in enumerate(traj.t):
+        energy = [float(traj.energy[key][n]) for key in ENERGY_KEYS] if traj.energy else [""] * 4
+        for i, label in enumerate(result.labels):
+            row = [float(t), *traj.r[n, i].tolist(), *v[n, i].tolist(), *traj.p[n, i].tolist(), *energy]
+            writer.writerow(row + ([] if single else [label]))
+            rows += 1
     return rows
 
 
@@ -303,6 +453,12 @@ def step_table(setup, *, model=None, integrator: str | None = None, steps: int) 
     the average force (p_f − p_i)/Δt of the step.
     """
     model = model if model is not None else setup.build()
+    rows_asked = steps * model.state.count
+    if rows_asked > MAX_TABLE_ROWS:
+        rows = f" of {model.state.count} masses, {rows_asked:,} rows," if model.state.count > 1 else ""
+        raise TooManySteps(
+            f"--steps {steps:,}{rows} is more than the {MAX_TABLE_ROWS:,} rows the step table shows "
+            f"(it is for checking by hand); use --headless --csv FILE for every step of a long run")
     method = method_for(model, integrator)
     dt = model.dt
     traj = run(model.state, model.forces, dt=dt, until=model.state.t + steps * dt, integrator=method)

@@ -78,13 +78,24 @@ def resonance_panel(ax, curve: dict) -> None:
     ax.grid(alpha=0.3)
 
 
+def exact_curve(model, t):
+    """The closed form's (r, v) at times t, NaN (a gap in the curve) where it does not hold; or None."""
+    if model.exact is None:
+        return None
+    r, v = (np.array(a, dtype=float) for a in model.exact(t))
+    if model.exact_valid_until is not None:
+        after = t > model.exact_valid_until(float(t[-1]))
+        r[after], v[after] = np.nan, np.nan
+    return r, v
+
+
 def plot(result, path: str) -> None:
     """Write the run's position and energy graphs to `path` (a headless.Result)."""
     plt = _pyplot()
     traj, model = result.trajectory, result.model
     preferred = getattr(result.setup.module, "VIEW", {}).get("plot")
     axes_shown = moving_axes(traj.r, preferred if isinstance(preferred, str) else None)
-    exact = model.exact(traj.t) if model.exact is not None else None
+    exact = exact_curve(model, traj.t)
     extra = getattr(result.setup.module, "extra_json", None)
     curve = extra(result.setup).get("resonance") if extra is not None else None
     fig, axes = plt.subplots(3 if curve else 2, 1, figsize=(8, 10 if curve else 7))
@@ -98,7 +109,7 @@ def plot(result, path: str) -> None:
             tag = f"{label}: {name}" if len(model.labels) > 1 or len(axes_shown) > 1 else name
             crowded = len(model.labels) * len(axes_shown) > MAX_LEGEND
             line, = ax_r.plot(traj.t, traj.r[:, i, axis], lw=0.8 if crowded else 2.5, alpha=0.7, label=tag)
-            if exact is not None and not crowded and np.all(np.isfinite(exact[0][:, i, axis])):
+            if exact is not None and not crowded and np.any(np.isfinite(exact[0][:, i, axis])):
                 first = not any(line.get_label() == "exact" for line in ax_r.lines)
                 ax_r.plot(traj.t, exact[0][:, i, axis], "--", lw=1.2, color="black",
                           label="exact" if first else "_nolegend_")
@@ -122,5 +133,9 @@ def plot(result, path: str) -> None:
     ax_e.set_xlabel("t (s)")
     ax_e.grid(alpha=0.3)
     fig.tight_layout()
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
+    try:
+        fig.savefig(path, dpi=110)
+    except OSError as problem:
+        raise OutputError(f"cannot write figure {path!r}: {problem.strerror or problem}") from None
+    finally:
+        plt.close(fig)

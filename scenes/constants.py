@@ -105,7 +105,8 @@ def check_value(name: str, value, unit: str = "") -> None:
     if value is None:
         return
     if not all(isinstance(x, (int, float)) and math.isfinite(x) for x in numbers):
-        raise ConstantError(f"{name} must be a finite number (got {value!r})")
+        what = "three finite numbers" if isinstance(value, tuple) else "a finite number"
+        raise ConstantError(f"{name} must be {what} (got {format_value(value, unit)})")
     rule = RULES.get(name)
     if rule and not rule[0](value):
         raise ConstantError(f"{name} must be {rule[1]} (got {format_value(value, unit)})")

@@ -22,6 +22,9 @@ class Model:
     labels   a name per mass, for graphs and tables
     integrators  None (use the chosen integrator), or one integrator name per mass, for scenes that
              compare methods side by side (physics.simulate.stepper)
+    exact_valid_until  None if the closed form holds at all times, else T -> the first time up to T
+             at which it stops holding, s (math.inf if it holds all the way to T)
+    exact_limit  why the closed form can stop holding, one sentence
     """
 
     state: State
@@ -32,3 +35,5 @@ class Model:
     anchors: np.ndarray = field(default_factory=lambda: np.zeros((1, 3)))
     labels: tuple = ("mass",)
     integrators: Optional[tuple] = None
+    exact_valid_until: Optional[Callable[[float], float]] = None
+    exact_limit: str = ""

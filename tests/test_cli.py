@@ -20,6 +20,7 @@ from concurrent.futures import ThreadPoolExecutor
 from functools import lru_cache
 from pathlib import Path
 
+import numpy as np
 import pytest
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -242,6 +243,23 @@ BAD_INPUTS = [
     (["vertical", "--headless", "--csv", "tests"], "is a directory"),
     (["vertical", "--headless", "--integrator", "leapfrog"], "--integrator"),
     (["vertical", "--steps", "0"], "--steps"),
+    # Audit as a class would use it: runs far too long are refused at once, naming the step count.
+    (["vertical", "--headless", "--until", "1e9", "--set", "dt=1e-3"], "1,000,000,000,000 steps"),
+    (["vertical", "--headless", "--set", "dt=1e-9"], "200,000,000 steps"),
+    (["vertical", "--headless", "--until", "1e308", "--set", "dt=1e-3"], "more than 10³⁰⁸ steps"),
+    (["resonance", "--headless", "--until", "1e4"], "of 25 masses"),
+    (["vertical", "--steps", "100000000"], "--steps 100,000,000"),
+    (["vertical", "--steps", "-3"], "--steps"),
+    (["vertical", "--headless", "--csv", "-"], "standard output"),
+    (["vertical", "--headless", "--csv", "/proc/no-such.csv"], "cannot write CSV file '/proc/no-such.csv'"),
+    (["vertical", "--headless", "--plot", "/proc/no-such.png"], "cannot write figure '/proc/no-such.png'"),
+    (["vertical", "--headless", "--csv", "README.md/out.csv"], "does not exist"),
+    (["vertical", "--headless", "--bogus"], "--bogus"),
+    (["vertical", "--headless", "--set", "x0=1"], "unknown constant 'x0'"),
+    (["vertical", "--headless", "--set", "v0=1,2,3,4"], "v0 needs a 3-vector"),
+    (["vertical", "--headless", "--set", "k=inf"], "k must be a finite number (got inf N/m)"),
+    (["vertical", "--headless", "--set", "r0=0,nan,0"], "r0 must be three finite numbers (got < 0, nan, 0 > m)"),
+    (["vertical", "--headless", "--set", "m=-inf"], "m must be a finite number (got -inf kg)"),
 ]
 # The same checks for more values, calling main.main in this process (same code, no start-up cost).
 MORE_BAD_INPUTS = [
@@ -407,3 +425,167 @@ def test_multi_mass_json_text_and_csv_name_each_body(tmp_path):
     assert len(rows) == 2 * (out["steps"] + 1)
     assert [row["body"] for row in rows[-2:]] == ["left", "right"]
     assert float(rows[-1]["x"]) == 1.0 and float(rows[-1]["y"]) == pytest.approx(-1.73088)
+
+
+# ---- the run-length guard, and progress on long runs ----
+
+def test_too_many_steps_says_how_long_a_run_may_be():
+    import headless
+
+    done = bad_input_runs()[("vertical", "--headless", "--until", "1e9", "--set", "dt=1e-3")]
+    # 1e9 s / 1e-3 s = 1e12 steps; the longest run allowed at this dt is MAX_MASS_STEPS·dt.
+    longest = headless.MAX_MASS_STEPS * 1e-3
+    assert "dt = 0.001 s" in done.stderr and f"at most {longest:g} s" in done.stderr
+
+
+def test_a_refused_run_leaves_an_existing_csv_file_as_it_was(tmp_path):
+    path = tmp_path / "keep.csv"
+    path.write_text("the teacher's old data\n")
+    done = cli("vertical", "--headless", "--set", "dt=1e-9", "--csv", str(path))
+    assert_one_line_error(done.returncode, done.stdout, done.stderr, "steps")
+    assert path.read_text() == "the teacher's old data\n"
+    done = cli("vertical", "--headless", "--csv", str(tmp_path / "new.csv"), "--set", "dt=1e-9")
+    assert done.returncode == 2 and not (tmp_path / "new.csv").exists()  # the write check left no file
+
+
+def test_a_long_run_reports_progress_and_steps_exactly_as_one_run(monkeypatch):
+    import io
+
+    import numpy as np
+
+    import headless
+    from physics.simulate import run
+    from scenes.catalog import configure
+
+    setup = configure("damped", assignments=["dt=0.001"])
+    model = setup.build()
+    whole = run(model.state, model.forces, dt=model.dt, until=2.0, with_energy=True)
+    monkeypatch.setattr(headless, "PROGRESS_AFTER", 100)
+    stream = io.StringIO()
+    parts = headless.simulate(setup, until=2.0, progress=stream).trajectory
+    lines = stream.getvalue().splitlines()
+    assert len(lines) == 10 and lines[-1].startswith("running: 2,000 of 2,000 steps (100 %), t = 2 s")
+    assert lines[0].startswith("running: 200 of 2,000 steps (10 %)")
+    # The same steps from the same states: identical, bit for bit.
+    assert np.array_equal(parts.t, whole.t) and np.array_equal(parts.r, whole.r)
+    assert np.array_equal(parts.p, whole.p)
+    for key in ("K", "U", "E", "W_nc", "E_minus_W_nc"):
+        assert parts.energy[key] == pytest.approx(whole.energy[key], rel=1e-12, abs=1e-12)
+    assert headless.simulate(setup, until=2.0, progress=None).trajectory.t.size == 2001
+
+
+# ---- messy input a class will type ----
+
+def test_spaces_and_brackets_in_a_vector_value_are_fine():
+    for value in ("r0=0, -1.5, 0", "r0 = < 0, -1.5, 0 >", "r0=(0,-1.5,0)"):
+        done = cli("vertical", "--headless", "--set", value)
+        assert done.returncode == 0, (value, done.stderr)
+        assert "r = < 0, -1.73088, 0 > m" in done.stdout  # the Simple Example, as without --set
+
+
+# ---- "Δt = 0.1 s: where is the mass at 0.2 s?" ----
+
+def by_hand_y(steps: int, *, dt: float = 0.1, b: float = 0.0) -> float:
+    """The page's update for y alone, from rest at y = −1.5 m, `steps` times."""
+    y, p = -1.5, 0.0
+    for _ in range(steps):
+        F = k * (-y - L0) - m * g - b * p / m
+        p += F * dt
+        y += p / m * dt
+    return y
+
+
+def test_until_and_steps_give_the_same_hand_worked_answer():
+    assert by_hand_y(2) == pytest.approx(-1.73088, abs=1e-12)  # the page's two updates by hand
+    text = cli("vertical", "--headless", "--set", "dt=0.1", "--until", "0.2")
+    assert text.returncode == 0 and text.stderr == ""
+    assert "2 steps of dt = 0.1 s" in text.stdout and "t = 0.2 s" in text.stdout
+    assert "r = < 0, -1.73088, 0 > m" in text.stdout and "p = < 0, -15.288, 0 > kg·m/s" in text.stdout
+    table = cli("vertical", "--steps", "2")
+    assert table.returncode == 0 and table.stderr == ""
+    last = table.stdout.strip().splitlines()[-1].split()
+    assert last[:2] == ["2", "0.2"] and table.stdout.rstrip().endswith("< 0, -1.73088, 0 >")
+
+
+@pytest.mark.parametrize("dt_text, until_text, steps", [
+    ("0.1", "0.3", 3), ("0.01", "1", 100), ("0.1", "0.7", 7), ("0.001", "0.3", 300)])
+def test_until_a_multiple_of_dt_takes_exactly_that_many_steps(dt_text, until_text, steps):
+    # 0.3 / 0.1 is 2.9999999999999996 in floating point, 0.7 / 0.1 is 6.999999999999999:
+    # neither may lose or gain a step, and no "not a multiple of dt" note may appear.
+    done = cli("vertical", "--headless", "--json", "--set", f"dt={dt_text}", "--until", until_text)
+    assert done.returncode == 0 and done.stderr == "", done.stderr
+    out = json.loads(done.stdout)
+    assert out["steps"] == steps and out["t"] == pytest.approx(float(until_text), rel=1e-12)
+    assert out["r"][1] == pytest.approx(by_hand_y(steps, dt=float(dt_text)), rel=1e-9)
+
+
+def test_step_count_is_exact_for_every_typed_multiple_of_dt():
+    from decimal import Decimal
+    from types import SimpleNamespace
+
+    import headless
+
+    for dt_text in ("0.1", "0.01", "0.001", "0.05", "0.3", "0.07", "1e-4"):
+        dt_ = float(dt_text)
+        for n in range(0, 3001):
+            until = float(str(Decimal(dt_text) * n))  # what a user types: 0.3, 0.7, 2.1 ...
+            model = SimpleNamespace(dt=dt_, state=SimpleNamespace(t=0.0, count=1))
+            assert headless.step_count(model, until=until) == n, (dt_text, n)
+
+
+# ---- a stability warning that knows about damping ----
+
+def dt_max_damped(*, omega: float, rate: float) -> float:
+    """The largest stable Euler-Cromer dt: the root of (ω·dt)² + 2·(b/m)·dt = 4, s."""
+    return (-2 * rate + math.sqrt(4 * rate**2 + 16 * omega**2)) / (2 * omega**2) if omega else 2 / rate
+
+
+def test_strong_damping_warning_names_the_damped_limit():
+    # ω = √(40/10) = 2 rad/s and b/m = 300/10 = 30 s⁻¹: ω·dt = 0.2 is far inside ω·dt < 2, but
+    # (ω·dt)² + 2(b/m)dt = 0.04 + 6 > 4, so Euler-Cromer is unstable at dt = 0.1 s.
+    done = cli("damped", "--headless", "--set", "b=300", "--until", "0.2")
+    assert done.returncode == 0, done.stderr
+    limit = dt_max_damped(omega=2.0, rate=30.0)
+    assert done.stderr.startswith("warning:") and "ω·dt = 0.2 is past" not in done.stderr
+    assert "(ω·dt)² + 2·(b/m)·dt < 4" in done.stderr and f"dt < {limit:.4g} s" in done.stderr
+    assert "b/m = 30 s⁻¹" in done.stderr
+
+
+def test_the_damped_limit_is_where_the_page_update_really_blows_up():
+    limit = dt_max_damped(omega=2.0, rate=30.0)  # 0.0664 s
+    assert 0.06 < limit < 0.07
+    inside = cli("damped", "--headless", "--set", "b=300", "--set", "dt=0.06", "--until", "60")
+    assert inside.returncode == 0 and inside.stderr == "", inside.stderr  # no warning either
+    outside = cli("damped", "--headless", "--set", "b=300", "--set", "dt=0.07", "--until", "70")
+    assert outside.returncode == 1 and "Traceback" not in outside.stderr
+    assert f"dt < {limit:.4g} s" in outside.stderr.splitlines()[-1] and "nan" not in outside.stdout.lower()
+
+
+def test_damping_without_a_spring_still_warns():
+    # k = 0: no spring at all, yet b·dt/m = 3 makes each step multiply p by about (1 − 3) = −2.
+    done = cli("vertical", "--headless", "--set", "k=0", "--set", "b=300", "--until", "0.2")
+    assert done.returncode == 0
+    assert done.stderr.startswith("warning:") and f"dt < {dt_max_damped(omega=0, rate=30.0):.4g} s" in done.stderr
+
+
+# ---- an exact value only where the closed form holds ----
+
+def test_no_exact_value_once_the_mass_has_passed_its_anchor():
+    # Scenario 1 is resonance: x = t sin(5t)/40 about equilibrium 1 m from the wall (L0 = 1 m),
+    # so the swing reaches the wall (s = L0 + x = 0) near t = 41 s. At 60 s the closed form no
+    # longer describes the mass; at 40 s it still does.
+    late = cli("driven", "--headless", "--json", "--scenario", "1", "--set", "L0=1", "--until", "60")
+    assert late.returncode == 0, late.stderr
+    out = json.loads(late.stdout)
+    assert "exact" not in out and "anchor" in out["exact_note"]
+    t_break = out["exact_valid_until"]
+    assert 1.0 + t_break * math.sin(5 * t_break) / 40 == pytest.approx(0.0, abs=1e-9)
+    grid = np.linspace(0.0, t_break, 200_001)[:-1]
+    assert np.all(1.0 + grid * np.sin(5 * grid) / 40 > 0)  # the first time it gets there
+    assert out["units"]["exact_valid_until"] == "s"
+    text = cli("driven", "--headless", "--scenario", "1", "--set", "L0=1", "--until", "60").stdout
+    assert f"exact: none at t = 60 s: the closed form stops holding at t = {t_break:.4g} s" in text
+    assert "|r − r_exact|" not in text
+    early = cli_json("driven", "--scenario", "1", "--set", "L0=1", "--until", "40")
+    assert early["exact"]["r"][0] == pytest.approx(1.0 + 40 * math.sin(200) / 40, abs=1e-9)
+    assert "exact_note" not in early

@@ -356,3 +356,48 @@ def test_resonance_extra_json_gives_grid_and_amplitudes():
 def test_resonance_rejects_bad_grids_in_one_line(changes, message):
     with pytest.raises(ConstantError, match=message):
         configure("resonance").with_values(**changes).build()
+
+
+# ---- where the single-mass closed form holds (L0 > 0: on its own side of the anchor) ----------
+
+def test_driven_scenario_two_reaches_the_wall_at_exactly_a_fifth_of_pi():
+    # x0 = 1 m from equilibrium, L0 = 1 m, resonance: x = cos 5t + t sin(5t)/40. For 0 < t < π/5,
+    # sin 5t > 0 so x > cos 5t ≥ −1; at t = π/5, x = −1 and s = L0 + x = 0: the mass is at the wall.
+    model = configure("driven", scenario=2, assignments=["L0=1"]).build()
+    assert model.exact_valid_until(20.0) == pytest.approx(np.pi / 5, abs=1e-9)
+    assert model.exact_valid_until(0.5) == np.inf  # not yet, if we only look up to 0.5 s
+    assert "anchor" in model.exact_limit
+
+
+def test_a_mass_started_above_its_anchor_falls_through_it():
+    # r0 = 0.5 m above the anchor, so û = +y and s0 = 0.5 m; gravity puts equilibrium at
+    # s_eq = L0 − mg/k = 1 − 2.45 = −1.45 m, and s = s_eq + (s0 − s_eq) cos(2t) first reaches 0 at
+    # cos(2t) = 1.45 / 1.95.
+    model = configure("vertical", assignments=["r0=0,0.5,0"]).build()
+    assert model.exact_valid_until(10.0) == pytest.approx(np.arccos(1.45 / 1.95) / 2, abs=1e-9)
+
+
+@pytest.mark.parametrize("scene, scenario", [("vertical", None), ("damped", None), ("driven", 3),
+                                             ("driven", 4), ("driven", 5)])
+def test_the_page_examples_stay_on_their_side_of_the_anchor(scene, scenario):
+    model = configure(scene, scenario=scenario).build()
+    t = np.linspace(0.0, 200.0, 400_001)
+    r, _ = model.exact(t)
+    s = np.linalg.norm(r[:, 0] - model.anchors[0], axis=-1)
+    assert s.min() > 0.05 and model.exact_valid_until(200.0) == np.inf
+
+
+def test_zero_length_springs_have_no_anchor_limit():
+    # L0 = 0: the spring is linear in 3-D, F = −k L, so the closed form holds through the anchor.
+    model = configure("vertical", assignments=["L0=0", "r0=0,0.5,0"]).build()
+    assert model.exact is not None and model.exact_valid_until is None
+
+
+def test_the_figure_stops_drawing_the_exact_curve_where_it_stops_holding():
+    from plotting import exact_curve
+
+    model = configure("driven", scenario=2, assignments=["L0=1"]).build()
+    t = np.linspace(0.0, 2.0, 201)
+    r, v = exact_curve(model, t)
+    holds = t <= np.pi / 5
+    assert np.all(np.isfinite(r[holds])) and np.all(np.isnan(r[~holds])) and np.all(np.isnan(v[~holds]))

@@ -109,3 +109,18 @@ def test_multi_mass_table_has_a_row_per_body_per_step():
     (_, F1, *_), (_, F2, p2, v2, y2) = by_hand(b=0.0)
     right = table["rows"][3]
     assert right["F_net"] == pytest.approx([0, F2, 0]) and right["r_f"] == pytest.approx([1, y2, 0])
+
+
+def test_the_table_is_for_hand_checking_and_refuses_a_huge_one_in_one_line():
+    import headless
+    from scenes.constants import ConstantError
+    from tests.test_cli import two_hanging_masses
+
+    # Two masses: each step is two rows, so MAX_TABLE_ROWS / 2 steps fit and one more does not.
+    steps = headless.MAX_TABLE_ROWS // 2
+    assert len(headless.step_table(two_hanging_masses(), steps=steps)["rows"]) == 2 * steps
+    with pytest.raises(ConstantError) as refused:
+        headless.step_table(two_hanging_masses(), steps=steps + 1)
+    message = str(refused.value)
+    assert "\n" not in message and f"of 2 masses, {2 * (steps + 1):,} rows" in message
+    assert "--csv" in message
