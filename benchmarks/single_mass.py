@@ -101,12 +101,20 @@ def project_run(steps: int):
     return tuple(trajectory.r[-1, 0])
 
 
+def project_run_final_only(steps: int):
+    """physics.simulate.run(record_every=None): the same steps, keeping only the final state."""
+    state, forces = _scene()
+    trajectory = run(state, forces, dt=dt, until=steps * dt, record_every=None)
+    return tuple(trajectory.r[-1, 0])
+
+
 LOOPS = {
     "page-style (vpython vector)": page_style_loop,
     "plain floats": plain_float_loop,
     "numpy (3,) arrays": numpy_vector_loop,
     "project: euler_cromer loop": project_step_loop,
     "project: simulate.run": project_run,
+    "project: simulate.run, final only": project_run_final_only,
 }
 PAGE = "page-style (vpython vector)"
 

@@ -118,7 +118,9 @@ class Trajectory:
 
     @property
     def final(self) -> State:
-        return State(t=float(self.t[-1]), r=self.r[-1], p=self.p[-1], m=self.m)
+        """The last recorded state, ready to run on (copied into make_state's column-major layout)."""
+        return State(t=float(self.t[-1]), r=np.asfortranarray(self.r[-1]), p=np.asfortranarray(self.p[-1]),
+                     m=self.m)
 
 
 def stepper(integrator):
