@@ -2,19 +2,21 @@
 
 The physics always steps with its fixed Δt. The view wants simulation time to advance at
 speed × wall-clock time, whatever Δt is, so each frame asks :class:`RealTimeClock` how many steps
-are due: the wall time since the last frame, times speed, divided by Δt, plus the fraction of a
-step left over from the frame before. Carrying that fraction means nothing is lost to rounding, so
-t does not drift from speed × wall time, at Δt = 1e-3 s or 1e-4 s alike.
+are due: the wall time since the last frame, times speed, divided by Δt, plus whatever was owed
+from the frames before (at least the fraction of a step left over). Carrying what is owed means
+nothing is lost to rounding or to a late frame, so t does not drift from speed × wall time, at
+Δt = 1e-3 s or 1e-4 s alike.
 
-Three things keep the model from jumping:
+What keeps the model from jumping:
 
-* a frame's wall time counts for at most ``max_frame`` seconds, so a hiccup (garbage collection, a
-  dragged window) costs a short pause instead of a sudden leap;
+* a pause longer than ``long_pause`` seconds (5 s), of this program or of the page (a background
+  tab the browser has frozen, a laptop that slept), is skipped instead of made up, so the model
+  resumes where it stopped; shorter hiccups (garbage collection, a busy computer, a page slow to
+  draw) are made up over the next frames;
 * a frame runs at most ``max_steps`` steps (what the computer manages in a frame, measured by
-  :class:`StepBudget`); if the physics cannot keep up, the model runs slower than real time
-  instead of falling ever further behind and then racing;
-* while paused, or while the page has stopped asking for updates (a background tab), no time is
-  owed at all, so the model resumes exactly where it stopped.
+  :class:`StepBudget`), and at most ``max_behind`` seconds stay owed: if the physics cannot keep
+  up, the model runs slower than real time instead of falling ever further behind and then racing;
+* while paused nothing is owed at all, so Run continues from the state on the screen.
 
 :class:`LiveRun` steps a model in those batches and keeps, every ``sample_every`` seconds of
 simulation time, a sample for the graphs. :class:`Trace` holds one graph curve's points for a
@@ -38,46 +40,73 @@ from physics.state import State
 class RealTimeClock:
     """Turns wall-clock time into a whole number of physics steps of Δt per frame.
 
-    steps due = (wall time since last frame, at most max_frame) × speed / Δt + carried fraction
+    steps owed += (wall time since the last frame) × speed / Δt
+    steps due   = the whole part of the steps owed, at most max_steps
+
+    Whatever is not run this frame stays owed, up to ``max_behind`` seconds of wall time (the
+    rest is given up and counted in :attr:`dropped`). A gap longer than ``long_pause`` seconds,
+    between two frames or since the page last spoke, is skipped and counted in :attr:`skipped`.
+
+    Why 5 s: a page is slow, not gone, while it speaks every few seconds. Software rendering on a
+    busy computer answered only every 0.5–5 s in our measurements (docs/long_run.md), and browsers
+    wake a background tab's timers once a second; the model keeps real time through both, so the
+    t the page shows when it next draws is the real-time one. A tab the browser has frozen goes
+    quiet for good: the model runs on for at most 5 s, then waits.
     """
 
-    def __init__(self, *, dt: float, now: float, speed: float = 1.0, max_frame: float = 0.25):
+    def __init__(self, *, dt: float, now: float, speed: float = 1.0, long_pause: float = 5.0,
+                 max_behind: float = 2.0):
         if dt <= 0:
             raise ValueError("dt must be positive")
         self.dt = float(dt)
         self.speed = float(speed)
-        self.max_frame = float(max_frame)
-        self._last = float(now)
-        self._owed = 0.0  # fraction of a step carried to the next frame
-        self.dropped = 0.0  # simulation time, s, given up to hiccups or to a slow computer
+        self.long_pause = float(long_pause)
+        self.max_behind = float(max_behind)
+        self.restart(now=now)
 
-    def steps_due(self, *, now: float, running: bool = True, max_steps: int | None = None) -> int:
+    def steps_due(self, *, now: float, running: bool = True, quiet: float = 0.0,
+                  max_steps: int | None = None) -> int:
         """The number of steps this frame should run. Call once per frame.
 
-        running False (paused, or the page is hidden) owes nothing for the time since the last
-        frame, and keeps the carried fraction, so the model resumes without a jump.
+        running  False while paused: nothing is owed for the time since the last frame.
+        quiet    seconds since the page last asked for an update (0 if unknown).
         """
         elapsed, self._last = float(now) - self._last, float(now)
-        if not running or elapsed <= 0:
+        if elapsed <= 0:
             return 0
-        if elapsed > self.max_frame:
-            self.dropped += (elapsed - self.max_frame) * self.speed
-            elapsed = self.max_frame
+        if not running or elapsed > self.long_pause or quiet > self.long_pause:
+            if running:
+                self.skipped += elapsed
+            self._forgive()
+            return 0
         self._owed += elapsed * self.speed / self.dt
         steps = math.floor(self._owed)
-        if max_steps is not None and steps > max_steps:
-            self.dropped += (steps - max_steps) * self.dt
-            steps = max_steps
-            self._owed = self._owed - math.floor(self._owed)
-        else:
-            self._owed -= steps
+        if max_steps is not None:
+            steps = min(steps, max_steps)
+        self._owed -= steps
+        excess = math.floor(self._owed - self.max_behind * self.speed / self.dt)
+        if excess > 0:
+            self._owed -= excess
+            self.dropped += excess * self.dt
         return steps
+
+    def _forgive(self) -> None:
+        """Forget the whole steps owed, keeping the fraction (lost to no rounding)."""
+        whole = math.floor(self._owed)
+        self.dropped += whole * self.dt
+        self._owed -= whole
+
+    @property
+    def behind(self) -> float:
+        """Simulation time, s, owed but not yet run."""
+        return self._owed * self.dt
 
     def restart(self, *, now: float) -> None:
         """Forget owed time, as at t = 0 (Reset, a new constant, another integrator)."""
         self._last = float(now)
-        self._owed = 0.0
-        self.dropped = 0.0
+        self._owed = 0.0  # steps owed: the fraction carried from frame to frame, and any backlog
+        self.dropped = 0.0  # simulation time, s, given up because the computer could not keep up
+        self.skipped = 0.0  # wall time, s, of long pauses passed over without catching up
 
 
 class StepBudget:
