@@ -132,7 +132,7 @@ def check_options(args) -> None:
         if not headless:
             raise UsageError("--until needs --headless (the browser runs until you stop it)")
         if not math.isfinite(args.until) or args.until < 0:
-            raise UsageError(f"--until must be a finite time of 0 s or more (got {args.until:g})")
+            raise UsageError(f"--until must be a finite time of 0 s or more (got {args.until:g} s)")
     if args.steps is not None and args.steps < 1:
         raise UsageError(f"--steps needs a whole number of 1 or more (got {args.steps})")
     if args.port is not None and not 0 <= args.port <= 65535:
@@ -148,6 +148,9 @@ def run_headless(args, setup) -> int:
         model = setup.build()
     except ValueError as problem:  # a combination of constants the physics cannot take
         raise UsageError(str(problem)) from None
+    until = model.until if args.until is None else args.until
+    if args.steps is None or args.csv is not None or args.plot is not None:
+        headless.step_count(model, until=until)  # a run too long is refused before anything prints
     if args.csv is not None:
         headless.check_writable(args.csv, what="CSV file")
     if args.plot is not None:
@@ -171,7 +174,6 @@ def run_headless(args, setup) -> int:
         if args.csv is None and args.plot is None:
             return 0
 
-    until = model.until if args.until is None else args.until
     result = headless.simulate(setup, model=model, integrator=args.integrator, until=until)
     note = headless.stop_note(model, until=until)
     if note:

@@ -77,7 +77,7 @@ def stability_advice(integrator, dt: float, omega: float, *, damping_rate: float
         integrator = min(integrator, key=lambda name: STABILITY_LIMIT_OMEGA_DT[name] or 0.0)
     limit = STABILITY_LIMIT_OMEGA_DT[integrator]
     # The root of (ωΔt)² + 2 (b/m) Δt = 4, named when damping lowers the limit by over 1 %.
-    dt_max = 4.0 / (damping_rate + math.sqrt(damping_rate**2 + 4.0 * omega**2)) if damping_rate > 0 else 0
+    dt_max = 4.0 / (damping_rate + math.hypot(damping_rate, 2.0 * omega)) if damping_rate > 0 else 0
     if integrator == "euler-cromer" and damping_rate > 0 and dt_max * omega < 0.99 * limit:
         return (f"dt = {dt:g} s, but euler-cromer with damping is stable here only for "
                 f"(ω·dt)² + 2·(b/m)·dt < 4, i.e. dt < {dt_max:.4g} s "

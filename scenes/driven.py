@@ -12,7 +12,7 @@ from .single_mass import build_single_mass
 # ---- constants: edit these (unit: meaning); 0 switches a force off ----
 m = 4.0                    # kg: mass of the block
 k = 100.0                  # N/m: spring constant (stiffness)
-L0 = 1.0                   # m: relaxed length of the spring
+L0 = 3.0                   # m: relaxed length of the spring (long enough that no scenario reaches the wall)
 g = 0.0                    # m/s²: strength of gravity (off: the spring lies on a frictionless table)
 b = 0.0                    # kg/s: linear damping constant in F = −b v
 C = 0.0                    # 1: drag coefficient in F = −½ C A ρ |v| v

@@ -175,6 +175,41 @@ def extra_json(setup) -> dict:
     }}
 
 
+CURVE_COLOURS = [(0.1, 0.3, 0.9), (0.85, 0.1, 0.1), (0.1, 0.6, 0.1), (0.6, 0.2, 0.8), (0.5, 0.5, 0.5)]
+ROW_COLOUR = (1.0, 0.55, 0.1)  # the live dots: the row shown in 3-D (orange)
+
+
+def view_graph(setup) -> dict:
+    """The page's resonance graph (scenes/view.py): amplitude against driving frequency.
+
+    For each b: the exact A(ω) = F0/√((k − mω²)² + (bω)²) as a line, and the amplitudes :func:`sweep`
+    measured in its numpy batch as dots of the same colour. On top, the row shown in 3-D (the first
+    b): each spring's A = √(x² + (v/ω)²) at this instant, as orange dots that wobble while the
+    start-up transient lasts and settle onto the first curve as it dies away (like e^(−bt/2m)).
+    """
+    v = setup.values
+    result = sweep(**v)
+    smooth = np.linspace(v["omega_min"], v["omega_max"], SMOOTH_POINTS)
+    lines, dots = [], []
+    for j, b_j in enumerate(result.b):
+        colour = CURVE_COLOURS[j % len(CURVE_COLOURS)]
+        exact = steady_state_amplitude(m=v["m"], k=v["k"], b=b_j, F0=v["F0"], omega=smooth)
+        lines.append((f"b = {b_j:.3g} kg/s", smooth, exact, colour))
+        dots.append(("", result.omega, result.amplitude[j], colour))
+    top = float(max(np.max(line[2]) for line in lines))
+    omega = result.omega
+
+    def live(model, state):
+        x = state.r[:, 1] - model.state.r[:, 1]   # the row starts at rest at equilibrium
+        return omega, np.sqrt(x**2 + (state.v[:, 1] / omega) ** 2)
+
+    return {"title": f"Amplitude: lines exact, dots measured after {v['settle']:g} s",
+            "xtitle": "driving angular frequency ω (rad/s)", "ytitle": "amplitude A (m)",
+            "xmin": float(v["omega_min"]), "xmax": float(v["omega_max"]), "ymin": 0.0, "ymax": 1.15 * top,
+            "lines": lines, "dots": dots,
+            "live": live, "live_label": "3-D row, now", "live_colour": ROW_COLOUR}
+
+
 PRESETS = {"critical damping": {"b": None}}
 
 # The resonance curve itself is sweep(); the row's 25 exact curves would only crowd the graph.

@@ -11,6 +11,11 @@ This is the one shared view. A scene file names what to draw in its VIEW dict:
     coils     turns drawn in each helix (default 12)
     window    seconds of simulation time the graphs show before they scroll (default 30)
 
+A scene may also give the page one more graph with a function ``view_graph(setup)`` returning a
+dict: title, xtitle, ytitle (with units), xmin/xmax/ymin/ymax, "lines" and "dots" as lists of
+(label, xs, ys, colour), and optionally "live": a function (model, state) -> (xs, ys) drawn as
+dots that follow the run (scenes/resonance.py draws its resonance curves this way).
+
 The view only reads the state. The physics is physics.simulate.stepper (the chosen integrator);
 energy is physics.energy; the real-time stepping and the graph windows are scenes/clock.py.
 
@@ -21,30 +26,48 @@ How the page behaves, for the teacher:
 * Moving a slider, or picking another integrator, rebuilds the model with that choice and starts
   again from t = 0, so the graphs and the exact curve always describe one run. The caption says so.
 * Speed ¼× to 4× scales simulation time against wall-clock time and does not restart.
+* The preset menu applies one of the scene's presets (scenes/catalog.py: Moon, Earth or Jupiter
+  gravity, critical damping, the driven scenarios, ...) and starts again from t = 0, with the page
+  rebuilt so that every slider shows the new value (a slider's range cannot change in vpython).
+* The scene menu switches to another scene in place, with its default constants: the 3-D objects
+  of the old scene are hidden, its graphs and controls removed, and the new scene's built.
+* Download CSV saves the graphed samples (the last `window` seconds, one row per 0.05 s and mass)
+  with the same columns as the command line's --csv: t, x, y, z, vx, vy, vz, px, py, pz, K, U, E,
+  W_nc (and body for several masses). The file is made here and handed to the browser as a
+  data: link that a one-line script clicks; the link stays on the page as a fallback.
 * The graphs show one point per 0.05 s of simulation time (at most 20 per simulated second), in a
   window of the last `window` seconds that scrolls. A curve keeps at most 2 × window × 20 points
   (1,200 for 30 s), so a 30-minute run costs the page no more than a 1-minute run.
-* If the page stops asking for updates (a hidden tab), the clock stops; it resumes without a jump.
+* If the page stops asking for updates for more than 5 s (a tab the browser has frozen, a laptop
+  that slept), the clock stops and resumes without a jump; a page that is merely slow to draw
+  keeps real time (scenes/clock.py).
 
 Closing the tab, or Ctrl-C, makes vpython raise SystemExit(0) in this (main) thread; nothing here
 catches it, so the program ends with status 0.
 """
 from __future__ import annotations
 
+import csv
+import io
 import math
 import queue
 import sys
 import time
+from collections import deque
+from dataclasses import dataclass
+from urllib.parse import quote
 
 import numpy as np
 
+from headless import CSV_HEADER, ENERGY_KEYS
 from physics.integrators import INTEGRATORS
+from physics.state import velocity
 
-from .clock import LiveRun, RealTimeClock, StepBudget, Trace, window
+from . import catalog
+from .clock import LiveRun, RealTimeClock, Sample, StepBudget, Trace, window
 from .constants import format_value
 
 FRAME_RATE = 50           # frames per second the loop aims for
-STALE_AFTER = 0.5         # s without a message from the page before the clock stops
 SAMPLE_EVERY = 0.05       # s of simulation time between graph points
 LEGEND_MASSES = 6         # more masses than this: no legend entry per mass
 SPEEDS = {"¼×": 0.25, "½×": 0.5, "1×": 1.0, "2×": 2.0, "4×": 4.0}
@@ -62,10 +85,14 @@ MASS_COLOURS = [(1.0, 0.55, 0.1), (0.25, 0.65, 1.0), (0.3, 0.85, 0.35), (0.95, 0
 ENERGY_COLOURS = {"K": (0.85, 0.1, 0.1), "U": (0.1, 0.3, 0.9), "E": (0.0, 0.0, 0.0),
                   "E_minus_W_nc": (0.1, 0.6, 0.1)}
 ENERGY_LABELS = {"K": "K", "U": "U", "E": "E = K + U", "E_minus_W_nc": "E − W_nc"}
+PRESET_PROMPT = "choose a preset"
+LIVE_EVERY = 0.5          # s of wall time between redraws of a scene graph's live dots
 
 
-def show(setup, *, integrator: str, port: int | None, open_browser: bool) -> int:
+def show(setup, *, integrator: str, port: int | None, open_browser: bool, preset: str | None = None) -> int:
     """Show a scene in the browser and run it in real time until the page is closed.
+
+    preset  the label of the preset already applied to `setup` (--preset), shown in the menu.
 
     Returns 2 (after a one-line message) if the model or the server cannot start; otherwise the
     program ends through SystemExit(0) when the tab closes or on Ctrl-C.
@@ -83,7 +110,7 @@ def show(setup, *, integrator: str, port: int | None, open_browser: bool) -> int
         print(f"error: {problem}", file=sys.stderr)
         return 2
     try:
-        SceneView(setup=setup, model=model, integrator=integrator, server=server).run_forever()
+        SceneView(setup=setup, model=model, integrator=integrator, server=server, preset=preset).run_forever()
     except KeyboardInterrupt:  # Ctrl-C before vpython's own handler turns it into SystemExit(0)
         return 0
     return 0
@@ -100,15 +127,18 @@ def slider_names(setup, view: dict) -> list[str]:
             and isinstance(setup.values[name], (int, float)) and not isinstance(setup.values[name], bool)]
 
 
-def slider_range(name: str, value: float) -> tuple[float, float, float]:
+def slider_range(name: str, value: float, default: float | None = None) -> tuple[float, float, float]:
     """(min, max, step) around a constant's default: from a tenth of it (or 0) to three times it.
 
     Constants that must stay positive (m, k, dt, ...) start at a tenth; those where 0 means "off"
-    (b, F0, ω, C, g, x0) start at 0.
+    (b, F0, ω, C, g, x0) start at 0. A value outside that range (set by a preset or --set) widens
+    it, to one and a half times the value.
     """
-    low = 0.0 if name in ("b", "F0", "omega", "C", "g", "x0") else 0.1 * abs(value)
-    high = 3.0 * abs(value) if value else 1.0
+    default = value if default is None or not isinstance(default, (int, float)) else default
+    low = 0.0 if name in ("b", "F0", "omega", "C", "g", "x0") else 0.1 * abs(default)
+    high = 3.0 * abs(default) if default else 1.0
     low = min(low, value)
+    high = max(high, 1.5 * value)
     step = 10 ** math.floor(math.log10((high - low) / 200))
     return low, high, step
 
@@ -157,29 +187,99 @@ def motion_box(model) -> tuple[np.ndarray, np.ndarray]:
     return points.min(axis=0), points.max(axis=0)
 
 
-class SceneView:
-    """The page: builds every object once, then redraws from the LiveRun once per frame."""
+@dataclass(frozen=True)
+class StateSample(Sample):
+    """A graph sample that also keeps the momenta p (N, 3) kg·m/s, for the CSV download."""
 
-    def __init__(self, *, setup, model, integrator: str, server):
+    p: np.ndarray = None
+
+
+class RecordedRun(LiveRun):
+    """LiveRun whose samples carry p as well as r, so the page can offer them as CSV."""
+
+    def sample(self) -> StateSample:
+        shown = super().sample()
+        return StateSample(t=shown.t, r=shown.r, energy=shown.energy, p=self.state.p)
+
+
+def csv_text(samples, *, m, labels) -> str:
+    """The samples as CSV, with the command line's columns (headless.CSV_HEADER).
+
+    One row per sample and mass: t, r, v = p/m, p, then the system's K, U, E, W_nc in J; several
+    masses add a `body` column with each mass's label.
+    """
+    single = len(labels) == 1
+    out = io.StringIO()
+    writer = csv.writer(out, lineterminator="\n")
+    writer.writerow(CSV_HEADER + ([] if single else ["body"]))
+    for sample in samples:
+        v = velocity(sample.p, m)
+        energy = [sample.energy[key] for key in ENERGY_KEYS]
+        for i, label in enumerate(labels):
+            row = [sample.t, *sample.r[i].tolist(), *v[i].tolist(), *sample.p[i].tolist(), *energy]
+            writer.writerow(row + ([] if single else [label]))
+    return out.getvalue()
+
+
+class SceneView:
+    """The page: builds a scene's objects, then redraws from the LiveRun once per frame.
+
+    Everything that belongs to one scene (3-D objects, controls, graphs) is made by
+    :meth:`_build_page`; switching scene or applying a preset takes it down and builds it again.
+    """
+
+    def __init__(self, *, setup, model, integrator: str, server, preset: str | None = None):
         import vpython as vp  # already imported, loopback-only, by loopback_server.start
 
         self.vp, self.server = vp, server
-        self.setup = setup
-        self.view = {**DEFAULT_VIEW, **getattr(setup.module, "VIEW", {})}
         self.integrator = integrator
+        self.speed = "1×"
         self.commands: queue.SimpleQueue = queue.SimpleQueue()
         self.running = True
-        self.span = float(self.view["window"])
-        self.axes = ["xyz".index(axis) for axis in self.view["plot"]]
-        self.live = LiveRun(model, integrator=integrator, sample_every=SAMPLE_EVERY)
         self.clock = RealTimeClock(dt=model.dt, now=time.perf_counter())
         self.budget = StepBudget()
-        self._build_scene(model)
-        self._build_controls()
-        self._build_graphs(model)
-        self._restart(model)
+        self.shapes, self.graphs = [], []
+        self.page = 0  # which build of the page the controls' clicks come from
+        self.downloads = 0
+        self._build_page(setup, model, preset=preset)
 
     # ---- building the page ----
+
+    def _build_page(self, setup, model, *, preset: str | None = None) -> None:
+        """Take down the old scene's objects, if any, and build this one's, at t = 0."""
+        self._take_down()
+        self.page += 1
+        self.setup = setup
+        self.defaults = {name: constant.value for name, constant in setup.constants.items()}
+        self.view = {**DEFAULT_VIEW, **getattr(setup.module, "VIEW", {})}
+        self.span = float(self.view["window"])
+        self.axes = ["xyz".index(axis) for axis in self.view["plot"]]
+        self.live = RecordedRun(model, integrator=self.integrator, sample_every=SAMPLE_EVERY)
+        self.recorded: deque = deque()
+        self.position_axis = None
+        self._build_scene(model)
+        self._build_controls(preset)
+        self._build_graphs(model)
+        self._restart(model)
+        self.clock.restart(now=time.perf_counter())
+
+    def _take_down(self) -> None:
+        """Hide the 3-D objects and remove the graphs and controls of the scene shown so far.
+
+        vpython 7.6.5 cannot delete a 3-D object from the page, so they are hidden; graphs and the
+        caption's controls are removed from the page.
+        """
+        vp = self.vp
+        for shape in self.shapes:
+            if getattr(shape, "make_trail", False):
+                shape.clear_trail()
+                shape.make_trail = False
+            shape.visible = False
+        for graph in self.graphs:
+            graph.delete()
+        self.shapes, self.graphs = [], []
+        vp.scene.caption = ""
+        vp.scene.forward, vp.scene.up = vp.vector(0, 0, -1), vp.vector(0, 1, 0)
 
     def _build_scene(self, model) -> None:
         vp = self.vp
@@ -202,15 +302,15 @@ class SceneView:
         if self.view["support"] == "wall":
             wall_x = float(anchors[:, 0].min())
             span_y = float(high[1] - low[1]) + 2 * pad
-            vp.box(pos=vp.vector(wall_x - thickness / 2, centre[1], centre[2]),
-                   size=vp.vector(thickness, span_y, 2 * radius), color=vp.vector(0.6, 0.6, 0.65))
+            support = vp.box(pos=vp.vector(wall_x - thickness / 2, centre[1], centre[2]),
+                             size=vp.vector(thickness, span_y, 2 * radius), color=vp.vector(0.6, 0.6, 0.65))
             low = np.minimum(low, [wall_x - thickness, centre[1] - span_y / 2, low[2]])
             high = np.maximum(high, [high[0], centre[1] + span_y / 2, high[2]])
         else:
             ceiling_y = float(anchors[:, 1].max())
             span_x = float(high[0] - low[0]) + 2 * pad
-            vp.box(pos=vp.vector(centre[0], ceiling_y + thickness / 2, centre[2]),
-                   size=vp.vector(span_x, thickness, 2 * radius), color=vp.vector(0.6, 0.6, 0.65))
+            support = vp.box(pos=vp.vector(centre[0], ceiling_y + thickness / 2, centre[2]),
+                             size=vp.vector(span_x, thickness, 2 * radius), color=vp.vector(0.6, 0.6, 0.65))
             low = np.minimum(low, [centre[0] - span_x / 2, low[1], low[2]])
             high = np.maximum(high, [centre[0] + span_x / 2, ceiling_y + thickness, high[2]])
         low, high = low - 0.3 * radius, high + 0.3 * radius
@@ -226,6 +326,7 @@ class SceneView:
             mass = vp.sphere(pos=_vec(vp, r), radius=radius, color=colour,
                              make_trail=bool(self.view["trail"]), retain=300)
             self.masses.append(mass)
+        self.shapes = [support, *self.springs, *self.masses]
 
     def _frame_camera(self, low, high) -> None:
         scene = self.vp.scene
@@ -239,9 +340,11 @@ class SceneView:
         scene.range = self.range
         self.centre = 0.5 * (low + high)
 
-    def _build_controls(self) -> None:
-        vp, scene = self.vp, self.vp.scene
-        put = self.commands.put
+    def _build_controls(self, preset: str | None) -> None:
+        vp, scene, page = self.vp, self.vp.scene, self.page
+
+        def put(command):  # a click on a control that is no longer on the page is ignored
+            self.commands.put((page, command))
         scene.append_to_caption("\n")
         self.run_button = vp.button(text="Pause", bind=lambda _: put(("toggle",)))
         scene.append_to_caption("  ")
@@ -255,7 +358,22 @@ class SceneView:
             vp.menu(choices=list(INTEGRATORS), selected=self.integrator,
                     bind=lambda menu: put(("integrator", menu.selected)))
         scene.append_to_caption("    speed ")
-        vp.menu(choices=list(SPEEDS), selected="1×", bind=lambda menu: put(("speed", menu.selected)))
+        vp.menu(choices=list(SPEEDS), selected=self.speed, bind=lambda menu: put(("speed", menu.selected)))
+        scene.append_to_caption("\n\nscene ")
+        vp.menu(choices=list(catalog.SCENE_NAMES), selected=self.setup.name,
+                bind=lambda menu: put(("scene", menu.selected)))
+        scene.append_to_caption("    preset ")
+        labels = [label for label, _ in catalog.presets(self.setup)]
+        self.preset_menu = None
+        if labels:
+            self.preset_menu = vp.menu(choices=[PRESET_PROMPT] + labels, selected=preset or PRESET_PROMPT,
+                                       bind=lambda menu: put(("preset", menu.selected)))
+        else:
+            vp.wtext(text="<i>none for this scene</i>")
+        scene.append_to_caption("    ")
+        vp.button(text="Download CSV", bind=lambda _: put(("csv",)))
+        scene.append_to_caption(" ")
+        self.download_text = vp.wtext(text="")
         scene.append_to_caption("\n\n")
         self.time_text = vp.wtext(text="t = 0.00 s")
         scene.append_to_caption("    ")
@@ -263,14 +381,14 @@ class SceneView:
         scene.append_to_caption("\n")
         self.sliders, self.slider_texts = {}, {}
         for name in slider_names(self.setup, self.view):
-            low, high, step = slider_range(name, float(self.setup.values[name]))
+            low, high, step = slider_range(name, float(self.setup.values[name]), self.defaults.get(name))
             scene.append_to_caption("\n")
             self.sliders[name] = vp.slider(min=low, max=high, step=step, value=self.setup.values[name],
                                            length=320, bind=lambda s, name=name: put(("set", name, s.value)))
             self.slider_texts[name] = vp.wtext(text="")
         scene.append_to_caption("\n\n")
         self.constants_text = vp.wtext(text="")
-        scene.append_to_caption("\n<i>Moving a slider or choosing another integrator restarts "
+        scene.append_to_caption("\n<i>Moving a slider, choosing another integrator or a preset restarts "
                                 "the run from t = 0; Reset returns to the start; "
                                 "Step advances one Δt.</i>\n")
         self.status_text = vp.wtext(text="")
@@ -278,6 +396,7 @@ class SceneView:
 
     def _build_graphs(self, model) -> None:
         vp = self.vp
+        self._build_scene_graph()
         width, height = GRAPH_SIZE
         names = ", ".join("xyz"[axis] for axis in self.axes)
         legend = model.state.count <= LEGEND_MASSES  # a long row's legend would hide the graph
@@ -308,6 +427,48 @@ class SceneView:
             # E − W_nc comes last and thinner, so it shows on top of E when no work is done
             self._curve(self.energy_graph, ENERGY_LABELS[key], vp.vector(*colour), ("energy", key),
                         width=4 if key == "E" else 2)
+        self.graphs.extend([self.position_graph, self.energy_graph])
+
+    def _build_scene_graph(self) -> None:
+        """The scene's own graph (view_graph), if it has one: lines and dots, and dots that follow the run.
+
+        It is made before the position graph and filled at once, so it comes first on the page
+        (vpython places a graph when its first points arrive).
+        """
+        vp, make = self.vp, getattr(self.setup.module, "view_graph", None)
+        self.scene_graph, self.scene_series, self.live_dots = None, [], None
+        self.live_drawn = -math.inf
+        if make is None:
+            return
+        spec = make(self.setup)
+        width, height = GRAPH_SIZE
+        self.scene_graph = vp.graph(title=spec["title"], xtitle=spec["xtitle"], ytitle=spec["ytitle"],
+                                    width=width, height=height, align="left", fast=True)
+        self.graphs.append(self.scene_graph)
+        for label, _, _, colour in spec.get("lines", []):
+            self.scene_series.append(vp.gcurve(graph=self.scene_graph, label=label, color=vp.vector(*colour),
+                                               width=2))
+        for label, _, _, colour in spec.get("dots", []):
+            self.scene_series.append(vp.gdots(graph=self.scene_graph, label=label, color=vp.vector(*colour),
+                                              radius=3))
+        if "live" in spec:
+            self.live_dots = vp.gdots(graph=self.scene_graph, label=spec.get("live_label", ""),
+                                      color=vp.vector(*spec.get("live_colour", (0, 0, 0))), radius=5)
+        self._fill_scene_graph(spec)
+
+    def _fill_scene_graph(self, spec) -> None:
+        """Put a view_graph spec's points and labels into the scene graph's curves and dots."""
+        graph = self.scene_graph
+        for key in ("xmin", "xmax", "ymin", "ymax"):
+            if key in spec:
+                setattr(graph, key, spec[key])
+        for series, (label, xs, ys, _) in zip(self.scene_series, spec.get("lines", []) + spec.get("dots", [])):
+            _replace_points(series, [[float(x), float(y)] for x, y in zip(xs, ys)])
+            if series.label != label:
+                series.label = label
+        self.live_points = spec.get("live")
+        if self.live_dots is not None and self.live_dots.label != spec.get("live_label", ""):
+            self.live_dots.label = spec.get("live_label", "")
 
     def _curve(self, graph, label, colour, what, *, width) -> None:
         curve = self.vp.gcurve(graph=graph, label=label, color=colour, width=width)
@@ -321,8 +482,8 @@ class SceneView:
         while True:
             start = time.perf_counter()
             changed = self._apply_commands(now=start)
-            visible = self.server.seconds_since_contact() < STALE_AFTER
-            steps = self.clock.steps_due(now=start, running=self.running and visible and not self.live.problem,
+            steps = self.clock.steps_due(now=start, running=self.running and not self.live.problem,
+                                         quiet=self.server.seconds_since_contact(),
                                          max_steps=self.budget.max_steps)
             if steps:
                 samples = self.live.advance(steps)
@@ -341,8 +502,10 @@ class SceneView:
             except queue.Empty:
                 break
         changes, integrator = {}, None
-        for command in pending:
+        for page, command in pending:
             kind = command[0]
+            if page != self.page:
+                continue
             if kind == "toggle":
                 self.running = not self.running
             elif kind == "step":
@@ -352,16 +515,34 @@ class SceneView:
                 self._plot(self._clear_graphs(self.live.restart()), redraw=True)
                 self.clock.restart(now=now)
             elif kind == "speed":
-                self.clock.speed = SPEEDS.get(command[1], 1.0)
+                self.speed = command[1] if command[1] in SPEEDS else "1×"
+                self.clock.speed = SPEEDS[self.speed]
             elif kind == "integrator":
                 integrator = command[1]
-            elif kind == "set":
+            elif kind == "set" and command[2] != self.setup.values.get(command[1]):
                 changes[command[1]] = float(command[2])
+            elif kind == "csv":
+                self._offer_csv()
+            elif kind == "preset" and command[1] != PRESET_PROMPT:
+                self._switch(self.setup.with_preset(command[1]), preset=command[1])
+                changes, integrator = {}, None
+            elif kind == "scene" and command[1] != self.setup.name:
+                self._switch(catalog.configure(command[1]))
+                changes, integrator = {}, None
         if changes or integrator:
-            self._rebuild(changes=changes, integrator=integrator or self.integrator, now=now)
+            self._rebuild(changes=changes, integrator=integrator or self.integrator)
         return bool(pending)
 
-    def _rebuild(self, *, changes: dict, integrator: str, now: float) -> None:
+    def _switch(self, setup, *, preset: str | None = None) -> None:
+        """Another scene, or new values from a preset: build the page again, from t = 0."""
+        try:
+            model = setup.build()
+        except ValueError as problem:
+            self.status_text.text = f"<b>Cannot use that:</b> {problem}"
+            return
+        self._build_page(setup, model, preset=preset)
+
+    def _rebuild(self, *, changes: dict, integrator: str) -> None:
         """A new constant or integrator: rebuild the model and start again from t = 0."""
         setup = self.setup.with_values(**changes)
         try:
@@ -369,11 +550,15 @@ class SceneView:
         except ValueError as problem:
             self.status_text.text = f"<b>Cannot use that value:</b> {problem}"
             return
+        if changes and self.preset_menu is not None:
+            self.preset_menu.selected = PRESET_PROMPT  # the constants no longer match the preset
         self.setup, self.integrator = setup, integrator
-        self.live = LiveRun(model, integrator=integrator, sample_every=SAMPLE_EVERY)
+        if self.scene_graph is not None and changes:
+            self._fill_scene_graph(setup.module.view_graph(setup))
+        self.live = RecordedRun(model, integrator=integrator, sample_every=SAMPLE_EVERY)
         self.show_exact = self.exact_curves and model.exact is not None
         self._restart(model)
-        self.clock.restart(now=now)
+        self.clock.restart(now=time.perf_counter())
 
     def _restart(self, model) -> None:
         self._plot(self._clear_graphs(self.live.restart()), redraw=True)
@@ -383,6 +568,7 @@ class SceneView:
         for name, text in self.slider_texts.items():
             unit = self.setup.constants[name].unit
             text.text = f"  {symbol(name)} = {format_value(self.setup.values[name], unit)}"
+        self.download_text.text = ""
         self._draw()
 
     def _clear_graphs(self, samples):
@@ -391,17 +577,23 @@ class SceneView:
         self.exact_range, self.position_axis = (math.inf, -math.inf), None
         for curve, trace, _ in self.curves:
             trace.clear()
+        self.recorded.clear()
         for graph in (self.position_graph, self.energy_graph):
             graph.xmin, graph.xmax = window(0.0, span=self.span)
+        self.live_drawn = -math.inf
         return samples
 
     def _plot(self, samples, *, redraw: bool = False) -> None:
         """Add samples to every curve (a whole curve is resent only when its window scrolls)."""
         if not samples and not redraw:
             return
+        self._record(samples)
         t = np.array([s.t for s in samples])
         r = np.array([s.r for s in samples]) if samples else np.zeros((0,) + self.live.state.r.shape)
         exact = self.live.model.exact(t)[0] if (self.show_exact and len(t)) else None
+        if exact is not None:  # past the anchor the closed form no longer describes the mass
+            keep = t <= self._exact_valid_until(float(t[-1]))
+            exact = exact[keep] if not keep.all() else exact
         for curve, trace, what in self.curves:
             if what[0] == "r":
                 values = r[:, what[1], what[2]]
@@ -412,21 +604,54 @@ class SceneView:
                     values = exact[:, what[1], what[2]]
             else:
                 values = [s.energy[what[1]] for s in samples]
-            points = [[float(a), float(b)] for a, b in zip(t, values)]
+            points = [[float(a), float(b)] for a, b in zip(t, values)]  # zip stops where exact does
             if trace.add(points) or redraw:
-                curve.delete()
-                curve._data = []  # vpython 7.6.5's delete() keeps its Python copy of the points
-                if trace.points:
-                    curve.plot(list(trace.points))
+                _replace_points(curve, list(trace.points))
             elif points:
                 curve.plot(points)
-        if exact is not None:
+        if exact is not None and len(exact):
             self._fit_position_axis(exact[..., self.axes])
         if len(t):
             start, end = window(float(t[-1]), span=self.span)
             if start != self.position_graph.xmin:
                 for graph in (self.position_graph, self.energy_graph):
                     graph.xmin, graph.xmax = start, end
+        self._plot_live(redraw=redraw)
+
+    def _plot_live(self, *, redraw: bool) -> None:
+        """Move the scene graph's live dots to the state now, at most every LIVE_EVERY seconds."""
+        if self.live_dots is None:
+            return
+        now = time.perf_counter()
+        if not redraw and now - self.live_drawn < LIVE_EVERY:
+            return
+        self.live_drawn = now
+        xs, ys = self.live_points(self.live.model, self.live.state)
+        _replace_points(self.live_dots, [[float(x), float(y)] for x, y in zip(xs, ys) if math.isfinite(y)])
+
+    def _record(self, samples) -> None:
+        """Keep the samples the graphs show (the last `span` seconds), for Download CSV."""
+        self.recorded.extend(samples)
+        if self.recorded:
+            start = window(self.recorded[-1].t, span=self.span)[0]
+            while self.recorded and self.recorded[0].t < start - 1e-9:
+                self.recorded.popleft()
+
+    def _offer_csv(self) -> None:
+        """Hand the graphed samples to the browser as a CSV file (a data: link the page clicks)."""
+        samples = list(self.recorded)
+        if not samples:
+            self.download_text.text = "<i>nothing graphed yet</i>"
+            return
+        text = csv_text(samples, m=self.live.state.m, labels=self.live.model.labels)
+        self.downloads += 1
+        link = f"csv-download-{self.downloads}"
+        name = f"{self.setup.name}.csv"
+        rows = text.count("\n") - 1
+        self.download_text.text = (
+            f'<a id="{link}" download="{name}" href="data:text/csv;charset=utf-8,{quote(text, safe=",.-+")}">'
+            f'{name}</a> ({rows} rows, t = {samples[0].t:.{self.decimals}f} to {samples[-1].t:.{self.decimals}f} s)'
+            f'<script>document.getElementById("{link}").click()</script>')
 
     def _fit_position_axis(self, values) -> None:
         """Scale the position axis to the exact motion so far (padded, rounded outward).
@@ -462,10 +687,18 @@ class SceneView:
         if status != self.status_text.text:
             self.status_text.text = status if not self.live.problem else f"<b>Stopped:</b> {status}"
 
+    def _exact_valid_until(self, t_end: float) -> float:
+        """The time, s, after which the model's closed form stops holding (math.inf if it holds to t_end)."""
+        check = self.live.model.exact_valid_until
+        return math.inf if check is None else check(t_end)
+
     def _error_readout(self) -> str:
         if not self.show_exact:
             return ""
         model, state = self.live.model, self.live.state
+        if state.t > self._exact_valid_until(state.t):
+            return (f"no exact value after t = {self._exact_valid_until(state.t):.3g} s: the closed form "
+                    f"stops holding {model.exact_limit}")
         exact = model.exact(np.array([state.t]))[0][0]
         errors = state.r[:, self.axes] - exact[:, self.axes]
         worst = float(np.max(np.abs(errors)))
@@ -489,6 +722,14 @@ class SceneView:
         if self.range < needed and self.range < self.max_range:
             self.range = min(1.5 * needed, self.max_range)
             self.vp.scene.range = self.range
+
+
+def _replace_points(series, points) -> None:
+    """Replace all the points of a gcurve or gdots."""
+    series.delete()
+    series._data = []  # vpython 7.6.5's delete() keeps its Python copy of the points
+    if points:
+        series.plot(points)
 
 
 def _vec(vp, a):
