@@ -214,6 +214,9 @@ def main(argv=None) -> int:
     from scenes.view import show
 
     preset = catalog.find_preset(setup, args.preset)[0] if args.preset else None
+    if preset is None and args.scenario is not None:  # the page's preset menu names the scenario shown
+        preset = next((label for label, _ in catalog.presets(setup)
+                       if label.startswith(f"scenario {args.scenario}:")), None)
     sys.exit(show(setup, integrator=args.integrator or DEFAULT_INTEGRATOR, port=args.port,
                   open_browser=not args.no_browser, preset=preset))
 
