@@ -1,5 +1,9 @@
 """Run the benchmarks: `python -m benchmarks [--quick] [--only NAME ...] [--list]`.
 
+Part 5 (a scene left running in headless Chromium for 10 minutes) is a separate command, since it
+takes minutes of wall time and needs Chromium and Playwright: `python -m benchmarks.long_run`
+(docs/long_run.md). Figures and how to read them: docs/performance.md.
+
 Every figure is measured in this one run and compared with a reference measured in the same
 run (the page-style vpython-vector loop, a bare interpreter, scipy), so the ratios mean something
 even on a busy machine. The full run takes about 3 minutes on 2 cores; --quick about 30 s.
@@ -23,6 +27,11 @@ BENCHMARKS = {
     "accuracy": (accuracy, "part 4: error after 10 periods against CPU time, with a plot"),
     "startup": (startup, "part 6: wall time of `python main.py vertical --headless`"),
 }
+# Not in the full run: minutes of wall time in headless Chromium. Run it as its own command.
+SEPARATE = {
+    "python -m benchmarks.long_run": "part 5: a scene in headless Chromium for 10 min (--minutes, --scene, "
+                                     "--set dt=0.001): t shown against wall time, memory; see --help",
+}
 
 
 def machine() -> str:
@@ -40,7 +49,10 @@ def machine() -> str:
 
 
 def parse_arguments(argv=None):
-    parser = argparse.ArgumentParser(prog="python -m benchmarks", description=__doc__.splitlines()[0])
+    parser = argparse.ArgumentParser(
+        prog="python -m benchmarks", description=__doc__.splitlines()[0],
+        epilog="Part 5, the page left running in headless Chromium, is a separate command: "
+               "python -m benchmarks.long_run --help. Figures: docs/performance.md, docs/long_run.md.")
     parser.add_argument("--quick", action="store_true", help="fewer steps and repeats: about 30 s in all")
     parser.add_argument("--only", metavar="NAME", action="append", choices=list(BENCHMARKS),
                         help="run only this benchmark (repeatable): " + ", ".join(BENCHMARKS))
@@ -53,6 +65,9 @@ def main(argv=None) -> int:
     if arguments.list:
         for name, (_, summary) in BENCHMARKS.items():
             print(f"{name:12s} {summary}")
+        print("run on its own (not part of the full run):")
+        for command, summary in SEPARATE.items():
+            print(f"  {command}  {summary}")
         return 0
     settings = Settings(quick=arguments.quick)
     chosen = arguments.only or list(BENCHMARKS)

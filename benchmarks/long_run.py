@@ -15,10 +15,12 @@ not count. "shown for" is how long that t had been on screen when read: how ofte
 
 Targets (issues 3 and 5): over spans of 60 s or more the relative error is at most 1 % (shorter
 spans are shown but not judged: a page that draws only every second or two is that far behind at
-any instant); from minute 1 to the end the Python process's resident memory (VmRSS in
-/proc/PID/status) and the page's JS heap (CDP Runtime.getHeapUsage, after a forced garbage
-collection) grow by at most 10 %. The page's DOM node count is shown too, since a graph that kept
-every point would show there first.
+any instant). Beside the worst reading it prints how many readings missed 1 % and the
+least-squares rate of t shown against wall time: a clock that drifts or falls behind changes the
+rate, a page that shows a t late moves only single readings. From minute 1 to the end the Python
+process's resident memory (VmRSS in /proc/PID/status) and the page's JS heap (CDP
+Runtime.getHeapUsage, after a forced garbage collection) grow by at most 10 %. The page's DOM
+node count is shown too, since a graph that kept every point would show there first.
 
 At the end the page's scripts are held in the debugger for `--freeze` seconds, as a browser freezes
 a background tab: t must not jump on by the whole pause when the page comes back.
@@ -286,6 +288,17 @@ def summarise(readings: list[Reading], collected: dict, *, speed: float, out=pri
          f"growth {heap_growth:+.1%} ≤ {GROWTH_TARGET:.0%}: {verdict(heap_growth <= GROWTH_TARGET)}"],
     ]))
     out(f"largest |t shown − speed × wall| at any reading: {offset:.2f} s")
+    errors = sorted(abs(r.shown - speed * r.wall) / (speed * r.wall) for r in judged)
+    over = sum(error > TIME_TARGET for error in errors)
+    out(f"readings from {judged[0].wall:.0f} s on: {over} of {len(errors)} over {TIME_TARGET:.0%}, "
+        f"median rel. error {errors[len(errors) // 2]:.3%}")
+    # A clock that drifts changes the slope; a page that shows a t late only moves single points.
+    walls = [r.wall for r in readings]
+    mean_wall, mean_shown = sum(walls) / len(walls), sum(r.shown for r in readings) / len(readings)
+    slope = (sum((r.wall - mean_wall) * (r.shown - mean_shown) for r in readings)
+             / sum((w - mean_wall) ** 2 for w in walls))
+    out(f"rate of t shown against wall time (least-squares slope over all readings): {slope / speed:.5f} "
+        f"(1 = real time; a drift shows here, a t shown late only at single readings)")
     ages = sorted(r.age for r in readings)
     out(f"the caption had shown its t for {ages[len(ages) // 2]:.2f} s (median) and at most "
         f"{ages[-1]:.2f} s when read (how often the page draws on this machine)")
@@ -297,7 +310,8 @@ def summarise(readings: list[Reading], collected: dict, *, speed: float, out=pri
     status, seconds = collected.get("exit", (None, None))
     out("closing the page: " + (f"the program ended with status {status} after {seconds:.1f} s"
                                   if status is not None else "the program was still running after 5 s"))
-    return {"worst_error": worst, "offset": offset, "rate": last.shown / (speed * last.wall), "rss_growth": rss_growth,
+    return {"worst_error": worst, "offset": offset, "rate": last.shown / (speed * last.wall), "slope": slope / speed,
+            "over_target": over, "rss_growth": rss_growth,
             "heap_growth": heap_growth, "readings": readings}
 
 
