@@ -478,20 +478,27 @@ class SceneView:
 
     def run_forever(self) -> None:
         """Step in real time and redraw, about FRAME_RATE times a second, until the page closes."""
-        frame = 1.0 / FRAME_RATE
         while True:
-            start = time.perf_counter()
-            changed = self._apply_commands(now=start)
-            steps = self.clock.steps_due(now=start, running=self.running and not self.live.problem,
-                                         quiet=self.server.seconds_since_contact(),
-                                         max_steps=self.budget.max_steps)
-            if steps:
-                samples = self.live.advance(steps)
-                self.budget.record(steps=steps, seconds=time.perf_counter() - start)
-                self._plot(samples)
-            if steps or changed:
-                self._draw()
-            time.sleep(max(0.002, frame - (time.perf_counter() - start)))
+            time.sleep(self.frame())
+
+    def frame(self) -> float:
+        """One frame: carry out the page's clicks, run the steps real time says are due, redraw.
+
+        Returns the seconds to wait before the next frame. run_forever calls it in a loop; in a
+        notebook, scenes/notebook.py calls it from the kernel's event loop, so the cell returns.
+        """
+        start = time.perf_counter()
+        changed = self._apply_commands(now=start)
+        steps = self.clock.steps_due(now=start, running=self.running and not self.live.problem,
+                                     quiet=self.server.seconds_since_contact(),
+                                     max_steps=self.budget.max_steps)
+        if steps:
+            samples = self.live.advance(steps)
+            self.budget.record(steps=steps, seconds=time.perf_counter() - start)
+            self._plot(samples)
+        if steps or changed:
+            self._draw()
+        return max(0.002, 1.0 / FRAME_RATE - (time.perf_counter() - start))
 
     def _apply_commands(self, *, now: float) -> bool:
         """Carry out the clicks queued by the page (they arrive on vpython's server thread)."""

@@ -34,6 +34,11 @@ def test_physics_and_every_scene_import_and_build_without_vpython():
     assert loaded == "[]"
 
 
+def test_the_notebook_module_imports_without_vpython():
+    """scenes.notebook imports vpython only inside show(), in a running notebook."""
+    assert modules_loaded_by("import scenes.notebook\n") == "[]"
+
+
 def test_the_headless_module_imports_without_vpython():
     if not (ROOT / "headless.py").exists():
         pytest.skip("headless.py is not written yet")

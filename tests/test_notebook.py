@@ -1,0 +1,379 @@
+"""The scenes in a real Jupyter notebook: a Jupyter Notebook 7 server and headless Chromium.
+
+Without a browser: the example notebook has one cell per scene and no saved outputs; show() refuses
+to run outside a notebook without importing vpython; bad arguments give one clear message.
+
+In a browser (marked `browser`): one notebook server per module is started on 127.0.0.1 (fresh
+config and runtime folders, a random token) with a copy of examples/scenes.ipynb, whose kernel finds
+the project through PYTHONPATH. One headless Chromium opens it with Playwright and runs cells as a
+student would, with Ctrl+Enter, in this order:
+
+* `vertical` runs under its cell: its 3-D canvas shows the orange mass, the position graph has a
+  curve, and t advances; Pause and Run, clicked in the page, reach the kernel (the screenshot
+  docs/screenshots/notebook.png is taken here);
+* running the cell again starts the scene again from t = 0 in that cell;
+* the cells of `pendulum` and then `resonance` (with its own resonance graph) each stop the scene
+  running before and run under their own cell;
+* the page's scene menu switches scene in place, inside the cell.
+
+Not every scene gets a browser run here (tests/test_browser.py runs each scene's page); the
+notebook path is the same for all of them. Skipped, with the reason, where Chromium is missing.
+"""
+from __future__ import annotations
+
+import io
+import json
+import os
+import re
+import secrets
+import socket
+import subprocess
+import sys
+import time
+import urllib.request
+from pathlib import Path
+
+import pytest
+
+from scenes import catalog
+
+ROOT = Path(__file__).resolve().parent.parent
+EXAMPLE = ROOT / "examples" / "scenes.ipynb"
+CHROMIUM = "/usr/bin/chromium"
+SCREENSHOT = ROOT / "docs" / "screenshots" / "notebook.png"
+CHROMIUM_ARGS = ["--no-sandbox", "--use-gl=angle", "--use-angle=swiftshader",
+                 "--enable-unsafe-swiftshader", "--disable-background-networking",
+                 "--disable-component-update", "--disable-sync", "--no-first-run"]
+TIME = re.compile(r"^\s*t = (-?\d+\.\d+) s\s*$")
+SHOW = re.compile(r'^show\("(\w+)"')
+
+
+def example_scene_cells() -> list[tuple[str, str]]:
+    """(scene name, source) of each code cell of the example notebook that calls show()."""
+    cells = json.loads(EXAMPLE.read_text(encoding="utf-8"))["cells"]
+    sources = ["".join(cell["source"]) for cell in cells if cell["cell_type"] == "code"]
+    return [(SHOW.match(source).group(1), source) for source in sources if SHOW.match(source)]
+
+
+# ---- without a browser ----
+
+def test_the_example_notebook_has_one_cell_per_scene_and_no_outputs():
+    assert [name for name, _ in example_scene_cells()] == catalog.SCENE_NAMES
+    cells = json.loads(EXAMPLE.read_text(encoding="utf-8"))["cells"]
+    assert all(not cell.get("outputs") for cell in cells if cell["cell_type"] == "code")
+
+
+def test_outside_a_notebook_show_refuses_and_never_imports_vpython():
+    code = ("import sys\n"
+            "from scenes.notebook import show\n"
+            "try:\n"
+            "    show('vertical', k=60)\n"
+            "except RuntimeError as problem:\n"
+            "    print(problem)\n"
+            "print('vpython' in sys.modules)\n")
+    result = subprocess.run([sys.executable, "-c", code], cwd=ROOT, capture_output=True, text=True,
+                            timeout=60)
+    assert result.returncode == 0, result.stderr
+    message, imported = result.stdout.strip().splitlines()
+    assert "python main.py NAME" in message
+    assert imported == "False"
+
+
+@pytest.mark.parametrize("call, expected", [
+    (dict(name="vertcal"), "did you mean 'vertical'"),
+    (dict(name="vertical", kk=60), "did you mean 'k'"),
+    (dict(name="vertical", m=-1), "m must be greater than 0 kg"),
+    (dict(name="vertical", r0=(0, 1)), "r0 needs a 3-vector"),
+    (dict(name="driven", scenario=9), "scenario 9 is out of range"),
+    (dict(name="vertical", integrator="leapfrog"), "unknown integrator 'leapfrog'"),
+    (dict(name="vertical", preset="Mars gravity"), "unknown preset 'Mars gravity'"),
+])
+def test_bad_arguments_are_one_clear_message_before_anything_is_drawn(call, expected):
+    from scenes.constants import ConstantError
+    from scenes.notebook import show
+
+    call = dict(call)
+    with pytest.raises(ConstantError, match=re.escape(expected)):
+        show(call.pop("name"), **call)
+
+
+# ---- in a real notebook ----
+
+def _skip_reason() -> str | None:
+    if not os.path.exists(CHROMIUM):
+        return f"Chromium is not installed at {CHROMIUM} (apt-get install chromium)"
+    for module, package in (("playwright", "playwright"), ("notebook", "notebook"), ("PIL", "pillow")):
+        try:
+            __import__(module)
+        except ImportError:
+            return f"{package} is not installed (pip install -r requirements-test.txt)"
+    return None
+
+
+browser = pytest.mark.browser
+needs_browser = pytest.mark.skipif(_skip_reason() is not None, reason=str(_skip_reason()))
+
+
+def free_port() -> int:
+    with socket.socket() as sock:
+        sock.bind(("127.0.0.1", 0))
+        return sock.getsockname()[1]
+
+
+@pytest.fixture(scope="module")
+def jupyter(tmp_path_factory):
+    """A Jupyter Notebook server on 127.0.0.1 serving a copy of the example notebook: (base URL, token)."""
+    work = tmp_path_factory.mktemp("notebook")
+    (work / "scenes.ipynb").write_bytes(EXAMPLE.read_bytes())
+    config = work / ".config"
+    # Render every cell at once, so each cell's output is in the page for the test to find.
+    settings = config / "lab" / "user-settings" / "@jupyterlab" / "notebook-extension"
+    settings.mkdir(parents=True)
+    (settings / "tracker.jupyterlab-settings").write_text('{"windowingMode": "none"}')
+    env = {**os.environ, "PYTHONPATH": os.pathsep.join(filter(None, [str(ROOT), os.environ.get("PYTHONPATH")])),
+           "JUPYTER_CONFIG_DIR": str(config), "JUPYTER_DATA_DIR": str(work / ".data"),
+           "JUPYTER_RUNTIME_DIR": str(work / ".runtime"), "IPYTHONDIR": str(work / ".ipython")}
+    port, token = free_port(), secrets.token_hex(16)
+    command = [sys.executable, "-m", "notebook", "--no-browser", "--ip=127.0.0.1", f"--port={port}",
+               "--ServerApp.port_retries=0", f"--IdentityProvider.token={token}",
+               f"--ServerApp.root_dir={work}", "--LabApp.news_url=None",
+               "--LabApp.check_for_updates_class=jupyterlab.NeverCheckForUpdate"]
+    if hasattr(os, "geteuid") and os.geteuid() == 0:
+        command.append("--allow-root")
+    log = open(work / "server.log", "w")
+    server = subprocess.Popen(command, cwd=work, env=env, stdout=log, stderr=subprocess.STDOUT)
+    base = f"http://127.0.0.1:{port}/"
+    try:
+        deadline = time.monotonic() + 90
+        while True:
+            try:
+                request = urllib.request.Request(base + "api/status", headers={"Authorization": f"token {token}"})
+                urllib.request.urlopen(request, timeout=2).close()
+                break
+            except OSError:
+                if server.poll() is not None or time.monotonic() > deadline:
+                    pytest.fail(f"the notebook server did not start: {(work / 'server.log').read_text()[-2000:]}")
+                time.sleep(0.2)
+        yield base, token
+    finally:
+        server.terminate()  # the server shuts its kernels down on SIGTERM
+        try:
+            server.wait(timeout=20)
+        except subprocess.TimeoutExpired:
+            server.kill()
+            server.wait(timeout=10)
+        log.close()
+
+
+@pytest.fixture(scope="module")
+def page(jupyter):
+    """The example notebook open in headless Chromium, its first code cell (the import) run."""
+    from playwright.sync_api import sync_playwright
+
+    base, token = jupyter
+    with sync_playwright() as playwright:
+        chromium = playwright.chromium.launch(executable_path=CHROMIUM, args=CHROMIUM_ARGS)
+        try:
+            page = chromium.new_page(viewport={"width": 1280, "height": 1500})
+            page.goto(f"{base}notebooks/scenes.ipynb?token={token}", timeout=90_000)
+            page.locator(".jp-Notebook-ExecutionIndicator[data-status='idle']").wait_for(timeout=90_000)
+            run(code_cells(page).first)
+            yield page
+        finally:
+            chromium.close()
+
+
+def code_cells(page):
+    return page.locator(".jp-Notebook .jp-CodeCell")
+
+
+def scene_cell(page, name: str):
+    """The example notebook's cell that shows scene `name`."""
+    return code_cells(page).filter(has=page.locator(".jp-InputArea", has_text=f'show("{name}")'))
+
+
+def execution_count(cell) -> int | None:
+    found = re.search(r"\[(\d+)\]", cell.locator(".jp-InputPrompt").inner_text())
+    return int(found.group(1)) if found else None
+
+
+def run(cell, timeout: float = 120.0) -> None:
+    """Run the cell in place (Ctrl+Enter) and wait until it has finished."""
+    before = execution_count(cell)
+    cell.locator(".jp-InputArea-editor").click()
+    cell.page.keyboard.press("Control+Enter")
+    wait_for(lambda: execution_count(cell) not in (None, before), timeout=timeout,
+             what="the cell to finish")
+
+
+def wait_for(predicate, *, timeout: float = 60.0, what: str):
+    deadline = time.monotonic() + timeout
+    while time.monotonic() < deadline:
+        value = predicate()
+        if value:
+            return value
+        time.sleep(0.1)
+    pytest.fail(f"timed out waiting for {what}")
+
+
+def shown_time(cell) -> float | None:
+    """The t the scene's caption in this cell shows (`t = 1.23 s`), or None if it has none."""
+    text = cell.locator("b").filter(has_text=TIME)
+    if not text.count():
+        return None
+    found = TIME.match(text.first.inner_text())
+    return float(found.group(1)) if found else None
+
+
+def wait_until_running(cell, *, past: float = 0.0) -> float:
+    """Wait for the scene in this cell to show t > past, then for t to advance further."""
+    start = wait_for(lambda: (shown_time(cell) or 0) > past and shown_time(cell), timeout=90.0,
+                     what=f"t to pass {past} s")
+    return wait_for(lambda: (shown_time(cell) or 0) > start and shown_time(cell), timeout=30.0,
+                    what="t to advance")
+
+
+def look(where, **parts):
+    """Pictures of parts of the cell `where` (name=locator), cut from ONE screenshot of the page.
+
+    The notebook scrolls inside its own panel, so the cell's top is scrolled to the top of the
+    panel first, and the cut is kept inside the viewport. One screenshot per look, because with
+    software WebGL each one takes seconds. (An animated element is never "stable", so
+    Playwright's element screenshot could wait for ever.)
+    """
+    from PIL import Image
+
+    where.evaluate("element => element.scrollIntoView({block: 'start'})")
+    time.sleep(0.3)  # a frame or two, so the canvas is drawn at its new place
+    boxes = {name: locator.bounding_box() for name, locator in parts.items()}
+    viewport = where.page.viewport_size
+    left = max(0, min(box["x"] for box in boxes.values()))
+    top = max(0, min(box["y"] for box in boxes.values()))
+    right = min(viewport["width"], max(box["x"] + box["width"] for box in boxes.values()))
+    bottom = min(viewport["height"], max(box["y"] + box["height"] for box in boxes.values()))
+    shot = Image.open(io.BytesIO(where.page.screenshot(
+        clip={"x": left, "y": top, "width": right - left, "height": bottom - top}))).convert("RGB")
+    return {name: shot.crop((round(box["x"] - left), round(box["y"] - top),
+                             round(min(box["x"] + box["width"], right) - left),
+                             round(min(box["y"] + box["height"], bottom) - top)))
+            for name, box in boxes.items()}
+
+
+def colours(image) -> dict:
+    return {rgb: n for n, rgb in image.getcolors(maxcolors=1 << 24)}
+
+
+def orange_pixels(image) -> int:
+    """Pixels in the hue of the first mass, (1.0, 0.55, 0.1) lit and shaded: red > green > blue."""
+    return sum(n for (r, g, b), n in colours(image).items()
+               if r > 120 and 0.3 * r < g < 0.8 * r and b < 0.35 * r)
+
+
+def canvas(cell):
+    """The cell's 3-D canvas (vpython's WebGL canvas, the first in its wrapper)."""
+    return cell.locator(".glowscript-canvas-wrapper canvas").first
+
+
+def graph(cell, index: int):
+    """The cell's graph number `index` (page order: a scene's own graph first)."""
+    return cell.locator(".glowscript-graph canvas.base").nth(index)
+
+
+def assert_mass_drawn(image, what: str) -> None:
+    assert image.height > 400, f"{what}: only {image.height} px of the 3-D canvas could be seen"
+    assert orange_pixels(image) > 100, f"{what}: the 3-D canvas shows no orange mass"
+
+
+def curve_pixels(image) -> int:
+    """Strongly coloured pixels in the left 40 % of a graph, where the curves start (grid, text
+    and the legend's black are grey, and the legend sits at the top right)."""
+    left = image.crop((0, 0, int(0.4 * image.width), image.height))
+    return sum(n for rgb, n in colours(left).items() if max(rgb) - min(rgb) > 80)
+
+
+def pixels_like(image, rgb, *, within: int = 40) -> int:
+    return sum(n for colour, n in colours(image).items()
+               if sum(abs(a - b) for a, b in zip(colour, rgb)) <= within)
+
+
+@browser
+@needs_browser
+def test_a_scene_runs_under_its_cell_and_pause_reaches_the_kernel(page):
+    cell = scene_cell(page, "vertical")
+    run(cell)
+    wait_until_running(cell)
+    assert "k = 40 N/m" in cell.inner_text()  # the scene's own constants, with units
+
+    cell.get_by_role("button", name="Pause").click()
+    cell.get_by_role("button", name="Run").wait_for(timeout=30_000)
+    paused = shown_time(cell)
+    seen = look(cell, cell=cell, canvas=canvas(cell), position=graph(cell, 0))
+    assert_mass_drawn(seen["canvas"], "vertical")
+    assert curve_pixels(seen["position"]) > 50, "the position graph shows no curve"
+    SCREENSHOT.parent.mkdir(parents=True, exist_ok=True)
+    seen["cell"].save(SCREENSHOT)
+    time.sleep(1.0)
+    assert shown_time(cell) == paused, "t moved while paused"
+
+    cell.get_by_role("button", name="Run").click()
+    wait_for(lambda: shown_time(cell) > paused, timeout=30.0, what="t to advance after Run")
+
+
+@browser
+@needs_browser
+def test_running_the_cell_again_starts_the_scene_again_from_0(page):
+    cell = scene_cell(page, "vertical")
+    before = wait_for(lambda: (shown_time(cell) or 0) > 3.0 and shown_time(cell), timeout=60.0,
+                      what="t to pass 3 s")
+    run(cell)
+    first = wait_for(lambda: shown_time(cell) is not None and (shown_time(cell),), timeout=60.0,
+                     what="the scene to show t again")[0]
+    assert first < before - 1.0, f"t went from {before} s to {first} s, not back to 0"
+    assert cell.locator("b").filter(has_text=TIME).count() == 1  # the old output is gone
+    assert cell.locator(".glowscript-canvas-wrapper").count() == 1
+    wait_until_running(cell)
+
+
+@browser
+@needs_browser
+@pytest.mark.parametrize("name, before", [("pendulum", "vertical"), ("resonance", "pendulum")])
+def test_another_scenes_cell_stops_the_one_before_and_runs(page, name, before):
+    old = scene_cell(page, before)
+    assert shown_time(old) is not None, f"{before} should be running before this test"
+    cell = scene_cell(page, name)
+    run(cell)
+    wait_until_running(cell)
+    assert "Stopped:" in old.inner_text(), f"the scene before {name} still looks live"
+    assert not old.locator(".glowscript-canvas-wrapper").count(), "its 3-D view is still there"
+    assert not old.locator(".glowscript-graph").count(), "its graphs are still there"
+    stopped = shown_time(old)
+    own_graph = name == "resonance"  # its own graph comes first, then position and energy
+    parts = {"canvas": canvas(cell), "position": graph(cell, 1 if own_graph else 0)}
+    if own_graph:
+        parts["resonance"] = graph(cell, 0)
+    seen = look(cell, **parts)
+    assert_mass_drawn(seen["canvas"], name)
+    assert curve_pixels(seen["position"]) > 50, f"{name}: the position graph shows no curve"
+    if own_graph:  # the exact curves for three values of b, and the row's live dots in orange
+        from scenes.resonance import CURVE_COLOURS, ROW_COLOUR
+
+        assert catalog.configure("resonance").values["curves"] == 3
+        for colour in CURVE_COLOURS[:3] + [ROW_COLOUR]:
+            rgb = tuple(round(255 * c) for c in colour)
+            assert pixels_like(seen["resonance"], rgb) > 150, f"the resonance graph has no curve in colour {rgb}"
+    assert shown_time(old) == stopped, f"{before} went on after it stopped"
+
+
+@browser
+@needs_browser
+def test_the_scene_menu_switches_scene_inside_the_cell(page):
+    cell = scene_cell(page, "resonance")
+    menu = cell.locator("select").filter(has=page.locator("option", has_text="integrators"))
+    menu.select_option("damped")
+    wait_for(lambda: "damped:" in cell.inner_text(), timeout=60.0, what="the damped scene's title")
+    assert "b = 1 kg/s" in cell.inner_text()
+    wait_until_running(cell)
+    assert cell.locator(".glowscript-graph canvas.base").count() == 2  # resonance's own graph has gone
+    seen = look(cell, canvas=canvas(cell), position=graph(cell, 0))
+    assert_mass_drawn(seen["canvas"], "damped, from the scene menu")
+    assert curve_pixels(seen["position"]) > 50, "damped: the position graph shows no curve"
