@@ -114,16 +114,33 @@ class StepBudget:
 
     The view leaves the rest of each frame to the page's server thread and to sleep, so the page
     stays responsive even when Δt is too small for the computer to keep up in real time.
+
+    The cost per step is a running average over batches of at least ``MIN_STEPS`` steps; smaller
+    frames are added up until they make one, so the estimate keeps moving however few steps a
+    frame runs. One batch can raise the estimate by at most ``MAX_RISE`` times: a frame stalled by
+    something else (another program, garbage collection, a page slow to draw) then costs a few
+    frames of caution instead of capping the model far below real time for good.
     """
+
+    MIN_STEPS = 10
+    MAX_RISE = 4.0
 
     def __init__(self, *, seconds_per_frame: float = 0.015, first_guess: float = 50e-6):
         self.seconds_per_frame = seconds_per_frame
         self.seconds_per_step = first_guess
+        self._steps, self._seconds = 0, 0.0  # small batches added up until MIN_STEPS
 
     def record(self, *, steps: int, seconds: float) -> None:
-        """Blend in the cost of a batch of steps (ignoring batches too small to time)."""
-        if steps >= 10 and seconds > 0:
-            self.seconds_per_step = 0.8 * self.seconds_per_step + 0.2 * seconds / steps
+        """Blend in the cost of a batch of steps (small batches are added up first)."""
+        if steps <= 0 or seconds <= 0:
+            return
+        self._steps += steps
+        self._seconds += seconds
+        if self._steps < self.MIN_STEPS:
+            return
+        cost = min(self._seconds / self._steps, self.MAX_RISE * self.seconds_per_step)
+        self.seconds_per_step = 0.8 * self.seconds_per_step + 0.2 * cost
+        self._steps, self._seconds = 0, 0.0
 
     @property
     def max_steps(self) -> int:

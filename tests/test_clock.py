@@ -166,8 +166,34 @@ def test_step_budget_follows_the_measured_cost():
     for _ in range(50):
         budget.record(steps=1000, seconds=0.02)  # 20 µs per step
     assert budget.max_steps == pytest.approx(500, rel=0.01)
-    budget.record(steps=1, seconds=5.0)  # too few steps to time: ignored
+    budget.record(steps=1, seconds=5.0)  # too few steps to time alone: held until there are 10
     assert budget.max_steps == pytest.approx(500, rel=0.01)
+
+
+def test_a_few_stalled_frames_do_not_cap_the_budget_for_good():
+    """Four frames stalled by something else (60 ms for 20 steps) must not latch max_steps low.
+
+    The old budget ignored frames under 10 steps, so once a stall pushed max_steps below 10 it
+    never rose again (measured: 8 steps a frame, 0.4 × real time at Δt = 1e-3 s; docs/long_run.md).
+    """
+    budget = StepBudget(seconds_per_frame=0.015, first_guess=50e-6)
+    assert budget.max_steps == 300
+    for _ in range(4):
+        budget.record(steps=20, seconds=0.060)  # 3 ms per step, 60 × the real cost
+    stalled = budget.max_steps
+    assert 1 <= stalled < 300
+    for _ in range(200):  # then normal frames at 50 µs per step, each running what it may
+        steps = budget.max_steps
+        budget.record(steps=steps, seconds=steps * 50e-6)
+    assert budget.max_steps == pytest.approx(300, rel=0.02)
+
+
+def test_frames_of_one_step_still_move_the_estimate():
+    budget = StepBudget(seconds_per_frame=0.015, first_guess=0.015)  # 15 ms per step: 1 step a frame
+    assert budget.max_steps == 1
+    for _ in range(300):
+        budget.record(steps=budget.max_steps, seconds=budget.max_steps * 50e-6)
+    assert budget.max_steps == pytest.approx(300, rel=0.02)
 
 
 def live(name, integrator="euler-cromer", **changes):
