@@ -301,7 +301,7 @@ def pixels_like(image, rgb, *, within: int = 40) -> int:
 def test_a_scene_runs_under_its_cell_and_pause_reaches_the_kernel(page):
     cell = scene_cell(page, "vertical")
     run(cell)
-    wait_until_running(cell)
+    wait_until_running(cell, past=4.0)  # a little over one period, for the screenshot's graphs
     assert "k = 40 N/m" in cell.inner_text()  # the scene's own constants, with units
 
     cell.get_by_role("button", name="Pause").click()
@@ -323,12 +323,12 @@ def test_a_scene_runs_under_its_cell_and_pause_reaches_the_kernel(page):
 @needs_browser
 def test_running_the_cell_again_starts_the_scene_again_from_0(page):
     cell = scene_cell(page, "vertical")
-    before = wait_for(lambda: (shown_time(cell) or 0) > 3.0 and shown_time(cell), timeout=60.0,
-                      what="t to pass 3 s")
+    wait_for(lambda: (shown_time(cell) or 0) > 10.0, timeout=60.0, what="t to pass 10 s")
+    before = shown_time(cell)  # t only grows while the scene runs, so a smaller t means a new run
     run(cell)
     first = wait_for(lambda: shown_time(cell) is not None and (shown_time(cell),), timeout=60.0,
                      what="the scene to show t again")[0]
-    assert first < before - 1.0, f"t went from {before} s to {first} s, not back to 0"
+    assert first < before, f"t went from {before} s to {first} s, not back to 0"
     assert cell.locator("b").filter(has_text=TIME).count() == 1  # the old output is gone
     assert cell.locator(".glowscript-canvas-wrapper").count() == 1
     wait_until_running(cell)
