@@ -16,7 +16,6 @@ Skipped, with the reason, where Chromium or Playwright is missing (.ci/run insta
 from __future__ import annotations
 
 import csv
-import math
 import os
 import queue
 import re
@@ -25,21 +24,17 @@ import subprocess
 import sys
 import threading
 import time
-from collections import Counter
 from pathlib import Path
 
 import pytest
 
+from browser_support import (CHROMIUM, CHROMIUM_ARGS, TIME, colours, curve_pixels, free_port,
+                             pixels_like, wait_for)
 from scenes import catalog
 from scenes.view import slider_range, time_decimals
 
 ROOT = Path(__file__).resolve().parent.parent
-CHROMIUM = "/usr/bin/chromium"
 SCREENSHOTS = ROOT / "docs" / "screenshots"
-CHROMIUM_ARGS = ["--no-sandbox", "--use-gl=angle", "--use-angle=swiftshader",
-                 "--enable-unsafe-swiftshader", "--disable-background-networking",
-                 "--disable-component-update", "--disable-sync", "--no-first-run"]
-TIME = re.compile(r"^\s*t = (-?\d+\.\d+) s\s*$")
 
 pytestmark = pytest.mark.browser
 if not os.path.exists(CHROMIUM):
@@ -69,12 +64,6 @@ def browser():
             yield chromium
         finally:
             chromium.close()
-
-
-def free_port() -> int:
-    with socket.socket() as sock:
-        sock.bind(("127.0.0.1", 0))
-        return sock.getsockname()[1]
 
 
 class Program:
@@ -132,26 +121,11 @@ def shown_time(page) -> float:
     return float(TIME.match(text).group(1))
 
 
-def wait_for(predicate, *, timeout: float = 30.0, what: str):
-    deadline = time.monotonic() + timeout
-    while time.monotonic() < deadline:
-        value = predicate()
-        if value:
-            return value
-        time.sleep(0.05)
-    pytest.fail(f"timed out waiting for {what}")
-
-
 def crop(path: Path, box: dict):
     """The part of a full-page screenshot inside an element's bounding box."""
     left, top = round(box["x"]), round(box["y"])
     return Image.open(path).convert("RGB").crop((left, top, left + round(box["width"]),
                                                  top + round(box["height"])))
-
-
-def colours(image) -> Counter:
-    """How many pixels of each (r, g, b) colour the image has."""
-    return Counter(dict((rgb, n) for n, rgb in image.getcolors(maxcolors=1 << 24)))
 
 
 def assert_not_blank(image, what: str):
@@ -173,12 +147,6 @@ def graph_boxes(page) -> list[dict]:
     return [graphs.nth(i).bounding_box() for i in range(graphs.count())]
 
 
-def pixels_like(image, rgb, *, within: int = 40) -> int:
-    """How many pixels are within `within` (summed over r, g, b) of the colour rgb."""
-    return sum(n for colour, n in colours(image).items()
-               if sum(abs(a - b) for a, b in zip(colour, rgb)) <= within)
-
-
 def menu(page, option: str):
     """The <select> that offers `option` (vpython's menus have no names)."""
     return page.locator("select").filter(has=page.locator("option", has_text=option))
@@ -186,16 +154,6 @@ def menu(page, option: str):
 
 def caption_lines(page) -> list[str]:
     return [line.strip() for line in page.locator("body").inner_text().splitlines()]
-
-
-def curve_pixels(image) -> int:
-    """Strongly coloured pixels in the left 40 % of a graph, where the curves start.
-
-    Grid lines and text are grey or black, and the legend sits at the top right, so these pixels
-    can only be drawn curves.
-    """
-    image = image.crop((0, 0, int(0.4 * image.width), image.height))
-    return sum(n for rgb, n in colours(image).items() if max(rgb) - min(rgb) > 80)
 
 
 @pytest.mark.parametrize("scene", drawable_scenes())

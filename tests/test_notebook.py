@@ -26,7 +26,6 @@ import json
 import os
 import re
 import secrets
-import socket
 import subprocess
 import sys
 import time
@@ -35,16 +34,13 @@ from pathlib import Path
 
 import pytest
 
+from browser_support import (CHROMIUM, CHROMIUM_ARGS, TIME, colours, curve_pixels, free_port,
+                             pixels_like, wait_for)
 from scenes import catalog
 
 ROOT = Path(__file__).resolve().parent.parent
 EXAMPLE = ROOT / "examples" / "scenes.ipynb"
-CHROMIUM = "/usr/bin/chromium"
 SCREENSHOT = ROOT / "docs" / "screenshots" / "notebook.png"
-CHROMIUM_ARGS = ["--no-sandbox", "--use-gl=angle", "--use-angle=swiftshader",
-                 "--enable-unsafe-swiftshader", "--disable-background-networking",
-                 "--disable-component-update", "--disable-sync", "--no-first-run"]
-TIME = re.compile(r"^\s*t = (-?\d+\.\d+) s\s*$")
 SHOW = re.compile(r'^show\("(\w+)"')
 
 
@@ -112,12 +108,6 @@ def _skip_reason() -> str | None:
 
 browser = pytest.mark.browser
 needs_browser = pytest.mark.skipif(_skip_reason() is not None, reason=str(_skip_reason()))
-
-
-def free_port() -> int:
-    with socket.socket() as sock:
-        sock.bind(("127.0.0.1", 0))
-        return sock.getsockname()[1]
 
 
 @pytest.fixture(scope="module")
@@ -206,16 +196,6 @@ def run(cell, timeout: float = 120.0) -> None:
              what="the cell to finish")
 
 
-def wait_for(predicate, *, timeout: float = 60.0, what: str):
-    deadline = time.monotonic() + timeout
-    while time.monotonic() < deadline:
-        value = predicate()
-        if value:
-            return value
-        time.sleep(0.1)
-    pytest.fail(f"timed out waiting for {what}")
-
-
 def shown_time(cell) -> float | None:
     """The t the scene's caption in this cell shows (`t = 1.23 s`), or None if it has none."""
     text = cell.locator("b").filter(has_text=TIME)
@@ -259,10 +239,6 @@ def look(where, **parts):
             for name, box in boxes.items()}
 
 
-def colours(image) -> dict:
-    return {rgb: n for n, rgb in image.getcolors(maxcolors=1 << 24)}
-
-
 def orange_pixels(image) -> int:
     """Pixels in the hue of the first mass, (1.0, 0.55, 0.1) lit and shaded: red > green > blue."""
     return sum(n for (r, g, b), n in colours(image).items()
@@ -282,18 +258,6 @@ def graph(cell, index: int):
 def assert_mass_drawn(image, what: str) -> None:
     assert image.height > 400, f"{what}: only {image.height} px of the 3-D canvas could be seen"
     assert orange_pixels(image) > 100, f"{what}: the 3-D canvas shows no orange mass"
-
-
-def curve_pixels(image) -> int:
-    """Strongly coloured pixels in the left 40 % of a graph, where the curves start (grid, text
-    and the legend's black are grey, and the legend sits at the top right)."""
-    left = image.crop((0, 0, int(0.4 * image.width), image.height))
-    return sum(n for rgb, n in colours(left).items() if max(rgb) - min(rgb) > 80)
-
-
-def pixels_like(image, rgb, *, within: int = 40) -> int:
-    return sum(n for colour, n in colours(image).items()
-               if sum(abs(a - b) for a, b in zip(colour, rgb)) <= within)
 
 
 @browser

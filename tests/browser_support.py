@@ -1,0 +1,58 @@
+"""What the real-browser tests share: how Chromium is launched, waiting, and reading screenshots.
+
+tests/test_browser.py (each scene's page) and tests/test_notebook.py (the scenes in a Jupyter
+notebook) both drive Debian's Chromium through Playwright and judge screenshots by their colours.
+"""
+from __future__ import annotations
+
+import re
+import socket
+import time
+from collections import Counter
+
+import pytest
+
+CHROMIUM = "/usr/bin/chromium"
+# SwiftShader's software WebGL: with plain --disable-gpu the 3-D canvas renders blank.
+CHROMIUM_ARGS = ["--no-sandbox", "--use-gl=angle", "--use-angle=swiftshader",
+                 "--enable-unsafe-swiftshader", "--disable-background-networking",
+                 "--disable-component-update", "--disable-sync", "--no-first-run"]
+TIME = re.compile(r"^\s*t = (-?\d+\.\d+) s\s*$")   # the caption's `t = 12.34 s`
+
+
+def free_port() -> int:
+    with socket.socket() as sock:
+        sock.bind(("127.0.0.1", 0))
+        return sock.getsockname()[1]
+
+
+def wait_for(predicate, *, timeout: float = 30.0, what: str):
+    """Poll predicate() until it returns something true, and return that; fail after `timeout` s."""
+    deadline = time.monotonic() + timeout
+    while time.monotonic() < deadline:
+        value = predicate()
+        if value:
+            return value
+        time.sleep(0.05)
+    pytest.fail(f"timed out waiting for {what}")
+
+
+def colours(image) -> Counter:
+    """How many pixels of each (r, g, b) colour the image has."""
+    return Counter(dict((rgb, n) for n, rgb in image.getcolors(maxcolors=1 << 24)))
+
+
+def pixels_like(image, rgb, *, within: int = 40) -> int:
+    """How many pixels are within `within` (summed over r, g, b) of the colour rgb."""
+    return sum(n for colour, n in colours(image).items()
+               if sum(abs(a - b) for a, b in zip(colour, rgb)) <= within)
+
+
+def curve_pixels(image) -> int:
+    """Strongly coloured pixels in the left 40 % of a graph, where the curves start.
+
+    Grid lines and text are grey or black, and the legend sits at the top right, so these pixels
+    can only be drawn curves.
+    """
+    image = image.crop((0, 0, int(0.4 * image.width), image.height))
+    return sum(n for rgb, n in colours(image).items() if max(rgb) - min(rgb) > 80)
