@@ -139,7 +139,7 @@ class Gravity:
 
     def __call__(self, t, r, v, m):
         # F = m g ĝ for every mass, written straight into a new array laid out like r
-        return np.multiply(m[:, None], self.g_vector, out=np.empty_like(r, dtype=float))
+        return np.multiply(m[:, None], self.g_vector, out=np.empty_like(r))
 
     def potential_energy(self, r, m):
         """U = m g h, with h measured up from the origin, J."""
@@ -208,7 +208,7 @@ class Driving:
 
     def __call__(self, t, r, v, m):
         # F = F0 cos(ω t) â for every mass, written into a new array laid out like r
-        return np.multiply(self.F0 * np.cos(self.omega * t), self.axis, out=np.empty_like(r, dtype=float))
+        return np.multiply(self.F0 * np.cos(self.omega * t), self.axis, out=np.empty_like(r))
 
 
 def uses_velocity(forces) -> bool:
