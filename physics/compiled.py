@@ -27,6 +27,7 @@ from __future__ import annotations
 
 import math
 import numbers
+import operator
 import re
 
 import numpy as np
@@ -86,11 +87,20 @@ def _value(x):
     return x.value if isinstance(x, Traced) else float(x)
 
 
+def _operator(symbol: str, compute, reflected: bool = False):
+    """The method for one arithmetic or comparison operator of Traced (reflected: other ∘ self)."""
+    def method(self, other):
+        if isinstance(other, np.ndarray):
+            return NotImplemented       # numpy broadcasts, and calls us once per element
+        a, b = (other, self) if reflected else (self, other)
+        return self._binary(symbol, a, b, compute(_value(a), _value(b)))
+    return method
+
+
 class Traced:
     """A number whose arithmetic is written down on a tape as well as worked out."""
 
     __slots__ = ("tape", "name", "value")
-    __array_priority__ = 0
 
     def __init__(self, tape: Tape, name: str, value):
         self.tape, self.name, self.value = tape, name, value
@@ -103,59 +113,27 @@ class Traced:
             return a
         return tape.write(f"{left} {symbol} {right}", value)
 
-    def __add__(self, other):
-        return self._binary("+", self, other, self.value + _value(other))
-
-    def __radd__(self, other):
-        return self._binary("+", other, self, _value(other) + self.value)
-
-    def __sub__(self, other):
-        return self._binary("-", self, other, self.value - _value(other))
-
-    def __rsub__(self, other):
-        return self._binary("-", other, self, _value(other) - self.value)
-
-    def __mul__(self, other):
-        return self._binary("*", self, other, self.value * _value(other))
-
-    def __rmul__(self, other):
-        return self._binary("*", other, self, _value(other) * self.value)
-
-    def __truediv__(self, other):
-        return self._binary("/", self, other, self.value / _value(other))
-
-    def __rtruediv__(self, other):
-        return self._binary("/", other, self, _value(other) / self.value)
-
-    def __pow__(self, other):
-        return self._binary("**", self, other, self.value ** _value(other))
+    __add__ = _operator("+", operator.add)
+    __radd__ = _operator("+", operator.add, reflected=True)
+    __sub__ = _operator("-", operator.sub)
+    __rsub__ = _operator("-", operator.sub, reflected=True)
+    __mul__ = _operator("*", operator.mul)
+    __rmul__ = _operator("*", operator.mul, reflected=True)
+    __truediv__ = _operator("/", operator.truediv)
+    __rtruediv__ = _operator("/", operator.truediv, reflected=True)
+    __pow__ = _operator("**", operator.pow)
+    __lt__ = _operator("<", operator.lt)
+    __le__ = _operator("<=", operator.le)
+    __gt__ = _operator(">", operator.gt)
+    __ge__ = _operator(">=", operator.ge)
+    __eq__ = _operator("==", operator.eq)
+    __ne__ = _operator("!=", operator.ne)
 
     def __neg__(self):
         return self.tape.write(f"-{self.name}", -self.value)
 
     def __abs__(self):
         return self.tape.write(f"abs({self.name})", abs(self.value))
-
-    def _compare(self, symbol, other, value):
-        return self._binary(symbol, self, other, value)
-
-    def __lt__(self, other):
-        return self._compare("<", other, self.value < _value(other))
-
-    def __le__(self, other):
-        return self._compare("<=", other, self.value <= _value(other))
-
-    def __gt__(self, other):
-        return self._compare(">", other, self.value > _value(other))
-
-    def __ge__(self, other):
-        return self._compare(">=", other, self.value >= _value(other))
-
-    def __eq__(self, other):
-        return self._compare("==", other, self.value == _value(other))
-
-    def __ne__(self, other):
-        return self._compare("!=", other, self.value != _value(other))
 
     __hash__ = None
 

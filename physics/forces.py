@@ -11,12 +11,15 @@ their potential energy per mass; the others are counted in the non-conservative 
 
 Every call returns a new array laid out like r (net_force adds into the first one). Anything
 that does not change in time, such as g times the direction of gravity, is worked out once when
-the force is made. A force whose uses_velocity is False never reads v, so a step may pass v = None.
+the force is made. A force whose uses_velocity is False never reads v, so a step may pass v = None; one whose
+couples_masses is False gives each mass a force from that mass alone, so masses may be stepped
+in separate groups (physics/simulate.py runs big batches that way).
 For motion along one line, give r the shape (N, 1) and the forces 1-component vectors:
 Spring(anchor=(0.0,)), Gravity(direction=(-1.0,)), Driving(axis=(1.0,)).
 """
 from __future__ import annotations
 
+import dataclasses
 from dataclasses import dataclass
 
 import numpy as np
@@ -54,6 +57,7 @@ class Spring:
     anchor: object = (0.0, 0.0, 0.0)
     conservative = True
     uses_velocity = False
+    couples_masses = False
 
     def __post_init__(self):
         object.__setattr__(self, "k", _per_mass(self.k))
@@ -100,14 +104,15 @@ class SpringBetween:
     j: int
     conservative = True
     uses_velocity = False
+    couples_masses = True
 
     def _stretch(self, r):
         L = r[self.i] - r[self.j]
-        return L, float(np.sqrt(L @ L))
+        return L, np.sqrt(L @ L)
 
     def __call__(self, t, r, v, m):
         L, length = self._stretch(r)
-        pull = -self.k * (length - self.L0) * L / length if length > 0 else np.zeros(3)
+        pull = -self.k * (length - self.L0) * L / length if length > 0 else np.zeros_like(L)
         F = np.zeros_like(r)
         F[self.i] += pull
         F[self.j] -= pull
@@ -132,6 +137,7 @@ class Gravity:
     direction: object = (0.0, -1.0, 0.0)
     conservative = True
     uses_velocity = False
+    couples_masses = False
 
     def __post_init__(self):
         object.__setattr__(self, "direction", _unit(self.direction))
@@ -156,6 +162,7 @@ class LinearDamping:
     b: object = 0.0
     conservative = False
     uses_velocity = True
+    couples_masses = False
 
     def __post_init__(self):
         object.__setattr__(self, "b", _per_mass(self.b))
@@ -177,6 +184,7 @@ class QuadraticDrag:
     rho: object = 0.0
     conservative = False
     uses_velocity = True
+    couples_masses = False
 
     def __post_init__(self):
         for name in ("C", "A", "rho"):
@@ -200,6 +208,7 @@ class Driving:
     axis: object = (1.0, 0.0, 0.0)
     conservative = False
     uses_velocity = False
+    couples_masses = False
 
     def __post_init__(self):
         object.__setattr__(self, "F0", _per_mass(self.F0))
@@ -209,6 +218,20 @@ class Driving:
     def __call__(self, t, r, v, m):
         # F = F0 cos(ω t) â for every mass, written into a new array laid out like r
         return np.multiply(self.F0 * np.cos(self.omega * t), self.axis, out=np.empty_like(r))
+
+
+def for_rows(force, rows: slice, count: int):
+    """The same force on masses `rows` of `count` alone: its per-mass parameters cut to those rows.
+
+    Per-mass parameters are the (count, ·) arrays (k, L0, b, per-mass anchors, ...); one value for
+    all masses stays as it is. Only for forces whose couples_masses is False.
+    """
+    cut = {}
+    for field in dataclasses.fields(force):
+        value = getattr(force, field.name)
+        if isinstance(value, np.ndarray) and value.ndim == 2 and value.shape[0] == count:
+            cut[field.name] = value[rows]
+    return dataclasses.replace(force, **cut) if cut else force
 
 
 def uses_velocity(forces) -> bool:
