@@ -6,9 +6,11 @@ period T = 2π √(m/k) = π s. physics.exact.single_mass_motion gives r(t) exac
 |r − r_exact| at t = 10 T, in m.
 
 Each of this project's integrators runs at Δt = T/n for several n (a method of order q gains q
-decades of accuracy per decade of cost). scipy's solve_ivp (RK45 and DOP853, adaptive steps) runs
-at several rtol on the same equations r' = p/m, p' = F_net, with the same physics force functions
-on the right-hand side, so both sides pay the same for one force evaluation.
+decades of accuracy per decade of cost), through physics.simulate.run (for one mass, the compiled
+float loop of physics/compiled.py) and, for comparison, as the numpy step in a bare loop. scipy's
+solve_ivp (RK45 and DOP853, adaptive steps) runs at several rtol on the same equations r' = p/m,
+p' = F_net, with the same physics force functions on the right-hand side, so it pays what the
+numpy step pays for one force evaluation.
 CPU time is time.process_time(), so waiting for the other core does not count.
 """
 from __future__ import annotations
@@ -22,6 +24,7 @@ import numpy as np
 from physics.exact import single_mass_motion
 from physics.forces import net_force
 from physics.integrators import INTEGRATORS
+from physics.simulate import run
 from physics.state import make_state, velocity
 from scenes.single_mass import forces_for
 
@@ -54,17 +57,25 @@ def cpu_seconds(function, minimum: float = 0.05):
 
 
 def integrator_error(name: str, per_period: int):
+    """(error m, CPU s through simulate.run, CPU s of the numpy step in a bare loop)."""
     state, forces, r_exact = _system()
     step, dt = INTEGRATORS[name], period / per_period
 
-    def run():
+    def numpy_steps():
         s = state
         for _ in range(10 * per_period):
             s = step(s, forces, dt)
         return s.r[0]
 
-    r, seconds = cpu_seconds(run)
-    return float(np.linalg.norm(r - r_exact)), seconds
+    def project_run():
+        return run(state, forces, dt=dt, until=t_end, integrator=name, record_every=None,
+                   growth_limit=math.inf).r[-1, 0]     # euler grows 10⁷-fold at T/10: report it
+
+    r, seconds = cpu_seconds(project_run)
+    r_numpy, numpy_seconds = cpu_seconds(numpy_steps)
+    if not np.allclose(r, r_numpy, rtol=1e-12, atol=1e-12):
+        raise RuntimeError(f"{name}: simulate.run and the numpy step disagree: {r} against {r_numpy}")
+    return float(np.linalg.norm(r - r_exact)), seconds, numpy_seconds
 
 
 def scipy_error(method: str, rtol: float):
@@ -81,23 +92,23 @@ def scipy_error(method: str, rtol: float):
     y0 = np.concatenate([state.r[0], state.p[0]])
     solution, seconds = cpu_seconds(
         lambda: solve_ivp(slopes, (0.0, t_end), y0, method=method, rtol=rtol, atol=rtol * 1e-2))
-    return float(np.linalg.norm(solution.y[:3, -1] - r_exact)), seconds, solution.nfev
+    return float(np.linalg.norm(solution.y[:3, -1] - r_exact)), seconds, solution.nfev, None
 
 
 def measure(settings):
-    """Rows (method, setting, error m, CPU s, force evaluations) for every method and setting."""
+    """Rows (method, setting, error m, CPU s, force evaluations, CPU s of the numpy step or None)."""
     per_period = settings.pick([10, 20, 50, 100, 200, 500, 1000, 2000], [10, 30, 100])
     evaluations = {"euler": 1, "euler-cromer": 1, "verlet": 2, "rk4": 4}
     rows = []
     for name in INTEGRATORS:
         for n in per_period:
-            error, seconds = integrator_error(name, n)
-            rows.append((name, f"Δt = T/{n}", error, seconds, evaluations[name] * 10 * n))
+            error, seconds, numpy_seconds = integrator_error(name, n)
+            rows.append((name, f"Δt = T/{n}", error, seconds, evaluations[name] * 10 * n, numpy_seconds))
     rtols = settings.pick([1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10, 1e-11, 1e-12], [1e-3, 1e-6, 1e-9])
     for method in ("RK45", "DOP853"):
         for rtol in rtols:
-            error, seconds, nfev = scipy_error(method, rtol)
-            rows.append((f"solve_ivp {method}", f"rtol = {rtol:.0e}", error, seconds, nfev))
+            error, seconds, nfev, _ = scipy_error(method, rtol)
+            rows.append((f"solve_ivp {method}", f"rtol = {rtol:.0e}", error, seconds, nfev, None))
     return rows
 
 
@@ -112,10 +123,14 @@ def plot(rows, path: str = PLOT) -> str | None:
     figure, axes = plt.subplots(figsize=(7.5, 5.0))
     for method in dict.fromkeys(row[0] for row in rows):
         mine = [row for row in rows if row[0] == method]
-        axes.loglog([row[3] for row in mine], [max(row[2], 1e-16) for row in mine], "o-", label=method)
+        errors = [max(row[2], 1e-16) for row in mine]
+        line, = axes.loglog([row[3] for row in mine], errors, "o-", label=method)
+        if mine[0][5] is not None:
+            axes.loglog([row[5] for row in mine], errors, ":", color=line.get_color(), alpha=0.6)
     axes.set_xlabel("CPU time for 10 periods (s)")
     axes.set_ylabel("position error |r − r_exact| at t = 10 T (m)")
-    axes.set_title("Accuracy per cost: hanging mass, k = 40 N/m, m = 10 kg, T = π s")
+    axes.set_title("Accuracy per cost: hanging mass, k = 40 N/m, m = 10 kg, T = π s\n"
+                   "solid: simulate.run (compiled float loop); dotted: the numpy step", fontsize=10)
     axes.grid(True, which="both", alpha=0.3)
     axes.legend()
     figure.tight_layout()
@@ -128,7 +143,7 @@ def plot(rows, path: str = PLOT) -> str | None:
 def cheapest_below(rows, tolerance: float):
     """For each method, the least CPU time that reaches an error ≤ tolerance (None if never)."""
     best = {}
-    for method, _, error, seconds, _ in rows:
+    for method, _, error, seconds, *_ in rows:
         if error <= tolerance and (best.get(method) is None or seconds < best[method]):
             best[method] = seconds
         best.setdefault(method, None)
@@ -139,8 +154,9 @@ def main(settings) -> dict:
     print(f"Part 4: accuracy per cost, hanging mass (k = {k:g} N/m, m = {m:g} kg), error at "
           f"t = 10 T = {t_end:.4f} s, CPU time by time.process_time()")
     rows = measure(settings)
-    print(table(["method", "setting", "error (m)", "CPU time", "force evaluations"],
-                [[a, b, f"{e:.2e}", f"{s * 1e3:.2f} ms", f"{n:,}"] for a, b, e, s, n in rows]))
+    print(table(["method", "setting", "error (m)", "CPU time", "force evaluations", "CPU, numpy step"],
+                [[a, b, f"{e:.2e}", f"{s * 1e3:.2f} ms", f"{n:,}", "-" if u is None else f"{u * 1e3:.2f} ms"]
+                 for a, b, e, s, n, u in rows]))
     for tolerance in (1e-3, 1e-6):
         best = cheapest_below(rows, tolerance)
         print(f"cheapest CPU time to reach error ≤ {tolerance:g} m: " + ", ".join(
