@@ -121,13 +121,19 @@ class Traced:
     __rmul__ = _operator("*", operator.mul, reflected=True)
     __truediv__ = _operator("/", operator.truediv)
     __rtruediv__ = _operator("/", operator.truediv, reflected=True)
-    __pow__ = _operator("**", operator.pow)
     __lt__ = _operator("<", operator.lt)
     __le__ = _operator("<=", operator.le)
     __gt__ = _operator(">", operator.gt)
     __ge__ = _operator(">=", operator.ge)
     __eq__ = _operator("==", operator.eq)
     __ne__ = _operator("!=", operator.ne)
+
+    def __pow__(self, other):
+        # math.pow, not **: a negative base to a fractional power raises (numpy gives NaN there)
+        # instead of turning into a complex number.
+        if isinstance(other, np.ndarray):
+            return NotImplemented
+        return self.tape.write(f"_pow({self.name}, {self.tape.operand(other)})", math.pow(self.value, _value(other)))
 
     def __neg__(self):
         return self.tape.write(f"-{self.name}", -self.value)
@@ -191,7 +197,8 @@ class CompiledLoop:
                 raise Untraceable("the step changed the number of masses")
             names = ["t"] + [f"r{i}" for i in range(size)] + [f"p{i}" for i in range(size)]
             self.source = _loop_source(tape, names, [tape.operand(x) for x in outputs])
-            namespace = {"_sqrt": math.sqrt, "_cos": math.cos, "_sin": math.sin, **tape.constants}
+            namespace = {"_sqrt": math.sqrt, "_cos": math.cos, "_sin": math.sin, "_pow": math.pow,
+                         **tape.constants}
             exec(compile(self.source, "<compiled step>", "exec"), namespace)
             self._loop = namespace["advance"]
         except Exception:   # whatever the trace cannot follow, the numpy step still can

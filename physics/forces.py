@@ -19,7 +19,7 @@ Spring(anchor=(0.0,)), Gravity(direction=(-1.0,)), Driving(axis=(1.0,)).
 """
 from __future__ import annotations
 
-import dataclasses
+import copy
 from dataclasses import dataclass
 
 import numpy as np
@@ -29,6 +29,11 @@ def _per_mass(value) -> np.ndarray | float:
     """A scalar parameter, or an (N,) array reshaped to (N, 1) so it multiplies (N, 3) rows."""
     array = np.asarray(value, dtype=float)
     return float(array) if array.ndim == 0 else array.reshape(-1, 1)
+
+
+def _new_like(r: np.ndarray) -> np.ndarray:
+    """An empty array laid out like r, of floats (or of traced numbers, see physics/compiled.py)."""
+    return np.empty_like(r, dtype=np.result_type(r, float))
 
 
 def magnitude(vectors: np.ndarray) -> np.ndarray:
@@ -145,7 +150,7 @@ class Gravity:
 
     def __call__(self, t, r, v, m):
         # F = m g ĝ for every mass, written straight into a new array laid out like r
-        return np.multiply(m[:, None], self.g_vector, out=np.empty_like(r))
+        return np.multiply(m[:, None], self.g_vector, out=_new_like(r))
 
     def potential_energy(self, r, m):
         """U = m g h, with h measured up from the origin, J."""
@@ -217,21 +222,22 @@ class Driving:
 
     def __call__(self, t, r, v, m):
         # F = F0 cos(ω t) â for every mass, written into a new array laid out like r
-        return np.multiply(self.F0 * np.cos(self.omega * t), self.axis, out=np.empty_like(r))
+        return np.multiply(self.F0 * np.cos(self.omega * t), self.axis, out=_new_like(r))
 
 
 def for_rows(force, rows: slice, count: int):
     """The same force on masses `rows` of `count` alone: its per-mass parameters cut to those rows.
 
     Per-mass parameters are the (count, ·) arrays (k, L0, b, per-mass anchors, ...); one value for
-    all masses stays as it is. Only for forces whose couples_masses is False.
+    all masses stays as it is. The force is copied, not made again, so nothing worked out when it
+    was made (a unit axis, g ĝ) is worked out a second time. Only for forces whose
+    couples_masses is False.
     """
-    cut = {}
-    for field in dataclasses.fields(force):
-        value = getattr(force, field.name)
+    cut = copy.copy(force)
+    for name, value in vars(force).items():
         if isinstance(value, np.ndarray) and value.ndim == 2 and value.shape[0] == count:
-            cut[field.name] = value[rows]
-    return dataclasses.replace(force, **cut) if cut else force
+            object.__setattr__(cut, name, value[rows])
+    return cut
 
 
 def uses_velocity(forces) -> bool:

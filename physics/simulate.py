@@ -25,7 +25,12 @@ BLOCK_NUMBERS = 2 ** 17    # numbers per (rows, D) array (1 MB) when a big batch
 
 
 class BlowUpError(RuntimeError):
-    """The state became non-finite or grew without bound: Δt is too large for this method."""
+    """The state became non-finite or grew without bound: Δt is too large for this method.
+
+    t is the time of the check that found it, in s.
+    """
+
+    t: float = math.nan
 
 
 def fastest_angular_frequency(forces, m) -> float:
@@ -166,15 +171,12 @@ def run(state: State, forces, *, dt: float, until: float, integrator="euler-crom
     numpy calls on arrays of 3 numbers. compiled=False keeps to the numpy step throughout.
     A big batch of masses that do not act on one another runs a block of masses at a time.
     """
-    if _in_blocks(state, forces, integrator, with_energy):
-        return _run_in_blocks(state, forces, dt=dt, until=until, integrator=integrator,
-                              growth_limit=growth_limit, record_every=record_every, compiled=compiled)
     step = stepper(integrator)
     n = steps_to_reach(until - state.t, dt)
     every = _recording_interval(n, record_every)
     samples = 1 + n // every + (n % every != 0)       # the start, every n-th step, the last one
     omega = fastest_angular_frequency(forces, state.m)
-    scale = _motion_scale(state, forces, omega)
+    limit = _motion_scale(state, forces, omega) * growth_limit
     t = np.empty(samples)
     r = np.empty((samples,) + state.r.shape)
     p = np.empty_like(r)
@@ -183,56 +185,79 @@ def run(state: State, forces, *, dt: float, until: float, integrator="euler-crom
     energy = {key: np.empty(samples) for key in ("K", "U", "E", "W_nc", "E_minus_W_nc")} if with_energy else None
     if with_energy:
         _store(energy, 0, report(state, forces, meter.work))
-    sample = 0
-    loop = (compile_loop(step, forces, dt, state)
-            if compiled and not with_energy and isinstance(integrator, str) and n >= COMPILE_FROM_STEPS
-            else None)
+
+    def check(now: State, now_forces):
+        _check(now, now_forces, limit, lambda: stability_advice(
+            integrator, dt, omega, damping_rate=fastest_damping_rate(forces, state.m)))
+
+    compiled = compiled and isinstance(integrator, str)
     # A blow-up may overflow to inf and NaN between two checks; _check then reports it in one
     # sentence, so numpy's overflow warnings would only print noise.
     with np.errstate(over="ignore", invalid="ignore"):
-        if loop is not None:
-            limit = scale * growth_limit
-            _run_compiled(loop, state, n, every, t, r, p,
-                          check=lambda now: _check(now, forces, dt, integrator, omega, limit))
-            return Trajectory(t=t, r=r, p=p, m=state.m, energy=None)
-        for i in range(1, n + 1):
-            state = step(state, forces, dt)
-            if with_energy:
-                work = meter.advance(state)      # W_nc = ∫ P_nc dt needs every step
-            if i % every == 0 or i == n:
-                sample += 1
-                t[sample], r[sample], p[sample] = state.t, state.r, state.p
-                if with_energy:
-                    _store(energy, sample, report(state, forces, work))
-            if i % CHECK_EVERY == 0 or i == n:
-                _check(state, forces, dt, integrator, omega, scale * growth_limit)
+        if _in_blocks(state, forces, integrator, with_energy):
+            _steps_in_blocks(state, forces, step, dt, n, every, t, r, p, check, compiled=compiled)
+        else:
+            _steps(state, forces, step, dt, n, every, t, r, p, check, compiled=compiled,
+                   meter=meter, energy=energy)
     return Trajectory(t=t, r=r, p=p, m=state.m, energy=energy)
 
 
+def _steps(state: State, forces, step, dt: float, n: int, every: int, t, r, p, check, *,
+           compiled: bool, meter=None, energy=None):
+    """Take n steps from `state`, writing samples 1, 2, ... into t, r, p (and energy), and call
+    check(state, forces) every CHECK_EVERY steps and after the last."""
+    loop = (compile_loop(step, forces, dt, state)
+            if compiled and meter is None and n >= COMPILE_FROM_STEPS else None)
+    if loop is not None:
+        _run_compiled(loop, state, n, every, t, r, p, check=lambda now: check(now, forces))
+        return
+    sample = 0
+    for i in range(1, n + 1):
+        state = step(state, forces, dt)
+        if meter is not None:
+            work = meter.advance(state)      # W_nc = ∫ P_nc dt needs every step
+        if i % every == 0 or i == n:
+            sample += 1
+            t[sample], r[sample], p[sample] = state.t, state.r, state.p
+            if meter is not None:
+                _store(energy, sample, report(state, forces, work))
+        if i % CHECK_EVERY == 0 or i == n:
+            check(state, forces)
+
+
 def _in_blocks(state: State, forces, integrator, with_energy: bool) -> bool:
-    """Whether run() should step this batch in blocks of rows (see _run_in_blocks)."""
-    return (state.r.size > BLOCK_NUMBERS and isinstance(integrator, str) and not with_energy
+    """Whether run() should step this batch in blocks of masses (see _steps_in_blocks)."""
+    block = BLOCK_NUMBERS // state.r.shape[1]
+    return (state.count > block and isinstance(integrator, str) and not with_energy
             and not any(getattr(force, "couples_masses", True) for force in forces))
 
 
-def _run_in_blocks(state: State, forces, **options) -> Trajectory:
-    """run() for a block of masses at a time, each block from the start to the end.
+def _steps_in_blocks(state: State, forces, step, dt: float, n: int, every: int, t, r, p, check, *,
+                     compiled: bool):
+    """_steps for a block of masses at a time, each block from the start to the end.
 
     The masses do not act on one another, so each block's steps are exactly the steps it would
     take inside the whole batch. A block's arrays (BLOCK_NUMBERS numbers, 1 MB each) stay in the
     processor's cache through all its steps, where the whole batch's (24 MB each for 10⁶ masses
     in 3-D) would stream through memory on every step: 2–3× slower (docs/performance.md).
+    Every block is checked at the same steps against the whole batch's limit, and the earliest
+    blow-up of any block is the one raised, so the outcome is that of the whole batch.
     """
     count = state.count
-    block = max(1, BLOCK_NUMBERS // state.r.shape[1])
-    parts = []
+    block = BLOCK_NUMBERS // state.r.shape[1]
+    first = None
     for start in range(0, count, block):
         rows = slice(start, min(count, start + block))
         part = State(t=state.t, r=np.asfortranarray(state.r[rows]), p=np.asfortranarray(state.p[rows]),
                      m=state.m[rows])
-        parts.append(run(part, [for_rows(force, rows, count) for force in forces], **options))
-    return Trajectory(t=parts[0].t, r=np.concatenate([part.r for part in parts], axis=1),
-                      p=np.concatenate([part.p for part in parts], axis=1), m=state.m)
+        try:
+            _steps(part, [for_rows(force, rows, count) for force in forces], step, dt, n, every,
+                   t, r[:, rows], p[:, rows], check, compiled=compiled)
+        except BlowUpError as error:
+            if first is None or error.t < first.t:
+                first = error
+    if first is not None:
+        raise first
 
 
 def _run_compiled(loop, state: State, n: int, every: int, t, r, p, check):
@@ -281,12 +306,14 @@ def _motion_scale(state: State, forces, omega: float) -> float:
     return float(offset + speed / omega + np.max(spring.L0) + 9.8 / omega**2 + 1.0)
 
 
-def _check(state: State, forces, dt, integrator, omega, limit):
+def _check(state: State, forces, limit: float, advice):
+    """Raise BlowUpError if the state is not finite or a mass is beyond `limit` from its anchor."""
     finite = np.all(np.isfinite(state.r)) and np.all(np.isfinite(state.p))
     springs = [f for f in forces if isinstance(f, Spring)]
     too_far = finite and springs and np.max(np.linalg.norm(state.r - springs[0].anchor, axis=-1)) > limit
     if not finite or too_far:
-        raise BlowUpError(
+        error = BlowUpError(
             f"the simulation blew up by t = {state.t:.4g} s ({'non-finite state' if not finite else 'motion growing without bound'}): "
-            + stability_advice(integrator, dt, omega,
-                               damping_rate=fastest_damping_rate(forces, state.m)))
+            + advice())
+        error.t = state.t
+        raise error

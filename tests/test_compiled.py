@@ -159,7 +159,8 @@ def test_a_big_batch_run_in_blocks_takes_the_same_steps(monkeypatch):
     start = make_state(r=np.column_stack([rng.uniform(-0.3, 0.3, N), np.full(N, -1.5), np.zeros(N)]),
                        v=rng.uniform(-0.5, 0.5, (N, 3)), m=rng.uniform(1.0, 5.0, N))
     forces = (Spring(k=rng.uniform(20, 60, N), L0=rng.uniform(0.8, 1.2, N), anchor=rng.uniform(-1, 1, (N, 3))),
-              Gravity(g=9.8), LinearDamping(b=rng.uniform(0, 1, N)), Driving(F0=1.0, omega=rng.uniform(1, 5, N)))
+              Gravity(g=9.8, direction=(0.3, -1.0, 0.2)), LinearDamping(b=rng.uniform(0, 1, N)),
+              Driving(F0=1.0, omega=rng.uniform(1, 5, N), axis=(1.0, 1.0, 0.0)))
     whole = run(start, forces, dt=1e-3, until=2.0, record_every=100)
     monkeypatch.setattr(simulate, "BLOCK_NUMBERS", 36)       # blocks of 12 masses: 12, 12, 12, 12, 2
     assert simulate._in_blocks(start, forces, "euler-cromer", False)
@@ -170,3 +171,36 @@ def test_a_big_batch_run_in_blocks_takes_the_same_steps(monkeypatch):
     np.testing.assert_array_equal(blocks.p, whole.p)
     coupled = forces + (SpringBetween(k=1.0, L0=1.0, i=0, j=1),)
     assert not simulate._in_blocks(start, coupled, "euler-cromer", False), "a chain must stay whole"
+
+
+def test_a_batch_in_blocks_blows_up_as_the_whole_batch_does(monkeypatch):
+    """The earliest blow-up of any block, with the whole batch's ω in the advice."""
+    import physics.simulate as simulate
+    N = 40
+    k = np.full(N, 40.0)
+    k[25] = 90_000.0          # one stiff spring: ω Δt = 3 > 2 at Δt = 0.01 s, in the third block
+    k[5] = 40_030.0           # ω Δt = 2.0007: grows more slowly, in the first block
+    start = make_state(r=np.tile((0.0, -1.5, 0.0), (N, 1)), m=1.0)
+    forces = (Spring(k=k, L0=1.0), Gravity(g=9.8))
+    with pytest.raises(BlowUpError) as whole:
+        run(start, forces, dt=0.01, until=100.0, record_every=None)
+    monkeypatch.setattr(simulate, "BLOCK_NUMBERS", 30)        # blocks of 10 masses
+    assert simulate._in_blocks(start, forces, "euler-cromer", False)
+    with pytest.raises(BlowUpError) as blocks:
+        run(start, forces, dt=0.01, until=100.0, record_every=None)
+    assert str(blocks.value) == str(whole.value)
+    assert "ω = 300 rad/s" in str(blocks.value)
+
+
+def test_a_negative_base_to_a_fractional_power_is_left_to_numpy():
+    """math.pow raises where ** would give a complex number; numpy's NaN then ends the run."""
+    class Strange:
+        conservative, uses_velocity = True, False
+
+        def __call__(self, t, r, v, m):
+            return -(r ** 1.5)      # NaN once a component goes negative
+
+    start = make_state(r=(1.0, 0.5, 0.2), v=(-3.0, 0.0, 0.0), m=1.0)
+    for compiled in (True, False):
+        with pytest.raises(BlowUpError, match="non-finite"):
+            run(start, (Strange(),), dt=0.01, until=10.0, compiled=compiled)
