@@ -77,7 +77,8 @@ class Tape:
             raise Untraceable(f"cannot trace an operation with {type(x).__name__}")
         value = float(x)
         if math.isfinite(value):
-            return f"({value!r})" if value < 0 or (value == 0 and math.copysign(1, value) < 0) else repr(value)
+            negative = math.copysign(1.0, value) < 0          # −0.0 too
+            return f"({value!r})" if negative else repr(value)
         name = f"_c{len(self.constants)}"
         self.constants[name] = value
         return name
@@ -109,7 +110,8 @@ class Traced:
         tape = self.tape
         left, right = tape.operand(a), tape.operand(b)
         # x − 0, x × 1 and x ÷ 1 are exactly x (signed zeros and NaN included): write nothing.
-        if isinstance(a, Traced) and ((symbol == "-" and right == "0.0") or (symbol in "*/" and right == "1.0")):
+        exact = (symbol == "-" and right == "0.0") or (symbol in ("*", "/") and right == "1.0")
+        if isinstance(a, Traced) and exact:
             return a
         return tape.write(f"{left} {symbol} {right}", value)
 
@@ -133,7 +135,8 @@ class Traced:
         # instead of turning into a complex number.
         if isinstance(other, np.ndarray):
             return NotImplemented
-        return self.tape.write(f"_pow({self.name}, {self.tape.operand(other)})", math.pow(self.value, _value(other)))
+        exponent = self.tape.operand(other)
+        return self.tape.write(f"_pow({self.name}, {exponent})", math.pow(self.value, _value(other)))
 
     def __neg__(self):
         return self.tape.write(f"-{self.name}", -self.value)

@@ -11,9 +11,9 @@ their potential energy per mass; the others are counted in the non-conservative 
 
 Every call returns a new array laid out like r (net_force adds into the first one). Anything
 that does not change in time, such as g times the direction of gravity, is worked out once when
-the force is made. A force whose uses_velocity is False never reads v, so a step may pass v = None; one whose
-couples_masses is False gives each mass a force from that mass alone, so masses may be stepped
-in separate groups (physics/simulate.py runs big batches that way).
+the force is made. A force whose uses_velocity is False never reads v, so a step may pass
+v = None. A force whose couples_masses is False gives each mass a force from that mass alone, so
+masses may be stepped in separate groups (physics/simulate.py runs big batches that way).
 For motion along one line, give r the shape (N, 1) and the forces 1-component vectors:
 Spring(anchor=(0.0,)), Gravity(direction=(-1.0,)), Driving(axis=(1.0,)).
 """
