@@ -216,8 +216,7 @@ class CompiledLoop:
         """
         while done < stop:
             if self._loop is not None:
-                values = [state.t, *state.r.ravel().tolist(), *state.p.ravel().tolist()]
-                done, values = self._loop(values, done, stop, every, total, record)
+                done, values = self._loop(_flat(state), done, stop, every, total, record)
                 state = self._state(values)
                 if done == stop:
                     break
@@ -225,7 +224,7 @@ class CompiledLoop:
             state = self.step(state, self.forces, self.dt)
             done += 1
             if done % every == 0 or done == total:
-                record((state.t, *state.r.ravel().tolist(), *state.p.ravel().tolist()))
+                record(tuple(_flat(state)))
             if self.traces < MAX_TRACES:
                 self._trace(state)
         return state
@@ -235,6 +234,11 @@ class CompiledLoop:
         r = np.array(values[1:size + 1]).reshape(self.shape, order="C")
         p = np.array(values[size + 1:]).reshape(self.shape, order="C")
         return State(t=values[0], r=np.asfortranarray(r), p=np.asfortranarray(p), m=self.m)
+
+
+def _flat(state: State) -> list:
+    """[t, r_0, r_1, ..., p_0, p_1, ...]: the loop's variables, as plain floats."""
+    return [state.t, *state.r.ravel().tolist(), *state.p.ravel().tolist()]
 
 
 def _loop_source(tape: Tape, names: list[str], outputs: list[str]) -> str:

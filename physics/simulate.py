@@ -225,10 +225,14 @@ def _steps(state: State, forces, step, dt: float, n: int, every: int, t, r, p, c
             check(state, forces)
 
 
+def _block_rows(state: State) -> int:
+    """Masses in one block of _steps_in_blocks: BLOCK_NUMBERS numbers of r."""
+    return BLOCK_NUMBERS // state.r.shape[1]
+
+
 def _in_blocks(state: State, forces, integrator, with_energy: bool) -> bool:
     """Whether run() should step this batch in blocks of masses (see _steps_in_blocks)."""
-    block = BLOCK_NUMBERS // state.r.shape[1]
-    return (state.count > block and isinstance(integrator, str) and not with_energy
+    return (state.count > _block_rows(state) and isinstance(integrator, str) and not with_energy
             and not any(getattr(force, "couples_masses", True) for force in forces))
 
 
@@ -244,7 +248,7 @@ def _steps_in_blocks(state: State, forces, step, dt: float, n: int, every: int, 
     blow-up of any block is the one raised, so the outcome is that of the whole batch.
     """
     count = state.count
-    block = BLOCK_NUMBERS // state.r.shape[1]
+    block = _block_rows(state)
     first = None
     for start in range(0, count, block):
         rows = slice(start, min(count, start + block))
@@ -270,12 +274,12 @@ def _run_compiled(loop, state: State, n: int, every: int, t, r, p, check):
         state = loop.advance(state, done, stop, every=every, total=n, record=rows.append)
         done = stop
         if rows:
-            block = np.array(rows)
+            recorded = np.array(rows)
             size = state.r.size
             end = sample + len(rows)
-            t[sample:end] = block[:, 0]
-            r[sample:end] = block[:, 1:size + 1].reshape((-1,) + state.r.shape)
-            p[sample:end] = block[:, size + 1:].reshape((-1,) + state.r.shape)
+            t[sample:end] = recorded[:, 0]
+            r[sample:end] = recorded[:, 1:size + 1].reshape((-1,) + state.r.shape)
+            p[sample:end] = recorded[:, size + 1:].reshape((-1,) + state.r.shape)
             sample = end
             rows.clear()
         check(state)

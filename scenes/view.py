@@ -704,8 +704,9 @@ class SceneView:
         if not self.show_exact:
             return ""
         model, state = self.live.model, self.live.state
-        if state.t > self._exact_valid_until(state.t):
-            return (f"no exact value after t = {self._exact_valid_until(state.t):.3g} s: the closed form "
+        valid_until = self._exact_valid_until(state.t)
+        if state.t > valid_until:
+            return (f"no exact value after t = {valid_until:.3g} s: the closed form "
                     f"stops holding {model.exact_limit}")
         exact = model.exact(np.array([state.t]))[0][0]
         errors = state.r[:, self.axes] - exact[:, self.axes]
