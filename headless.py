@@ -26,9 +26,9 @@ from dataclasses import dataclass
 import numpy as np
 
 from physics.forces import net_force
-from physics.integrators import DEFAULT_INTEGRATOR, STABILITY_LIMIT_OMEGA_DT
-from physics.simulate import (Trajectory, fastest_angular_frequency, fastest_damping_rate, run,
-                              stability_advice, steps_to_reach)
+from physics.integrators import INTEGRATORS, describe
+from physics.simulate import BlowUpError, RunTooLong, check_cost, every, steps_to_reach, time_grid, trajectory
+from physics.stability import judge
 from physics.state import velocity
 from scenes.constants import ConstantError
 
@@ -39,11 +39,9 @@ CSV_HEADER = ["t", "x", "y", "z", "vx", "vy", "vz", "px", "py", "pz", *ENERGY_KE
 SIGNIFICANT = 6
 
 
-# A headless run keeps every step in memory (for the CSV file and the figure): about 100 bytes per
-# step and mass, and a few tens of microseconds each. Longer runs are refused before they start;
-# runs past PROGRESS_AFTER report their progress on stderr.
-MAX_MASS_STEPS = 2_000_000     # steps × masses
-PROGRESS_AFTER = 200_000       # steps × masses
+# A run is refused before it starts if the engine estimates it longer than MAX_RUN_SECONDS
+# (physics.simulate.check_cost); each row of a CSV file or figure adds ROW_SECONDS to that.
+ROW_SECONDS = 25e-6           # s per row: csv.writer measured 24.6 s for 1,000,001 rows here
 MAX_TABLE_ROWS = 10_000        # rows of the step table (steps × masses)
 STDOUT = "-"                   # the file name that means standard output
 
@@ -77,16 +75,14 @@ def vector(v, unit: str = "", digits: int = SIGNIFICANT) -> str:
 
 @dataclass(frozen=True)
 class Result:
-    """A finished headless run: the scene's setup and model, the method used, and every step."""
+    """A finished headless run: the scene's setup and model, the method used, the steps taken and
+    the recorded ones (every step, or the start and the end)."""
 
     setup: object
     model: object
     integrator: object  # a name, or one name per mass for scenes that compare methods
-    trajectory: Trajectory
-
-    @property
-    def steps(self) -> int:
-        return len(self.trajectory.t) - 1
+    trajectory: object  # physics.simulate.Trajectory
+    steps: int
 
     @property
     def labels(self) -> tuple:
@@ -117,87 +113,55 @@ class Result:
         return f"the closed form stops holding at t = {number(t_break, 4)} s, {self.model.exact_limit}"
 
 
-def method_for(model, integrator: str | None):
-    """The integrator actually used: the scene's own list if it compares methods, else the chosen one."""
-    if model.integrators is not None:
-        return tuple(model.integrators)
-    return integrator or DEFAULT_INTEGRATOR
+def step_count(model, *, until: float, rows_per_step: float = 0.0) -> int:
+    """How many steps of Δt a run from the model's start to `until` takes, if it fits in time.
 
-
-def step_count(model, *, until: float) -> int:
-    """How many steps of Δt a run from the model's start to `until` takes.
-
-    Raises TooManySteps, naming the count and what to change, past MAX_MASS_STEPS (steps × masses).
+    Raises TooManySteps, before any step is taken, when the run would take longer than
+    MAX_RUN_SECONDS on the reference machine (the engine's own cost estimate, plus
+    ROW_SECONDS for each row written), naming the count and the longest --until that fits.
     """
-    dt, start, masses = model.dt, model.state.t, model.state.count
-    ratio = (until - start) / dt
-    n = steps_to_reach(until - start, dt) if math.isfinite(ratio) else math.inf
-    if n * masses <= MAX_MASS_STEPS:
-        return n
-    count = f"{n:,} steps" if math.isfinite(n) else "more than 10³⁰⁸ steps"
-    if masses > 1:
-        total = f"{n * masses:,}" if math.isfinite(n) else "more than 10³⁰⁸"
-        count += f" of {masses} masses, {total} mass-steps"
-    longest = start + MAX_MASS_STEPS // masses * dt
-    raise TooManySteps(
-        f"a run to t = {number(until)} s with dt = {number(dt)} s is {count}, more than the "
-        f"{MAX_MASS_STEPS:,} a headless run takes; use a larger dt, or a smaller --until "
-        f"(at most {number(longest)} s with dt = {number(dt)} s)")
+    try:
+        return check_cost(model.simulation(), until=until, extra_per_step=rows_per_step * ROW_SECONDS)
+    except RunTooLong as problem:
+        raise TooManySteps(str(problem)) from None
 
 
 def simulate(setup, *, model=None, integrator: str | None = None, until: float | None = None,
-             progress=sys.stderr) -> Result:
+             every_step: bool = True, progress="stderr") -> Result:
     """Run a configured scene (scenes.catalog.Setup) from its start to `until` (default: its question time).
 
-    Runs longer than PROGRESS_AFTER steps × masses write their progress to the stream `progress`
-    (None: silently). Raises TooManySteps past MAX_MASS_STEPS, before any step is taken, and
+    every_step  record every step (for --csv and --plot); else only the end, and the window a
+                scene measures in (resonance: the steady-state amplitudes)
+    Runs that take more than a second or so write their progress to the stream `progress`
+    (standard error by default; None: silently). Raises TooManySteps past MAX_RUN_SECONDS, before any step is taken, and
     physics.simulate.BlowUpError when Δt is too large for the method.
     """
     model = model if model is not None else setup.build()
-    method = method_for(model, integrator)
+    engine = model.simulation(integrator)
     until = model.until if until is None else until
-    n = step_count(model, until=until)
-    if progress is None or n * model.state.count <= PROGRESS_AFTER:
-        trajectory = run(model.state, model.forces, dt=model.dt, until=until, integrator=method,
-                         with_energy=True)
+    step_count(model, until=until, rows_per_step=model.state.count if every_step else 0)
+    if every_step:
+        record = every(1)
     else:
-        trajectory = _run_in_parts(model, method, steps=n, progress=progress)
-    return Result(setup=setup, model=model, integrator=method, trajectory=trajectory)
+        window = getattr(setup.module, "measure_window", None)
+        record = None if window is None else time_grid(
+            model.dt, t0=model.state.t, dt=model.dt, **dict(zip(("start", "end"), window(setup.values))))
+    stream = sys.stderr if progress == "stderr" else progress     # looked up now, not at import
+    samples = engine.run_until(until, record=record, progress=_progress_printer(stream))
+    return Result(setup=setup, model=model, integrator=engine.integrator,
+                  trajectory=trajectory(engine, samples), steps=engine.steps)
 
 
-def _run_in_parts(model, method, *, steps: int, progress, parts: int = 10) -> Trajectory:
-    """The same run as physics.simulate.run, in `parts` stretches with a progress line after each.
+def _progress_printer(stream):
+    """progress(done, total, t) for the engine: a line on `stream` (one line, redrawn, on a terminal)."""
+    if stream is None:
+        return None
+    tty = hasattr(stream, "isatty") and stream.isatty()
 
-    Each stretch starts from the state the one before ended with, so the steps are exactly those
-    of one long run. The work meter starts again at 0 for each stretch, so the work done before it
-    is added back in. Only the blow-up guard differs: it measures growth from each stretch's start.
-    """
-    dt, m = model.dt, model.state.m
-    t = np.empty(steps + 1)
-    r = np.empty((steps + 1,) + model.state.r.shape)
-    p = np.empty_like(r)
-    energy = {key: np.empty(steps + 1) for key in ("K", "U", "E", "W_nc", "E_minus_W_nc")}
-    state, done, work_before = model.state, 0, 0.0
-    tty = hasattr(progress, "isatty") and progress.isatty()
-    for part in range(1, parts + 1):
-        length = steps * part // parts - done
-        if length == 0:
-            continue
-        piece = run(state, model.forces, dt=dt, until=state.t + length * dt, integrator=method,
-                    with_energy=True)
-        rows = slice(done, done + length + 1)
-        t[rows], r[rows], p[rows] = piece.t, piece.r, piece.p
-        for key in ("K", "U", "E"):
-            energy[key][rows] = piece.energy[key]
-        energy["W_nc"][rows] = piece.energy["W_nc"] + work_before
-        energy["E_minus_W_nc"][rows] = piece.energy["E_minus_W_nc"] - work_before
-        work_before = float(energy["W_nc"][done + length])
-        state, done = piece.final, done + length
-        line = (f"running: {done:,} of {steps:,} steps ({100 * done // steps} %), "
-                f"t = {number(state.t)} s")
-        print(("\r" + line) if tty else line, end="" if tty and done < steps else "\n",
-              file=progress, flush=True)
-    return Trajectory(t=t, r=r, p=p, m=m, energy=energy)
+    def progress(done, total, t):
+        line = f"running: {done:,} of {total:,} steps ({100 * done // total} %), t = {number(t)} s"
+        print(("\r" + line) if tty else line, end="" if tty else "\n", file=stream, flush=True)
+    return progress
 
 
 def stop_note(model, *, until: float) -> str | None:
@@ -219,36 +183,23 @@ def ignored_integrator_note(model, integrator: str | None) -> str | None:
             f"--integrator {integrator} is ignored")
 
 
-def _stable(name: str, *, omega: float, rate: float, dt: float) -> bool:
-    """Whether one method's step is stable on the stiffest spring (ω, rad/s) with damping rate b/m (s⁻¹).
+def stability_warning(model, methods) -> str | None:
+    """Judge Δt before a run (physics.stability.judge): None if the motion will not grow.
 
-    Euler-Cromer, the page's method, is stable exactly while (ω·dt)² + 2·(b/m)·dt < 4 (which is
-    ω·dt < 2 without damping). For the others we use ω·dt below their limit, and b·dt/m below 2,
-    the bound every explicit method needs on a strongly damped mass.
+    Past a method's stability limit (a smaller Δt would be stable) the run would only print
+    nonsense, so this raises BlowUpError with the reason, and the command line exits with status
+    1. A method that grows at every Δt (euler on an undamped spring) gets a warning and runs: that
+    growth is what the page shows it for. Only where the motion really grows: euler on a spring
+    damped strongly enough decays, and gets no warning.
     """
-    limit = STABILITY_LIMIT_OMEGA_DT[name]
-    if name == "euler-cromer":
-        return (omega * dt) ** 2 + 2.0 * rate * dt < limit**2
-    spring_ok = omega == 0 or (limit is not None and omega * dt < limit)
-    return spring_ok and rate * dt < 2.0
-
-
-def stability_warning(model, integrator) -> str | None:
-    """A warning when dt is past the method's stability limit on the stiffest spring and the
-    strongest damping, else None."""
-    omega = fastest_angular_frequency(model.forces, model.state.m)
-    rate = fastest_damping_rate(model.forces, model.state.m)
-    if omega == 0 and rate == 0:
-        return None
-    names = (integrator,) if isinstance(integrator, str) else tuple(integrator)
-    if all(_stable(name, omega=omega, rate=rate, dt=model.dt) for name in names):
-        return None
-    advice = stability_advice(integrator, model.dt, omega, damping_rate=rate)
-    limits = [STABILITY_LIMIT_OMEGA_DT[name] for name in names]
-    if omega > 0 and None not in limits and any(omega * model.dt >= limit for limit in limits):
-        return (f"warning: ω·dt = {number(omega * model.dt, 4)} is past the stability limit; "
-                f"expect the motion to grow: {advice}")
-    return f"warning: expect the motion to grow: {advice}"
+    for verdict in (judge(model.forces, model.state.m, methods, model.dt, v=model.state.v,
+                          ignore=model.may_run_away),
+                    judge(model.forces, model.state.m, methods, model.dt, v=model.state.v)):
+        if verdict.past_limit:
+            raise BlowUpError(f"the run would blow up: {verdict.message}")
+        if not verdict.stable:
+            return f"warning: expect the motion to grow: {verdict.message}"
+    return None
 
 
 def plural(count: int, noun: str) -> str:
@@ -256,7 +207,7 @@ def plural(count: int, noun: str) -> str:
 
 
 def method_name(integrator) -> str:
-    return integrator if isinstance(integrator, str) else ", ".join(integrator)
+    return integrator if isinstance(integrator, str) else describe(integrator)
 
 
 # ---- text ----
@@ -323,7 +274,7 @@ def as_json(result: Result) -> dict:
     closed form at the final time and the size of the error, where a closed form exists. Where
     it stopped holding before the final time, "exact" is left out and "exact_note" says why, with
     "exact_valid_until" the time it stopped holding, s. A scene
-    module may add its own keys with a function extra_json(setup) -> dict.
+    module may add its own keys with a function extra_json(result) -> dict.
     """
     traj, model, setup = result.trajectory, result.model, result.setup
     r, p, m = traj.r[-1], traj.p[-1], traj.m
@@ -357,7 +308,7 @@ def as_json(result: Result) -> dict:
     out["units"] = UNITS
     extra = getattr(setup.module, "extra_json", None)  # a scene's own results, e.g. a resonance curve
     if extra is not None:
-        out.update(extra(setup))
+        out.update(extra(result))
     return out
 
 
@@ -432,19 +383,6 @@ def _write_rows(result: Result, handle) -> int:
 
 # ---- the step table ----
 
-# How each method uses F_net in its momentum update, for the table's header.
-STEP_RULES = {
-    "euler-cromer": "F_net = F(t_i, r_i, v_i) at the start of the step; p_f = p_i + F_net·Δt; "
-                    "v_f = p_f / m; r_f = r_i + v_f·Δt",
-    "euler": "F_net = F(t_i, r_i, v_i) at the start of the step; p_f = p_i + F_net·Δt; "
-             "r_f = r_i + v_i·Δt (the old velocity); v_f = p_f / m",
-    "verlet": "F_net = (p_f − p_i)/Δt, the average of the half kicks at the start and end of the step; "
-              "r_f = r_i + (p_i + F_i·Δt/2)/m·Δt",
-    "rk4": "F_net = (p_f − p_i)/Δt, RK4's weighted average of its four force samples; "
-           "r_f from RK4's weighted average of velocities",
-}
-
-
 def step_table(setup, *, model=None, integrator: str | None = None, steps: int) -> dict:
     """The first `steps` iterations: for each step and mass, t_f, F_net, p_f, v_f and r_f.
 
@@ -459,25 +397,28 @@ def step_table(setup, *, model=None, integrator: str | None = None, steps: int) 
         raise TooManySteps(
             f"--steps {steps:,}{rows} is more than the {MAX_TABLE_ROWS:,} rows the step table shows "
             f"(it is for checking by hand); use --headless --csv FILE for every step of a long run")
-    method = method_for(model, integrator)
+    engine = model.simulation(integrator)
     dt = model.dt
-    traj = run(model.state, model.forces, dt=dt, until=model.state.t + steps * dt, integrator=method)
+    traj = trajectory(engine, engine.advance(steps, record=every(1)), with_energy=False)
     v = traj.v
+    # Euler-Cromer (the page) and Euler kick once with the force at the start of the step; the
+    # other methods' F_net is their average force (p_f − p_i)/Δt.
+    at_start = np.array([INTEGRATORS[name].kicks_once for name in engine.methods])[:, None]
     rows = []
     for n in range(1, len(traj.t)):
-        if isinstance(method, str) and method in ("euler-cromer", "euler"):
-            F_net = net_force(model.forces, traj.t[n - 1], traj.r[n - 1], v[n - 1], traj.m)
-        else:
-            F_net = (traj.p[n] - traj.p[n - 1]) / dt
+        F_start = net_force(model.forces, traj.t[n - 1], traj.r[n - 1], v[n - 1], traj.m)
+        F_net = np.where(at_start, F_start, (traj.p[n] - traj.p[n - 1]) / dt)
         for i, label in enumerate(model.labels):
             rows.append({"step": n, "body": label, "t": float(traj.t[n]), "F_net": F_net[i].tolist(),
                          "p_f": traj.p[n, i].tolist(), "v_f": v[n, i].tolist(), "r_f": traj.r[n, i].tolist()})
-    return {"scene": setup.name, "integrator": method if isinstance(method, str) else list(method),
+    uniform = len(set(engine.methods)) == 1
+    return {"scene": setup.name, "integrator": engine.integrator if uniform else list(engine.methods),
             "dt": float(dt), "m": traj.m.tolist(),
             "start": {"t": float(traj.t[0]), "r": traj.r[0].tolist(), "p": traj.p[0].tolist(),
                       "v": v[0].tolist()},
             "units": {"t": "s", "F_net": "N", "p_f": "kg·m/s", "v_f": "m/s", "r_f": "m"},
-            "rule": STEP_RULES.get(method, "F_net = (p_f − p_i)/Δt, the average force each mass's method used"),
+            "rule": (INTEGRATORS[engine.methods[0]].rule if uniform else
+                     "F_net = (p_f − p_i)/Δt, the average force each mass's method used"),
             "rows": rows}
 
 

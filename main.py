@@ -149,8 +149,9 @@ def run_headless(args, setup) -> int:
     except ValueError as problem:  # a combination of constants the physics cannot take
         raise UsageError(str(problem)) from None
     until = model.until if args.until is None else args.until
-    if args.steps is None or args.csv is not None or args.plot is not None:
-        headless.step_count(model, until=until)  # a run too long is refused before anything prints
+    every_step = args.csv is not None or args.plot is not None
+    if args.steps is None or every_step:  # a run too long is refused before anything prints
+        headless.step_count(model, until=until, rows_per_step=model.state.count if every_step else 0)
     if args.csv is not None:
         headless.check_writable(args.csv, what="CSV file")
     if args.plot is not None:
@@ -158,7 +159,7 @@ def run_headless(args, setup) -> int:
         import plotting
 
         plotting.check_format(args.plot)
-    method = headless.method_for(model, args.integrator)
+    method = model.methods(args.integrator)
     for line in (headless.ignored_integrator_note(model, args.integrator),
                  headless.stability_warning(model, method)):
         if line:
@@ -174,7 +175,8 @@ def run_headless(args, setup) -> int:
         if args.csv is None and args.plot is None:
             return 0
 
-    result = headless.simulate(setup, model=model, integrator=args.integrator, until=until)
+    result = headless.simulate(setup, model=model, integrator=args.integrator, until=until,
+                               every_step=every_step)
     note = headless.stop_note(model, until=until)
     if note:
         print(note, file=sys.stderr)

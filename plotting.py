@@ -56,22 +56,22 @@ def moving_axes(r: np.ndarray, preferred: str | None = None) -> list[int]:
 
 def energy_per_body(traj, forces):
     """E = K + U and E − W_nc of each mass at every sample, (n, N) arrays in J."""
-    from physics.energy import WorkMeter, kinetic, potential
+    from physics.energy import kinetic, potential
     from physics.state import State
 
-    states = [State(t=float(t), r=r, p=p, m=traj.m) for t, r, p in zip(traj.t, traj.r, traj.p)]
-    meter = WorkMeter(states[0], forces)
-    work = [meter.work] + [meter.advance(state) for state in states[1:]]
-    E = np.array([kinetic(state) + potential(state, forces) for state in states])
-    return E, E - np.array(work)
+    states = State(t=traj.t, r=traj.r, p=traj.p, m=traj.m)     # every sample at once
+    E = kinetic(states) + potential(states, forces)
+    return E, E - traj.work     # W_nc of each mass, as the engine metered it
 
 
 def resonance_panel(ax, curve: dict) -> None:
     """Measured steady-state amplitudes (dots) on the exact F0/√((k − mω²)² + (bω)²) (lines), per b."""
     omega = np.asarray(curve["omega_rad_per_s"])
-    for b, measured, exact in zip(curve["b_kg_per_s"], curve["amplitude_m"], curve["exact_amplitude_m"]):
+    measured_all = curve["amplitude_m"] or [None] * len(curve["b_kg_per_s"])   # None: run too short
+    for b, measured, exact in zip(curve["b_kg_per_s"], measured_all, curve["exact_amplitude_m"]):
         line, = ax.plot(omega, exact, label=f"exact, b = {b:.3g} kg/s")
-        ax.plot(omega, measured, "o", ms=4, color=line.get_color(), label=f"measured, b = {b:.3g} kg/s")
+        if measured is not None:
+            ax.plot(omega, measured, "o", ms=4, color=line.get_color(), label=f"measured, b = {b:.3g} kg/s")
     ax.set_xlabel("driving angular frequency ω (rad/s)")
     ax.set_ylabel("amplitude (m)")
     ax.legend(loc="best", fontsize="small")
@@ -97,7 +97,7 @@ def plot(result, path: str) -> None:
     axes_shown = moving_axes(traj.r, preferred if isinstance(preferred, str) else None)
     exact = exact_curve(model, traj.t)
     extra = getattr(result.setup.module, "extra_json", None)
-    curve = extra(result.setup).get("resonance") if extra is not None else None
+    curve = extra(result).get("resonance") if extra is not None else None
     fig, axes = plt.subplots(3 if curve else 2, 1, figsize=(8, 10 if curve else 7))
     ax_r, ax_e = axes[0], axes[1]
     ax_e.sharex(ax_r)

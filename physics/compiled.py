@@ -32,7 +32,6 @@ import re
 
 import numpy as np
 
-from .state import State
 
 # The loop's cost grows with the number of components (masses × dimensions); numpy's hardly does
 # until its fixed cost per call is spread over enough numbers. Measured per step: 3-D, 32 masses
@@ -170,75 +169,73 @@ class Traced:
 
 
 class CompiledLoop:
-    """Steps of one integrator on one system, as a loop over floats (see the module's docstring).
+    """Ticks of the engine on one system, as a loop over floats (see the module's docstring).
 
-    Built by :func:`compile_loop`. :meth:`advance` takes the steps, and falls back to the numpy
-    step function for a step the loop cannot take.
+    `tick(t, t_next, *arrays) -> arrays` is the engine's one tick (physics/simulate.py): the
+    integrator's step, and the work meter where it runs. The loop computes the time of each step
+    from its number, t = t0 + n·Δt, exactly as the engine does. Built by :func:`compile_loop`;
+    :meth:`advance` runs it, and returns early where the loop cannot take a step (then the engine
+    takes that step with numpy and calls :meth:`retrace`).
     """
 
-    def __init__(self, step, forces, dt: float, state: State):
-        self.step, self.forces, self.dt = step, tuple(forces), float(dt)
-        self.shape, self.m = state.r.shape, state.m
+    def __init__(self, tick, arrays, *, t0: float, dt: float):
+        self.tick, self.t0, self.dt = tick, float(t0), float(dt)
+        self.shapes = [np.shape(a) for a in arrays]
         self.traces = 0
         self.source = ""
         self._loop = None
-        self._trace(state)
+        self.retrace(arrays, step=0)
 
-    def _trace(self, state: State):
-        """Trace one step from `state` and compile it; on failure, leave the numpy step in charge."""
+    @property
+    def ready(self) -> bool:
+        return self._loop is not None
+
+    def retrace(self, arrays, *, step: int) -> None:
+        """Trace one tick from these arrays at step number `step`, and compile it; on failure,
+        leave the numpy tick in charge."""
         self.traces += 1
         self._loop = None
         try:
             tape = Tape()
-            size = state.r.size
-            r = np.array([tape.input(f"r{i}", x) for i, x in enumerate(state.r.ravel())], dtype=object)
-            p = np.array([tape.input(f"p{i}", x) for i, x in enumerate(state.p.ravel())], dtype=object)
-            t = tape.input("t", state.t)
-            new = self.step(State(t=t, r=r.reshape(self.shape), p=p.reshape(self.shape), m=self.m),
-                            self.forces, self.dt)
-            outputs = [new.t, *np.asarray(new.r).ravel(), *np.asarray(new.p).ravel()]
-            if len(outputs) != 1 + 2 * size:
-                raise Untraceable("the step changed the number of masses")
-            names = ["t"] + [f"r{i}" for i in range(size)] + [f"p{i}" for i in range(size)]
+            names = [f"a{n}_{i}" for n, a in enumerate(arrays) for i in range(np.size(a))]
+            flat = iter([tape.input(name, x) for name, x in zip(names, _flat(arrays))])
+            traced = [np.array([next(flat) for _ in range(np.size(a))], dtype=object).reshape(np.shape(a))
+                      for a in arrays]
+            t = tape.input("t", self.t0 + step * self.dt)
+            t_next = tape.input("t_next", self.t0 + (step + 1) * self.dt)
+            outputs = [x for a in self.tick(t, t_next, *traced) for x in np.asarray(a).ravel()]
+            if len(outputs) != len(names):
+                raise Untraceable("the tick changed the number of values")
             self.source = _loop_source(tape, names, [tape.operand(x) for x in outputs])
             namespace = {"_sqrt": math.sqrt, "_cos": math.cos, "_sin": math.sin, "_pow": math.pow,
-                         **tape.constants}
-            exec(compile(self.source, "<compiled step>", "exec"), namespace)
+                         "_t0": self.t0, "_dt": self.dt, **tape.constants}
+            exec(compile(self.source, "<compiled tick>", "exec"), namespace)
             self._loop = namespace["advance"]
-        except Exception:   # whatever the trace cannot follow, the numpy step still can
+        except Exception:   # whatever the trace cannot follow, the numpy tick still can
             self._loop = None
 
-    def advance(self, state: State, done: int, stop: int, *, every: int, total: int, record) -> State:
-        """Step from step number `done` to `stop`; returns the state after the last one.
+    def advance(self, arrays, done: int, stop: int, mark: int, record):
+        """Tick from step number `done` towards `stop`; returns (done, mark, arrays).
 
-        After each step i, if i is a multiple of `every` or i == total, calls
-        record((t, r_0, r_1, ..., p_0, p_1, ...)) with the components of r and p flattened.
+        After a tick that reaches step number `mark`, calls record(done, values) with every
+        component of the arrays flattened, which returns the next mark. Returns early (done <
+        stop) where the loop cannot take a step.
         """
-        while done < stop:
-            if self._loop is not None:
-                done, values = self._loop(_flat(state), done, stop, every, total, record)
-                state = self._state(values)
-                if done == stop:
-                    break
-            # The loop stopped short (or there is none): one numpy step, then maybe trace again.
-            state = self.step(state, self.forces, self.dt)
-            done += 1
-            if done % every == 0 or done == total:
-                record(tuple(_flat(state)))
-            if self.traces < MAX_TRACES:
-                self._trace(state)
-        return state
+        done, mark, values = self._loop(_flat(arrays), done, stop, mark, record)
+        return done, mark, self.unflatten(values)
 
-    def _state(self, values) -> State:
-        size = len(values) // 2
-        r = np.array(values[1:size + 1]).reshape(self.shape, order="C")
-        p = np.array(values[size + 1:]).reshape(self.shape, order="C")
-        return State(t=values[0], r=np.asfortranarray(r), p=np.asfortranarray(p), m=self.m)
+    def unflatten(self, values) -> list:
+        arrays, start = [], 0
+        for shape in self.shapes:
+            size = int(np.prod(shape))
+            arrays.append(np.array(values[start:start + size], dtype=float).reshape(shape))
+            start += size
+        return arrays
 
 
-def _flat(state: State) -> list:
-    """[t, r_0, r_1, ..., p_0, p_1, ...]: the loop's variables, as plain floats."""
-    return [state.t, *state.r.ravel().tolist(), *state.p.ravel().tolist()]
+def _flat(arrays) -> list:
+    """Every component of the arrays, in order, as plain floats."""
+    return [x for a in arrays for x in np.asarray(a, dtype=float).ravel().tolist()]
 
 
 def _loop_source(tape: Tape, names: list[str], outputs: list[str]) -> str:
@@ -250,35 +247,42 @@ def _loop_source(tape: Tape, names: list[str], outputs: list[str]) -> str:
             body.append((name, expression))
             needed.update(re.findall(r"\b_\d+\b", expression))
     body.reverse()
+    used = " ".join(expression for _, expression in body) + " " + " ".join(outputs)
     state = ", ".join(names)
     lines = [
-        "def advance(values, done, stop, every, total, record):",
-        f"    {state} = values",
+        "def advance(values, done, stop, mark, record):",
+        f"    {state}, = values",
         "    while done < stop:",
-        "        try:",
     ]
+    # t = t0 + n·Δt from the step number, never a running sum (only where a force reads t).
+    if re.search(r"\bt\b", used):
+        lines.append("        t = _t0 + done * _dt")
+    if re.search(r"\bt_next\b", used):
+        lines.append("        t_next = _t0 + (done + 1) * _dt")
+    lines.append("        try:")
     for name, expression in body:
         lines.append(f"            if not ({expression}): break" if name == ""
                      else f"            {name} = {expression}")
     lines += [
+        "            pass",
         "        except (ArithmeticError, ValueError):",
         "            break",
-        f"        {state} = {', '.join(outputs)}",
+        f"        {state}, = {', '.join(outputs)},",
         "        done += 1",
-        "        if done % every == 0 or done == total:",
-        f"            record(({state},))",
-        f"    return done, [{state}]",
+        "        if done == mark:",
+        f"            mark = record(done, ({state},))",
+        f"    return done, mark, [{state}]",
     ]
     return "\n".join(lines) + "\n"
 
 
-def compile_loop(step, forces, dt: float, state: State) -> CompiledLoop | None:
-    """A compiled loop for this step function and system, or None where numpy is as fast.
+def compile_loop(tick, arrays, *, t0: float, dt: float) -> CompiledLoop | None:
+    """A compiled loop for this tick and these arrays, or None where numpy is as fast.
 
-    Worth it for up to MAX_COMPONENTS numbers (32 masses in 3-D); returns None if the first
-    trace fails, so the caller keeps to the numpy step.
+    Worth it for up to MAX_COMPONENTS numbers in r (32 masses in 3-D); returns None if the
+    first trace fails, so the engine keeps to the numpy tick.
     """
-    if state.r.size > MAX_COMPONENTS:
+    if np.size(arrays[0]) > MAX_COMPONENTS:
         return None
-    loop = CompiledLoop(step, forces, dt, state)
-    return loop if loop._loop is not None else None
+    loop = CompiledLoop(tick, arrays, t0=t0, dt=dt)
+    return loop if loop.ready else None

@@ -24,10 +24,10 @@ def kinetic(state: State) -> np.ndarray:
 
 def potential(state: State, forces) -> np.ndarray:
     """U of every conservative force, for each mass, J."""
-    U = np.zeros(state.count)
+    U = np.zeros(state.r.shape[:-1])
     for force in forces:
         if force.conservative:
-            U += force.potential_energy(state.r, state.m)
+            U = U + force.potential_energy(state.r, state.m)
     return U
 
 
@@ -41,29 +41,22 @@ def nonconservative_power(state: State, forces) -> np.ndarray:
     return np.sum(F_nc * v, axis=-1)
 
 
-class WorkMeter:
-    """Accumulates W_nc = ∫ P_nc dt step by step with the trapezoid rule.
-
-    Call :meth:`advance` with each new state; :attr:`work` is W_nc per mass, J. Reset by making a
-    new meter.
-    """
-
-    def __init__(self, state: State, forces):
-        self.forces = forces
-        self._power = nonconservative_power(state, forces)
-        self._t = state.t
-        self.work = np.zeros(state.count)
-
-    def advance(self, state: State) -> np.ndarray:
-        power = nonconservative_power(state, self.forces)
-        self.work = self.work + 0.5 * (power + self._power) * (state.t - self._t)
-        self._power, self._t = power, state.t
-        return self.work
+def work_step(work, power_before, power_after, dt: float):
+    """W_nc after one more step, by the trapezoid rule: W + ½ (P_before + P_after) Δt, J."""
+    return work + 0.5 * (power_after + power_before) * dt
 
 
 def report(state: State, forces, work) -> dict:
-    """K, U, E and E − W_nc summed over all masses, J."""
-    K = float(np.sum(kinetic(state)))
-    U = float(np.sum(potential(state, forces)))
-    W = float(np.sum(work))
+    """K, U, E and E − W_nc summed over all masses, J (numbers)."""
+    return {key: float(value) for key, value in series(state, forces, work).items()}
+
+
+def series(state: State, forces, work) -> dict:
+    """K, U, E, W_nc and E − W_nc summed over the masses, J, for one state or many samples.
+
+    For many samples, r and p are (n, N, 3) and work (n, N): each value is then an (n,) array.
+    """
+    K = np.sum(kinetic(state), axis=-1)
+    U = np.sum(potential(state, forces), axis=-1)
+    W = np.sum(work, axis=-1)
     return {"K": K, "U": U, "E": K + U, "W_nc": W, "E_minus_W_nc": K + U - W}

@@ -92,7 +92,7 @@ class Spring:
     def potential_energy(self, r, m):
         """U = ½ k (|L| − L0)² for each mass, J."""
         _, length = self.stretch(r)
-        return (0.5 * self.k * (length - self.L0) ** 2)[:, 0]
+        return (0.5 * self.k * (length - self.L0) ** 2)[..., 0]
 
 
 @dataclass(frozen=True, eq=False)
@@ -124,9 +124,10 @@ class SpringBetween:
         return F
 
     def potential_energy(self, r, m):
-        _, length = self._stretch(r)
-        U = np.zeros(r.shape[0])
-        U[[self.i, self.j]] += 0.25 * self.k * (length - self.L0) ** 2
+        L = r[..., self.i, :] - r[..., self.j, :]     # r may hold many samples: (n, N, 3)
+        length = np.sqrt(np.sum(L * L, axis=-1))
+        U = np.zeros(r.shape[:-1])
+        U[..., [self.i, self.j]] += (0.25 * self.k * (length - self.L0) ** 2)[..., None]
         return U
 
 

@@ -5,6 +5,9 @@ v = p / m (physics/state.py). F(t, r, v) below means the net force of the list o
 """
 from __future__ import annotations
 
+from dataclasses import dataclass
+from typing import Callable, Optional
+
 from .forces import net_force, uses_velocity
 from .state import State, velocity
 
@@ -103,19 +106,66 @@ def rk4(state: State, forces, dt: float) -> State:
     )
 
 
-INTEGRATORS = {
-    "euler-cromer": euler_cromer,
-    "euler": euler,
-    "verlet": verlet,
-    "rk4": rk4,
-}
+@dataclass(frozen=True)
+class Integrator:
+    """Everything about one method, in one registry entry.
+
+    step          the pure function (state, forces, dt) -> state; calling the entry calls it
+    order         p in: global error ∝ Δt^p
+    omega_dt_limit  ω·Δt above which the motion on an undamped spring grows without bound
+                  (None: it grows at every Δt). A fact of the step itself: physics/stability.py
+                  works every limit out from the step, and a test checks it against this number.
+    rule          how the step uses F_net, in words, for the step table a student checks by hand
+    kicks_once    True if p_f = p_i + F(t_i, r_i, v_i) Δt: one kick with the force at the start
+    damped_rule   the stability condition with linear damping b, in words, where it is known
+    """
+
+    name: str
+    step: Callable
+    order: int
+    omega_dt_limit: Optional[float]
+    rule: str
+    kicks_once: bool = False
+    damped_rule: Optional[str] = None
+
+    def __call__(self, state: State, forces, dt: float) -> State:
+        return self.step(state, forces, dt)
+
+
+INTEGRATORS = {entry.name: entry for entry in (
+    Integrator("euler-cromer", euler_cromer, order=1, omega_dt_limit=2.0,
+               rule="F_net = F(t_i, r_i, v_i) at the start of the step; p_f = p_i + F_net·Δt; "
+                    "v_f = p_f / m; r_f = r_i + v_f·Δt", kicks_once=True,
+               damped_rule="stable while (ω·dt)² + 2·(b/m)·dt < 4"),
+    Integrator("euler", euler, order=1, omega_dt_limit=None,
+               rule="F_net = F(t_i, r_i, v_i) at the start of the step; p_f = p_i + F_net·Δt; "
+                    "r_f = r_i + v_i·Δt (the old velocity); v_f = p_f / m", kicks_once=True),
+    Integrator("verlet", verlet, order=2, omega_dt_limit=2.0,
+               rule="F_net = (p_f − p_i)/Δt, the average of the half kicks at the start and end of "
+                    "the step; r_f = r_i + (p_i + F_i·Δt/2)/m·Δt"),
+    Integrator("rk4", rk4, order=4, omega_dt_limit=2.0 * 2.0 ** 0.5,
+               rule="F_net = (p_f − p_i)/Δt, RK4's weighted average of its four force samples; "
+                    "r_f from RK4's weighted average of velocities"),
+)}
 DEFAULT_INTEGRATOR = "euler-cromer"
 
-# ω Δt above which each method's motion on an undamped spring grows without bound
-# (None: unstable at every Δt). From the amplification factor of x'' = −ω² x.
-STABILITY_LIMIT_OMEGA_DT = {
-    "euler-cromer": 2.0,
-    "euler": None,
-    "verlet": 2.0,
-    "rk4": 2.0 * 2.0 ** 0.5,
-}
+
+def methods_for(integrator, count: int) -> tuple[str, ...]:
+    """The one representation of "which method steps which mass": a tuple of count names.
+
+    integrator is one name (every mass) or a sequence of one name per mass. Raises ValueError
+    for an unknown name or a sequence of the wrong length.
+    """
+    names = (integrator,) * count if isinstance(integrator, str) else tuple(integrator)
+    unknown = [name for name in names if name not in INTEGRATORS]
+    if unknown:
+        raise ValueError(f"unknown integrator {unknown[0]!r} (choose from {', '.join(INTEGRATORS)})")
+    if len(names) != count:
+        raise ValueError(f"{len(names)} integrator names for {count} masses")
+    return names
+
+
+def describe(methods) -> str:
+    """'rk4' when every mass uses rk4, else the names in mass order: 'euler, euler-cromer, ...'."""
+    methods = tuple(methods)
+    return methods[0] if len(set(methods)) == 1 else ", ".join(methods)

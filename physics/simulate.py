@@ -1,27 +1,45 @@
-"""Running a model forward: many fixed steps of Δt, with a guard against numerical blow-up.
+"""The engine: the one loop that steps the physics, for every path.
 
-A run is the page's loop: repeat the chosen integrator's step until the question time. It also
-watches for blow-up, which an explicit method hits when Δt is too large for the spring
-(ω Δt > 2 for Euler-Cromer, with ω = √(k/m)) or for strong damping ((ω Δt)² + 2 (b/m) Δt > 4 for
-Euler-Cromer), so that a run never returns NaN as an answer.
+The page's program is a loop: work out F_net, update p, then r, then t, and repeat. Here that loop
+is :class:`Simulation`, and it is the only one in the project: the command line's runs, the step
+table, CSV files and figures, the browser's live run and the notebook, the resonance sweep and
+the benchmarks all ask it for steps. It owns
+
+    the state        r and p of every mass, and the step count n (so t = t0 + n·Δt exactly:
+                     time is never a running sum t = t + Δt, which drifts by round-off)
+    the tick         one step of the chosen integrator (physics/integrators.py), and the work
+                     meter W_nc = ∫ P_nc dt (trapezoid rule) where a force is not conservative
+    the recording    which steps to keep: every step, every n-th, a time grid, or only the end
+    the checks       every CHUNK steps: a state that stopped being finite, or a mass far beyond
+                     any size its motion could reach, is a blow-up; physics/stability.py says why
+    the run's cost   an estimate of its seconds, so a run too long is refused before it starts
+
+`advance(steps)` and `run_until(t)` continue from wherever the engine is; `restart()` goes back to
+the exact initial state (reassignment, nothing recomputed).
+
+Speed. numpy pays about a microsecond per call whatever the array's size, so a single mass stepped
+with numpy is slower than plain Python floats. For systems of up to 32 masses the engine traces
+its own tick once and runs it as a loop over floats (physics/compiled.py): the same arithmetic,
+several times faster. Bigger batches stay in numpy, where each call does a lot of work.
 """
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+import time
+from dataclasses import dataclass, replace
 
 import numpy as np
 
-from .energy import WorkMeter, report
-from .forces import LinearDamping, Spring, SpringBetween, for_rows
-from .compiled import compile_loop
-from .integrators import INTEGRATORS, STABILITY_LIMIT_OMEGA_DT
+from .compiled import MAX_COMPONENTS, MAX_TRACES, compile_loop
+from .energy import nonconservative_power, series, work_step
+from .forces import Spring
+from .integrators import DEFAULT_INTEGRATOR, INTEGRATORS, describe, methods_for
+from .stability import fastest_angular_frequency, judge
 from .state import State
 
-
-CHECK_EVERY = 256          # steps between two blow-up checks
-COMPILE_FROM_STEPS = 100   # shorter runs are not worth tracing and compiling a loop for
-BLOCK_NUMBERS = 2 ** 17    # numbers per (rows, D) array (1 MB) when a big batch runs a block at a time
+CHUNK = 1024                 # steps between two checks for blow-up, cancellation and progress
+PROGRESS_EVERY = 1.0         # s of computing between two progress reports
+COMPILE_FROM_STEPS = 100     # shorter advances are not worth tracing and compiling a loop for
 
 
 class BlowUpError(RuntimeError):
@@ -33,79 +51,8 @@ class BlowUpError(RuntimeError):
     t: float = math.nan
 
 
-def fastest_angular_frequency(forces, m) -> float:
-    """The fastest natural angular frequency of the springs and masses, rad/s (0 without springs).
-
-    One mass on a spring from an anchor: ω = √(k/m). Masses joined by springs between them (a
-    chain) move in normal modes, and the fastest one is faster than any single √(k/m): for a
-    uniform chain it approaches 2√(k/m). Along the springs the motion obeys M x'' = −K x, with
-    the stiffness matrix
-
-        K_ii = Σ k of the springs on mass i,   K_ij = −k of the spring joining i and j,
-
-    and the normal modes' ω² are the eigenvalues of M^(−1/2) K M^(−1/2); we return the largest ω.
-    (Sideways, a stretched spring is softer, k (1 − L0/|L|), so the modes along the springs are the
-    fastest.) Euler-Cromer steps each normal mode on its own, so ω·Δt < 2 must hold for this ω.
-    """
-    m = np.asarray(m, dtype=float)
-    k_anchor = np.zeros(len(m))          # N/m: springs from a fixed anchor, per mass
-    for force in forces:
-        if isinstance(force, Spring):
-            k_anchor += np.broadcast_to(force.k, (len(m), 1))[:, 0]
-    joints = [force for force in forces if isinstance(force, SpringBetween)]
-    omega_sq = float(np.max(k_anchor / m, initial=0.0))
-    if joints:
-        # Only the masses joined to others are coupled; the rest stay √(k/m) each.
-        coupled = sorted({index % len(m) for joint in joints for index in (joint.i, joint.j)})
-        row = {mass: n for n, mass in enumerate(coupled)}
-        K = np.diag(k_anchor[coupled])
-        for joint in joints:
-            i, j = row[joint.i % len(m)], row[joint.j % len(m)]
-            K[i, i] += joint.k
-            K[j, j] += joint.k
-            K[i, j] -= joint.k
-            K[j, i] -= joint.k
-        scale = 1.0 / np.sqrt(m[coupled])
-        omega_sq = max(omega_sq, float(np.linalg.eigvalsh(scale[:, None] * K * scale[None, :])[-1]))
-    return float(np.sqrt(max(omega_sq, 0.0)))
-
-
-def fastest_damping_rate(forces, m) -> float:
-    """b/m, the largest over linear damping and masses, s⁻¹ (0 without damping)."""
-    rates = [np.max(np.broadcast_to(f.b, (len(m), 1))[:, 0] / m)
-             for f in forces if isinstance(f, LinearDamping)]
-    return float(max(rates, default=0.0))
-
-
-def stability_advice(integrator, dt: float, omega: float, *, damping_rate: float = 0.0) -> str:
-    """One sentence naming Δt and the stability limit of the method on this spring.
-
-    damping_rate is b/m in s⁻¹. Damping is stepped explicitly too, so strong damping also limits
-    Δt: one Euler-Cromer step multiplies (x, v) by a matrix with trace 2 − (ωΔt)² − bΔt/m and
-    determinant 1 − bΔt/m, which is stable exactly while (ωΔt)² + 2 (b/m) Δt < 4.
-    """
-    if not isinstance(integrator, str):  # several methods side by side: the strictest one
-        integrator = min(integrator, key=lambda name: STABILITY_LIMIT_OMEGA_DT[name] or 0.0)
-    limit = STABILITY_LIMIT_OMEGA_DT[integrator]
-    # The root of (ωΔt)² + 2 (b/m) Δt = 4, named when damping lowers the limit by over 1 %.
-    dt_max = 4.0 / (damping_rate + math.hypot(damping_rate, 2.0 * omega)) if damping_rate > 0 else 0
-    if integrator == "euler-cromer" and damping_rate > 0 and dt_max * omega < 0.99 * limit:
-        return (f"dt = {dt:g} s, but euler-cromer with damping is stable here only for "
-                f"(ω·dt)² + 2·(b/m)·dt < 4, i.e. dt < {dt_max:.4g} s "
-                f"({_omega_words(omega)}, b/m = {damping_rate:.4g} s⁻¹)")
-    damping_note = (f"; strong damping also limits dt: here b·dt/m = {damping_rate * dt:.3g}, "
-                    f"and every method needs it below about 2" if damping_rate * dt > 1 else "")
-    if omega == 0:
-        return f"dt = {dt:g} s" + damping_note
-    if limit is None:
-        return (f"dt = {dt:g} s; {integrator} is unstable on a spring at every dt "
-                f"({_omega_words(omega)}): use euler-cromer, verlet or rk4" + damping_note)
-    return (f"dt = {dt:g} s, but {integrator} is stable on this spring only for ω·dt < {limit:.3g}, "
-            f"i.e. dt < {limit / omega:.4g} s ({_omega_words(omega)})" + damping_note)
-
-
-def _omega_words(omega: float) -> str:
-    return f"ω = {omega:.4g} rad/s, the fastest natural angular frequency: √(k/m) for one mass on a spring"
+class Cancelled(RuntimeError):
+    """The run was cancelled (Simulation.cancel) before it finished."""
 
 
 def steps_to_reach(until: float, dt: float) -> int:
@@ -113,195 +60,388 @@ def steps_to_reach(until: float, dt: float) -> int:
     return max(0, math.ceil(until / dt - 1e-9))
 
 
+# ---- what to record: a schedule says which step number is recorded next ----
+
+def every(n: int):
+    """Record every n-th step (n = 1: every step)."""
+    if isinstance(n, bool) or not isinstance(n, (int, np.integer)) or n < 1:
+        raise ValueError("record_every must be a whole number ≥ 1, or None for the final state only")
+    n = int(n)
+    return lambda done: (done // n + 1) * n
+
+
+def time_grid(spacing: float, *, t0: float, dt: float, start: float = 0.0, end: float = math.inf):
+    """Record the first step at or after each time start, start + spacing, ... up to end, s.
+
+    spacing ≤ dt records every step from start to end.
+    """
+    def after(done):
+        t = t0 + done * dt
+        if t >= end:
+            return math.inf
+        grid = start if t < start else start + (math.floor((t - start) / spacing + 1e-9) + 1) * spacing
+        return max(done + 1, steps_to_reach(min(grid, end) - t0, dt))
+    return after
+
+
 @dataclass
-class Trajectory:
-    """Samples of a run: t (n,), r and p (n, N, 3); energy (dict of (n,) arrays, J) if recorded."""
+class Samples:
+    """Recorded steps: t (n,) s, r and p (n, N, D) in m and kg·m/s, W_nc so far (n, N) J."""
 
     t: np.ndarray
     r: np.ndarray
     p: np.ndarray
+    work: np.ndarray
     m: np.ndarray
-    energy: dict | None = None
 
     @property
     def v(self) -> np.ndarray:
         return self.p / self.m[None, :, None]
 
+    def __len__(self) -> int:
+        return len(self.t)
+
+
+class Simulation:
+    """A system of masses being stepped: the engine (see the module's docstring).
+
+    state      the initial state (t0, r, p, m)
+    forces     the forces summed into F_net
+    dt         the fixed time step Δt, s
+    integrator one name from physics.integrators.INTEGRATORS, or one name per mass
+    may_run_away  masses the scene expects to run away (euler beside the others): such a mass is
+               frozen at rest where it blew up, named in :attr:`runaways`, and the others run on
+    growth_limit  how many times the starting size of the motion a mass may stray from its
+               anchor before the run counts as blown up
+    compiled   False keeps to the numpy tick (for comparison; the results are the same)
+    """
+
+    def __init__(self, state: State, forces, *, dt: float, integrator=DEFAULT_INTEGRATOR,
+                 may_run_away=(), growth_limit: float = 1e6, compiled: bool = True):
+        if not (math.isfinite(dt) and dt > 0):
+            raise ValueError(f"dt must be a finite time greater than 0 s (got {dt!r})")
+        self.start = state
+        self.forces = tuple(forces)
+        self.dt = float(dt)
+        self.methods = methods_for(integrator, state.count)
+        self.metered = any(not force.conservative for force in self.forces)
+        self.may_run_away = frozenset(int(i) for i in may_run_away)
+        self.compiled = compiled
+        self._seconds_per_step = None
+        springs = [force for force in self.forces if isinstance(force, Spring)]
+        self._anchor = np.broadcast_to(springs[0].anchor, state.r.shape) if springs else None
+        self._limit = _motion_scale(state, springs, fastest_angular_frequency(self.forces, state.m)) * growth_limit
+        self.restart()
+
+    # ---- where the engine is ----
+
+    def restart(self) -> None:
+        """Back to the exact initial state: step 0, W_nc = 0, nothing frozen."""
+        self.steps = 0
+        self._r, self._p = self.start.r, self.start.p
+        self.work = np.zeros(self.start.count)
+        self._power = (nonconservative_power(self.start, self.forces) if self.metered
+                       else np.zeros(self.start.count))
+        self.runaways: dict[int, tuple[float, str]] = {}
+        self._step = _stepper(self.methods, frozen=())
+        self._loop = None
+        self._loop_failed = False
+        self._cancelled = False
+
     @property
-    def final(self) -> State:
-        """The last recorded state, ready to run on (copied into make_state's column-major layout)."""
-        return State(t=float(self.t[-1]), r=np.asfortranarray(self.r[-1]), p=np.asfortranarray(self.p[-1]),
-                     m=self.m)
+    def t(self) -> float:
+        """t = t0 + n·Δt, s, from the whole number of steps taken."""
+        return self.time_of(self.steps)
+
+    def time_of(self, step: int) -> float:
+        return self.start.t + step * self.dt
+
+    @property
+    def state(self) -> State:
+        if self.steps == 0 and self._r is self.start.r and self._p is self.start.p:
+            return self.start          # after restart(): the very initial state, reassigned
+        return State(t=self.t, r=self._r, p=self._p, m=self.start.m)
+
+    @property
+    def integrator(self):
+        """The method's name if every mass uses it, else the tuple of names (for reports)."""
+        return describe(self.methods) if len(set(self.methods)) == 1 else self.methods
+
+    def energy(self) -> dict:
+        """K, U, E, W_nc and E − W_nc of the system now, J (numbers)."""
+        return {key: float(value) for key, value in series(self.state, self.forces, self.work).items()}
+
+    def cancel(self) -> None:
+        """Ask a running advance() to stop at its next check; it raises Cancelled."""
+        self._cancelled = True
+
+    def freeze(self, index: int, reason: str) -> None:
+        """Hold mass `index` at rest where it is from now on, and name it in runaways (t, reason)."""
+        if index in self.runaways:
+            return
+        self.runaways[index] = (self.t, reason)
+        r, p = self._r.copy(order="F"), self._p.copy(order="F")
+        p[index] = 0.0
+        self._r, self._p = r, p
+        self.work = self.work.copy()
+        self._power = self._power.copy()
+        self._power[index] = 0.0
+        self._step = _stepper(self.methods, frozen=tuple(sorted(self.runaways)))
+        self._loop, self._loop_failed = None, False
+
+    # ---- stepping ----
+
+    def run_until(self, t: float, **options) -> Samples:
+        """Advance to the first step at or after time t, s (see advance)."""
+        return self.advance(steps_to_reach(t - self.t, self.dt), **options)
+
+    def advance(self, steps: int, *, record=None, final: bool = True, progress=None) -> Samples:
+        """Take `steps` steps of Δt from where the engine is, and return the steps recorded.
+
+        record    a schedule (every(n), time_grid(...)) of the step numbers to record, or None
+        final     also record the last step of this call
+        progress  called as progress(done, total, t) about once a second on long runs
+
+        Raises BlowUpError (the state is kept at the check that found it) or Cancelled.
+        """
+        steps = int(steps)
+        target = self.steps + steps
+        rows = _Rows(self)
+        schedule = record if record is not None else (lambda done: math.inf)
+        mark = self._next_mark(schedule, self.steps, target, final)
+        reported, last = time.monotonic(), None
+        with np.errstate(over="ignore", invalid="ignore"):
+            while self.steps < target:
+                if self._cancelled:
+                    self._cancelled = False
+                    raise Cancelled(f"cancelled at t = {self.t:g} s")
+                stop = min(target, self.steps + CHUNK)
+
+                def on_record(done, values=None, arrays=None):
+                    rows.add(done, values=values, arrays=arrays)
+                    return self._next_mark(schedule, done, target, final)
+
+                mark = self._ticks(stop, mark, on_record, compile_ok=steps >= COMPILE_FROM_STEPS)
+                rows.flush()
+                self._check()
+                if progress is not None and time.monotonic() - reported >= PROGRESS_EVERY:
+                    progress(self.steps - (target - steps), steps, self.t)
+                    reported, last = time.monotonic(), self.steps
+        if progress is not None and last is not None and last != target:   # end where it ended
+            progress(steps, steps, self.t)
+        return rows.samples()
+
+    @staticmethod
+    def _next_mark(schedule, done: int, target: int, final: bool):
+        mark = schedule(done)
+        return min(mark, target) if final else mark
+
+    def _arrays(self) -> list:
+        return [self._r, self._p, self._power, self.work]
+
+    def _set(self, arrays) -> None:
+        self._r, self._p, self._power, self.work = (np.asfortranarray(a) if a.ndim == 2 else a
+                                                    for a in arrays)
+
+    def tick(self, t, t_next, r, p, power, work):
+        """One step: the integrator's update of r and p, then W_nc by the trapezoid rule.
+
+        t is the time at the start of the step and t_next = t + Δt at its end (both from the step
+        count). The same function runs on floats (numpy) and on traced numbers (the compiled loop).
+        """
+        new = self._step(State(t=t, r=r, p=p, m=self.start.m), self.forces, self.dt)
+        if not self.metered:
+            return new.r, new.p, power, work
+        power_next = nonconservative_power(State(t=t_next, r=new.r, p=new.p, m=self.start.m), self.forces)
+        return new.r, new.p, power_next, work_step(work, power, power_next, self.dt)
+
+    def _ticks(self, stop: int, mark, on_record, *, compile_ok: bool):
+        """Tick up to step number `stop`, recording at the marks; returns the next mark."""
+        if self.compiled and compile_ok and self._loop is None and not self._loop_failed:
+            self._loop = compile_loop(self.tick, self._arrays(), t0=self.start.t, dt=self.dt)
+            self._loop_failed = self._loop is None
+        loop = self._loop
+        while self.steps < stop:
+            if loop is not None and loop.ready:
+                done, mark, arrays = loop.advance(self._arrays(), self.steps, stop, mark,
+                                                  lambda done, values: on_record(done, values=values))
+                self._set(arrays)
+                self.steps = done
+                if done == stop:
+                    break
+            # One numpy tick: the loop stopped short (a guard), or there is none.
+            self._set(self.tick(self.time_of(self.steps), self.time_of(self.steps + 1), *self._arrays()))
+            self.steps += 1
+            if self.steps == mark:
+                mark = on_record(self.steps, arrays=self._arrays())
+            if loop is not None and loop.traces < MAX_TRACES:
+                loop.retrace(self._arrays(), step=self.steps)
+        return mark
+
+    def _check(self) -> None:
+        """Freeze or stop masses that blew up: non-finite, or beyond the limit from their anchor."""
+        r, p = self._r, self._p
+        bad = ~(np.all(np.isfinite(r), axis=1) & np.all(np.isfinite(p), axis=1))
+        if self._anchor is not None:
+            with np.errstate(invalid="ignore"):
+                bad |= np.linalg.norm(np.nan_to_num(r - self._anchor), axis=1) > self._limit
+        if not bad.any():
+            return
+        rows = [int(i) for i in np.flatnonzero(bad) if int(i) not in self.runaways]
+        if not rows:
+            return
+        reason = self.blow_up_message(rows)
+        if all(i in self.may_run_away for i in rows):
+            for i in rows:
+                self.freeze(i, reason)
+                self._r[i] = np.nan_to_num(self._r[i], nan=0.0, posinf=self._limit, neginf=-self._limit)
+            return
+        error = BlowUpError(reason)
+        error.t = self.t
+        raise error
+
+    def blow_up_message(self, rows) -> str:
+        """The sentence for masses `rows` that blew up: when, how, and what Δt would be stable."""
+        finite = bool(np.all(np.isfinite(self._r[rows])) and np.all(np.isfinite(self._p[rows])))
+        how = "motion growing without bound" if finite else "non-finite state"
+        v = np.nan_to_num(self._p / self.start.m[:, None], nan=0.0, posinf=0.0, neginf=0.0)
+        methods = tuple(self.methods[i] for i in rows)
+        forces_rows = self.forces
+        verdict = judge(forces_rows, self.start.m, self.methods, self.dt, v=v)
+        advice = (verdict.message if verdict.message and verdict.method in methods else
+                  f"dt = {self.dt:g} s; try a smaller dt")
+        return f"the simulation blew up by t = {self.t:.4g} s ({how}): {advice}"
+
+    # ---- what a run will cost ----
+
+    def seconds_per_step(self) -> float:
+        """What one step costs on this computer, s: measured on a trial copy of this engine.
+
+        The trial takes the same path as a real run (the compiled loop where it applies, or numpy)
+        for about TRIAL_SECONDS, so the estimate follows the real cost of one mass and of a big
+        batch alike. Measured once per engine.
+        """
+        if self._seconds_per_step is None:
+            trial = Simulation(self.state, self.forces, dt=self.dt, integrator=self.methods,
+                               compiled=self.compiled, growth_limit=math.inf)
+            compiles = self.compiled and self.start.r.size <= MAX_COMPONENTS
+            steps, spent, batch = 0, 0.0, 1
+            try:
+                trial.advance(COMPILE_FROM_STEPS if compiles else 1)     # warm up (and compile)
+                while spent < TRIAL_SECONDS and steps < 1_000_000:
+                    begin = time.perf_counter()
+                    trial.advance(batch)
+                    spent += time.perf_counter() - begin
+                    steps += batch
+                    batch *= 2
+            except (BlowUpError, ArithmeticError):
+                pass
+            self._seconds_per_step = spent / steps if steps else 0.0
+        return self._seconds_per_step
+
+    def estimate_seconds(self, steps: int) -> float:
+        """About how long `steps` more steps take on this computer, s."""
+        return float(steps) * self.seconds_per_step()
 
 
-def stepper(integrator):
-    """The step function for an integrator name, or for a tuple of names, one per mass.
+MAX_RUN_SECONDS = 60.0       # the longest run the program starts, by the engine's estimate, s
+TRIAL_SECONDS = 0.02         # how long the trial that measures a step's cost runs, s
 
-    A tuple steps mass i with integrator i (by stepping the whole state with each method and
-    keeping row i), which is right only for masses that do not act on each other, such as the
-    side-by-side comparison of integrators.
+
+class RunTooLong(ValueError):
+    """A run would take longer than MAX_RUN_SECONDS: a one-line message naming what would fit."""
+
+
+def check_cost(engine: Simulation, *, until: float, extra_per_step: float = 0.0,
+               limit: float = MAX_RUN_SECONDS, until_name: str = "--until") -> int:
+    """The number of steps from the engine's time to `until`, if they fit in `limit` seconds.
+
+    extra_per_step is what the caller adds per step (writing rows, s). Raises RunTooLong naming
+    the steps, the estimated time and the longest `until` that fits, before any step is taken.
     """
-    if isinstance(integrator, str):
-        return INTEGRATORS[integrator]
-    methods = [INTEGRATORS[name] for name in integrator]
+    dt, start = engine.dt, engine.t
+    ratio = (until - start) / dt
+    n = steps_to_reach(until - start, dt) if math.isfinite(ratio) and ratio < 1e18 else math.inf
+    if n * engine.start.count <= 10_000:      # a few thousand mass-steps: not worth measuring
+        return n
+    per_step = engine.seconds_per_step() + extra_per_step
+    if n * per_step <= limit:
+        return n
+    count = f"{n:,} steps" if math.isfinite(n) else "more than 10¹⁸ steps"
+    longest = start + math.floor(limit / per_step) * dt
+    raise RunTooLong(
+        f"a run to t = {until:g} s with dt = {dt:g} s is {count} of {engine.start.count} "
+        f"mass{'es' if engine.start.count > 1 else ''}, about {_duration(n * per_step)} of computing "
+        f"here, more than the {limit:g} s a run may take; use a larger dt, or a smaller {until_name} "
+        f"(at most {longest:.6g} s with dt = {dt:g} s)")
 
-    def mixed_step(state: State, forces, dt: float) -> State:
-        results = {method: method(state, forces, dt) for method in set(methods)}
-        rows = np.arange(state.count)
-        r = np.stack([results[method].r[i] for i, method in zip(rows, methods)])
-        p = np.stack([results[method].p[i] for i, method in zip(rows, methods)])
-        return State(t=state.t + dt, r=r, p=p, m=state.m)
-    return mixed_step
+
+def _duration(seconds: float) -> str:
+    if not math.isfinite(seconds) or seconds > 1e9:
+        return "forever"
+    for unit, size in (("days", 86400), ("hours", 3600), ("minutes", 60)):
+        if seconds >= 2 * size:
+            return f"{seconds / size:.3g} {unit}"
+    return f"{seconds:.3g} s"
 
 
-def run(state: State, forces, *, dt: float, until: float, integrator="euler-cromer",
-        with_energy: bool = False, growth_limit: float = 1e6, record_every: int | None = 1,
-        compiled: bool = True) -> Trajectory:
-    """Step from state.t to `until` with fixed dt, recording the state every `record_every` steps.
+class _Rows:
+    """The steps recorded during one advance: flat rows of floats, packed into arrays a chunk at a time."""
 
-    record_every = 1 (the default) records every step; n records every n-th step and always the
-    final one; None records only the start and the final state, for big batches and long runs
-    where the samples in between are not wanted. The steps themselves are the same either way.
+    def __init__(self, engine: Simulation):
+        self.engine = engine
+        self.steps: list[int] = []
+        self.rows: list = []           # this chunk's rows: every component of r, p, P_nc, W_nc
+        self.blocks: list[np.ndarray] = []
 
-    Raises BlowUpError if the state stops being finite, or any mass strays more than
-    `growth_limit` times the starting size of the motion from its spring's anchor.
+    def add(self, done, *, values=None, arrays=None):
+        self.steps.append(done)
+        self.rows.append(values if values is not None else
+                         np.concatenate([np.asarray(a, dtype=float).ravel() for a in arrays]))
+        if len(self.rows) >= CHUNK:
+            self.flush()
 
-    For one mass (up to a few), the steps run as a loop over plain floats that the integrator's
-    own vector code wrote (physics/compiled.py): the same arithmetic, several times faster than
-    numpy calls on arrays of 3 numbers. compiled=False keeps to the numpy step throughout.
-    A big batch of masses that do not act on one another runs a block of masses at a time.
+    def flush(self):
+        if self.rows:
+            self.blocks.append(np.array(self.rows, dtype=float))
+            self.rows = []
+
+    def samples(self) -> Samples:
+        self.flush()
+        start = self.engine.start
+        size, count = start.r.size, start.count
+        flat = np.concatenate(self.blocks) if self.blocks else np.empty((0, 2 * size + 2 * count))
+        return Samples(t=self.engine.start.t + np.array(self.steps, dtype=float) * self.engine.dt,
+                       r=flat[:, :size].reshape((-1,) + start.r.shape),
+                       p=flat[:, size:2 * size].reshape((-1,) + start.r.shape),
+                       work=flat[:, 2 * size + count:], m=start.m)
+
+
+def _stepper(methods, *, frozen):
+    """The step of every mass: one integrator, or one per mass; frozen masses stay where they are.
+
+    Several methods side by side step the whole state with each method and keep mass i's row
+    from its own method, which is right only for masses that do not act on each other.
     """
-    step = stepper(integrator)
-    n = steps_to_reach(until - state.t, dt)
-    every = _recording_interval(n, record_every)
-    samples = 1 + n // every + (n % every != 0)       # the start, every n-th step, the last one
-    omega = fastest_angular_frequency(forces, state.m)
-    limit = _motion_scale(state, forces, omega) * growth_limit
-    t = np.empty(samples)
-    r = np.empty((samples,) + state.r.shape)
-    p = np.empty_like(r)
-    t[0], r[0], p[0] = state.t, state.r, state.p
-    meter = WorkMeter(state, forces) if with_energy else None
-    energy = {key: np.empty(samples) for key in ("K", "U", "E", "W_nc", "E_minus_W_nc")} if with_energy else None
-    if with_energy:
-        _store(energy, 0, report(state, forces, meter.work))
+    names = sorted(set(methods))
+    if len(names) == 1 and not frozen:
+        return INTEGRATORS[names[0]].step
+    rows = {name: [i for i, method in enumerate(methods) if method == name] for name in names}
 
-    def check(now: State, now_forces):
-        _check(now, now_forces, limit, lambda: stability_advice(
-            integrator, dt, omega, damping_rate=fastest_damping_rate(forces, state.m)))
-
-    compiled = compiled and isinstance(integrator, str)
-    # A blow-up may overflow to inf and NaN between two checks; _check then reports it in one
-    # sentence, so numpy's overflow warnings would only print noise.
-    with np.errstate(over="ignore", invalid="ignore"):
-        if _in_blocks(state, forces, integrator, with_energy):
-            _steps_in_blocks(state, forces, step, dt, n, every, t, r, p, check, compiled=compiled)
-        else:
-            _steps(state, forces, step, dt, n, every, t, r, p, check, compiled=compiled,
-                   meter=meter, energy=energy)
-    return Trajectory(t=t, r=r, p=p, m=state.m, energy=energy)
+    def step(state: State, forces, dt: float) -> State:
+        new_r, new_p = state.r.copy(), state.p.copy()
+        for name in names:
+            moved = INTEGRATORS[name].step(state, forces, dt)
+            new_r[rows[name]] = moved.r[rows[name]]
+            new_p[rows[name]] = moved.p[rows[name]]
+        for i in frozen:
+            new_r[i], new_p[i] = state.r[i], state.p[i]
+        return replace(state, t=state.t + dt, r=new_r, p=new_p)
+    return step
 
 
-def _steps(state: State, forces, step, dt: float, n: int, every: int, t, r, p, check, *,
-           compiled: bool, meter=None, energy=None):
-    """Take n steps from `state`, writing samples 1, 2, ... into t, r, p (and energy), and call
-    check(state, forces) every CHECK_EVERY steps and after the last."""
-    loop = (compile_loop(step, forces, dt, state)
-            if compiled and meter is None and n >= COMPILE_FROM_STEPS else None)
-    if loop is not None:
-        _run_compiled(loop, state, n, every, t, r, p, check=lambda now: check(now, forces))
-        return
-    sample = 0
-    for i in range(1, n + 1):
-        state = step(state, forces, dt)
-        if meter is not None:
-            work = meter.advance(state)      # W_nc = ∫ P_nc dt needs every step
-        if i % every == 0 or i == n:
-            sample += 1
-            t[sample], r[sample], p[sample] = state.t, state.r, state.p
-            if meter is not None:
-                _store(energy, sample, report(state, forces, work))
-        if i % CHECK_EVERY == 0 or i == n:
-            check(state, forces)
-
-
-def _block_rows(state: State) -> int:
-    """Masses in one block of _steps_in_blocks: BLOCK_NUMBERS numbers of r."""
-    return BLOCK_NUMBERS // state.r.shape[1]
-
-
-def _in_blocks(state: State, forces, integrator, with_energy: bool) -> bool:
-    """Whether run() should step this batch in blocks of masses (see _steps_in_blocks)."""
-    return (state.count > _block_rows(state) and isinstance(integrator, str) and not with_energy
-            and not any(getattr(force, "couples_masses", True) for force in forces))
-
-
-def _steps_in_blocks(state: State, forces, step, dt: float, n: int, every: int, t, r, p, check, *,
-                     compiled: bool):
-    """_steps for a block of masses at a time, each block from the start to the end.
-
-    The masses do not act on one another, so each block's steps are exactly the steps it would
-    take inside the whole batch. A block's arrays (BLOCK_NUMBERS numbers, 1 MB each) stay in the
-    processor's cache through all its steps, where the whole batch's (24 MB each for 10⁶ masses
-    in 3-D) would stream through memory on every step: 2–3× slower (docs/performance.md).
-    Every block is checked at the same steps against the whole batch's limit, and the earliest
-    blow-up of any block is the one raised, so the outcome is that of the whole batch.
-    """
-    count = state.count
-    block = _block_rows(state)
-    first = None
-    for start in range(0, count, block):
-        rows = slice(start, min(count, start + block))
-        part = State(t=state.t, r=np.asfortranarray(state.r[rows]), p=np.asfortranarray(state.p[rows]),
-                     m=state.m[rows])
-        try:
-            _steps(part, [for_rows(force, rows, count) for force in forces], step, dt, n, every,
-                   t, r[:, rows], p[:, rows], check, compiled=compiled)
-        except BlowUpError as error:
-            if first is None or error.t < first.t:
-                first = error
-    if first is not None:
-        raise first
-
-
-def _run_compiled(loop, state: State, n: int, every: int, t, r, p, check):
-    """The steps of run() through a compiled loop, recording into t, r, p (row 0 is the start)."""
-    rows = []
-    sample = 1
-    done = 0
-    while done < n:
-        stop = min(n, done + CHECK_EVERY - done % CHECK_EVERY)
-        state = loop.advance(state, done, stop, every=every, total=n, record=rows.append)
-        done = stop
-        if rows:
-            recorded = np.array(rows)
-            size = state.r.size
-            end = sample + len(rows)
-            t[sample:end] = recorded[:, 0]
-            r[sample:end] = recorded[:, 1:size + 1].reshape((-1,) + state.r.shape)
-            p[sample:end] = recorded[:, size + 1:].reshape((-1,) + state.r.shape)
-            sample = end
-            rows.clear()
-        check(state)
-
-
-def _recording_interval(n: int, record_every: int | None) -> int:
-    """Steps between recorded states: record_every, or n when only the final state is wanted."""
-    if record_every is None:
-        return max(n, 1)
-    if isinstance(record_every, bool) or not isinstance(record_every, (int, np.integer)) or record_every < 1:
-        raise ValueError("record_every must be a whole number ≥ 1, or None for the final state only")
-    return int(record_every)
-
-
-def _store(energy, i, values):
-    for key, value in values.items():
-        energy[key][i] = value
-
-
-def _motion_scale(state: State, forces, omega: float) -> float:
+def _motion_scale(state: State, springs, omega: float) -> float:
     """A generous size of the motion (m): start offset, speed/ω, and the spring's own length."""
-    springs = [f for f in forces if isinstance(f, Spring)]
     if not springs or omega == 0:
         return math.inf
     spring = springs[0]
@@ -310,14 +450,52 @@ def _motion_scale(state: State, forces, omega: float) -> float:
     return float(offset + speed / omega + np.max(spring.L0) + 9.8 / omega**2 + 1.0)
 
 
-def _check(state: State, forces, limit: float, advice):
-    """Raise BlowUpError if the state is not finite or a mass is beyond `limit` from its anchor."""
-    finite = np.all(np.isfinite(state.r)) and np.all(np.isfinite(state.p))
-    springs = [f for f in forces if isinstance(f, Spring)]
-    too_far = finite and springs and np.max(np.linalg.norm(state.r - springs[0].anchor, axis=-1)) > limit
-    if not finite or too_far:
-        error = BlowUpError(
-            f"the simulation blew up by t = {state.t:.4g} s ({'non-finite state' if not finite else 'motion growing without bound'}): "
-            + advice())
-        error.t = state.t
-        raise error
+# ---- a whole run, for tests, benchmarks and sweeps ----
+
+@dataclass
+class Trajectory:
+    """Samples of a run: t (n,), r and p (n, N, 3); energy (dict of (n,) arrays, J) if asked for."""
+
+    t: np.ndarray
+    r: np.ndarray
+    p: np.ndarray
+    m: np.ndarray
+    energy: dict | None = None
+    work: np.ndarray | None = None
+
+    @property
+    def v(self) -> np.ndarray:
+        return self.p / self.m[None, :, None]
+
+    @property
+    def final(self) -> State:
+        """The last recorded state, ready to run on."""
+        return State(t=float(self.t[-1]), r=np.asfortranarray(self.r[-1]), p=np.asfortranarray(self.p[-1]),
+                     m=self.m)
+
+
+def trajectory(engine: Simulation, samples: Samples, *, with_energy: bool = True) -> Trajectory:
+    """A Trajectory of the engine's start and these samples (energy of every sample, J)."""
+    start = engine.start
+    t = np.concatenate([[start.t], samples.t])
+    r = np.concatenate([start.r[None], samples.r])
+    p = np.concatenate([start.p[None], samples.p])
+    work = np.concatenate([np.zeros((1, start.count)), samples.work])
+    energy = (series(State(t=t, r=r, p=p, m=start.m), engine.forces, work) if with_energy else None)
+    return Trajectory(t=t, r=r, p=p, m=start.m, energy=energy, work=work)
+
+
+def run(state: State, forces, *, dt: float, until: float, integrator=DEFAULT_INTEGRATOR,
+        with_energy: bool = False, growth_limit: float = 1e6, record_every: int | None = 1,
+        compiled: bool = True) -> Trajectory:
+    """Step from state.t to `until` with fixed dt, recording the start and every `record_every`
+    steps (and always the last); None records only the start and the end.
+
+    Raises BlowUpError if the state stops being finite, or any mass strays more than
+    `growth_limit` times the starting size of the motion from its spring's anchor.
+    """
+    engine = Simulation(state, forces, dt=dt, integrator=integrator, growth_limit=growth_limit,
+                        compiled=compiled)
+    schedule = None if record_every is None else every(record_every)
+    samples = engine.run_until(until, record=schedule)
+    return trajectory(engine, samples, with_energy=with_energy)

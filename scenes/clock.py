@@ -32,8 +32,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from physics.energy import WorkMeter, report
-from physics.simulate import fastest_angular_frequency, stability_advice, stepper
+from physics.energy import series
+from physics.simulate import BlowUpError, time_grid
 from physics.state import State
 
 
@@ -149,80 +149,69 @@ class StepBudget:
 
 @dataclass(frozen=True)
 class Sample:
-    """What the graphs show at one instant: t (s), positions r (N, 3) m, energies (J)."""
+    """What the graphs show at one instant: t (s), positions r (N, 3) m, energies (J), momenta p."""
 
     t: float
     r: np.ndarray
     energy: dict
+    p: np.ndarray = None
 
 
 class LiveRun:
-    """A model being stepped for the view: the state now, W_nc so far, and samples for graphs.
+    """A model being stepped for the view by the engine (physics/simulate.py), with graph samples.
 
-    Reset is reassignment: :meth:`restart` puts back the model's own initial state and a new
-    work meter, so the start is restored exactly.
+    The engine owns the state, W_nc and the blow-up check; this adds the view's pieces: a sample
+    for the graphs every ``sample_every`` seconds of simulation time, and :attr:`problem`, the
+    sentence that stopped the run. Masses the scene expects to run away are frozen by the engine
+    and named in :attr:`runaways` ({mass: (t, reason)}), while the others run on.
+    Reset is reassignment: :meth:`restart` puts back the model's exact initial state.
     """
 
     def __init__(self, model, *, integrator: str, sample_every: float = 0.05,
                  growth_limit: float = 1e3):
         self.model = model
-        self.integrator = model.integrators or integrator
-        self.step = stepper(self.integrator)
+        self.engine = model.simulation(integrator, growth_limit=growth_limit)
+        self.integrator = self.engine.integrator
         self.sample_every = float(sample_every)
-        self._uses_work = any(not force.conservative for force in model.forces)
-        r0, v0 = model.state.r, model.state.v
-        size = float(np.max(np.linalg.norm(r0 - model.anchors, axis=-1)))
-        omega = fastest_angular_frequency(model.forces, model.state.m)
-        speed = float(np.max(np.linalg.norm(v0, axis=-1)))
-        self._omega = omega
-        self._limit = growth_limit * (1.0 + size + (speed / omega if omega else speed))
         self.restart()
+
+    @property
+    def state(self) -> State:
+        return self.engine.state
+
+    @property
+    def runaways(self) -> dict:
+        return self.engine.runaways
 
     def restart(self) -> list[Sample]:
         """Back to the model's initial state; returns the sample at t = 0."""
-        self.state: State = self.model.state
-        self.meter = WorkMeter(self.state, self.model.forces) if self._uses_work else None
+        self.engine.restart()
         self.problem: str | None = None
-        self._next = 1
+        self._grid = time_grid(self.sample_every, t0=self.model.state.t, dt=self.model.dt)
         return [self.sample()]
 
     def sample(self) -> Sample:
-        work = self.meter.work if self.meter else 0.0
-        return Sample(t=self.state.t, r=self.state.r, energy=report(self.state, self.model.forces, work))
+        state = self.engine.state
+        return Sample(t=state.t, r=state.r, energy=self.engine.energy(), p=state.p)
 
     def advance(self, steps: int) -> list[Sample]:
         """Take `steps` steps of Δt; returns the samples due on the way (one per sample_every).
 
         If the motion blows up (non-finite, or growing far beyond its start), stops and sets
-        :attr:`problem` to a sentence naming Δt and the method's stability limit.
+        :attr:`problem` to the engine's sentence naming Δt and what limits it.
         """
-        if self.problem:
+        if self.problem or steps <= 0:
             return []
-        step, forces, dt, meter = self.step, self.model.forces, self.model.dt, self.meter
-        state, samples = self.state, []
-        next_t = self._next * self.sample_every
-        for _ in range(steps):
-            state = step(state, forces, dt)
-            if meter:
-                meter.advance(state)
-            if state.t >= next_t - 1e-9 * dt:
-                self.state = state
-                samples.append(self.sample())
-                self._next = math.floor(state.t / self.sample_every + 1e-9) + 1
-                next_t = self._next * self.sample_every
-        self.state = state
-        if steps:
-            self._check()
-        return samples
-
-    def _check(self) -> None:
-        r = self.state.r
-        finite = bool(np.all(np.isfinite(r)) and np.all(np.isfinite(self.state.p)))
-        if finite and np.max(np.linalg.norm(r - self.model.anchors, axis=-1)) <= self._limit:
-            return
-        what = "non-finite state" if not finite else "motion growing without bound"
-        self.problem = (f"the simulation blew up by t = {self.state.t:.4g} s ({what}): "
-                        + stability_advice(self.integrator, self.model.dt, self._omega))
+        try:
+            samples = self.engine.advance(steps, record=self._grid, final=False)
+        except BlowUpError as error:
+            self.problem = str(error)
+            return []
+        energy = series(State(t=samples.t, r=samples.r, p=samples.p, m=samples.m),
+                        self.model.forces, samples.work)
+        return [Sample(t=float(t), r=samples.r[n], p=samples.p[n],
+                       energy={key: float(values[n]) for key, values in energy.items()})
+                for n, t in enumerate(samples.t)]
 
 
 class Trace:

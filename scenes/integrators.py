@@ -45,6 +45,7 @@ def build(*, m, k, L0, x0, spacing, dt, until):
         anchors=anchors,
         labels=METHODS,
         integrators=METHODS,
+        may_run_away=(METHODS.index("euler"),),
     )
 
 

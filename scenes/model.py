@@ -6,6 +6,8 @@ from typing import Callable, Optional
 
 import numpy as np
 
+from physics.integrators import DEFAULT_INTEGRATOR, methods_for
+from physics.simulate import Simulation
 from physics.state import State
 
 
@@ -21,7 +23,10 @@ class Model:
     anchors  where each mass's spring is fixed, (N, 3) m: the view draws a helix from there
     labels   a name per mass, for graphs and tables
     integrators  None (use the chosen integrator), or one integrator name per mass, for scenes that
-             compare methods side by side (physics.simulate.stepper)
+             compare methods side by side
+    default_integrator  the method used when none is chosen (None: the page's euler-cromer)
+    may_run_away  masses the scene expects to run away (euler beside the other methods): the engine
+             freezes them where they blow up and runs the others on
     exact_valid_until  None if the closed form holds at all times, else T -> the first time up to T
              at which it stops holding, s (math.inf if it holds all the way to T)
     exact_limit  why the closed form can stop holding, one sentence
@@ -37,3 +42,16 @@ class Model:
     integrators: Optional[tuple] = None
     exact_valid_until: Optional[Callable[[float], float]] = None
     exact_limit: str = ""
+    default_integrator: Optional[str] = None
+    may_run_away: tuple = ()
+
+    def methods(self, integrator: Optional[str] = None) -> tuple:
+        """The method of each mass: the scene's own list, else the chosen one, else its default."""
+        if self.integrators is not None:
+            return tuple(self.integrators)
+        return methods_for(integrator or self.default_integrator or DEFAULT_INTEGRATOR, self.state.count)
+
+    def simulation(self, integrator: Optional[str] = None, **options) -> Simulation:
+        """The engine for this model, ready at its initial state (physics/simulate.py)."""
+        return Simulation(self.state, self.forces, dt=self.dt, integrator=self.methods(integrator),
+                          may_run_away=self.may_run_away, **options)

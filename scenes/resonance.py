@@ -10,10 +10,11 @@ with the steady-state amplitude
 largest near ω0 = √(k/m), and the smaller b, the taller and narrower the peak. With b² ≥ 2mk there
 is no peak at all (the preset "critical damping", b = 2√(mk), shows this).
 
-:func:`sweep` runs the whole batch, one oscillator per (b, ω) pair, as ONE state of N masses stepped
-together in numpy (the forces take per-mass b and ω), and measures each amplitude over the last few
-periods of the slowest oscillator. The view shows the row for the first b; :func:`extra_json` gives
-the measured and exact curves for headless --json.
+The scene IS the sweep: one batch with a spring per (b, ω) pair, a row of `count` springs for each b,
+stepped together by the engine (the forces take per-mass b and ω). The page shows every row and
+their amplitudes now; a headless run records the measuring window (`settle` to `settle` + a few
+periods of the slowest drive) and :func:`extra_json` gives the measured and exact curves, from the
+same single run that gives the final state.
 """
 from typing import NamedTuple
 
@@ -21,8 +22,7 @@ import numpy as np
 
 from physics.exact import critical_damping, steady_state_amplitude
 from physics.forces import Driving, Gravity, LinearDamping, Spring
-from physics.integrators import INTEGRATORS
-from physics.simulate import steps_to_reach
+from physics.simulate import time_grid, trajectory
 from physics.state import make_state
 
 from .constants import ConstantError
@@ -50,7 +50,11 @@ until = 50.0               # s: how long the row runs in the view and headless
 
 DRIVE_AXIS = (0.0, 1.0, 0.0)   # F0 cos(ω t) acts up and down, along the springs
 SMOOTH_POINTS = 401            # ω values on which extra_json gives the exact curves as lines
-SWEEP_INTEGRATOR = "rk4"       # fourth order, so amplitude errors stay far below 1 % at the default Δt
+# rk4 by default: fourth order, so the measured amplitudes stay far below 1 % from the closed form
+# at the default Δt (Euler-Cromer's shadow orbit is tilted by about ωΔt/2, which A = √(x² + (v/ω)²)
+# would read as several per cent). --integrator still chooses another method.
+DEFAULT_INTEGRATOR = "rk4"
+ROW_DEPTH = 1.0                # m: distance between the rows of different b, front to back
 
 
 class Sweep(NamedTuple):
@@ -90,127 +94,149 @@ def damping_values(*, m, k, b, b_ratio, curves) -> np.ndarray:
     return b * b_ratio ** np.arange(_whole("curves", curves, 1))
 
 
-def _driven_row(*, m, k, L0, g, F0, b, omega, spacing):
-    """Anchors, start positions (at rest at equilibrium) and forces of one driven spring per ω."""
-    anchors = anchors_in_a_row(count=len(omega), spacing=spacing)
-    r0 = start_positions(anchors=anchors, L0=L0, m=m, k=k, g=g, x0=0.0)
-    forces = [Spring(k=k, L0=L0, anchor=anchors), LinearDamping(b=b),
-              Driving(F0=F0, omega=omega, axis=DRIVE_AXIS)]
-    if g:
-        forces.append(Gravity(g=g))
-    return anchors, r0, tuple(forces)
-
-
-def sweep(*, m, k, L0, g, F0, b, b_ratio, curves, omega_min, omega_max, count, settle, periods, dt,
-          **_view_only) -> Sweep:
-    """Run every (b, ω) oscillator together to steady state and measure its amplitude.
-
-    One state holds curves × count masses; each step is one numpy update of all of them. After
-    `settle`, each amplitude is the largest value over `periods` periods of the slowest drive
-    (2π/omega_min) of
-
-        A = √(x² + (v/ω)²),   x = y − y_eq the displacement from equilibrium, v its velocity,
-
-    which for a steady swing x = A cos(ωt − δ) equals A at every instant (cos² + sin² = 1), so
-    the answer does not depend on catching the sampled peak; any transient left makes it wobble.
-    """
-    if settle < 0 or periods <= 0:
-        raise ConstantError(f"need settle ≥ 0 s and periods > 0 (got {settle:g} s and {periods:g})")
+def _grid(*, m, k, b, b_ratio, curves, omega_min, omega_max, count):
+    """Every (b, ω) pair of the sweep, curve by curve: b_all and ω_all, (curves × count,) each."""
     omega = frequency_grid(omega_min=omega_min, omega_max=omega_max, count=count)
     b_each = damping_values(m=m, k=k, b=b, b_ratio=b_ratio, curves=curves)
-    omega_all, b_all = np.tile(omega, len(b_each)), np.repeat(b_each, len(omega))
-    _, r0, forces = _driven_row(m=m, k=k, L0=L0, g=g, F0=F0, b=b_all, omega=omega_all, spacing=0.0)
-    y_eq = r0[:, 1]
-    step = INTEGRATORS[SWEEP_INTEGRATOR]
-    state = make_state(r=r0, m=m)
-    for _ in range(steps_to_reach(settle, dt)):
-        state = step(state, forces, dt)
-    amplitude = np.zeros(len(omega_all))
-    for _ in range(steps_to_reach(periods * 2 * np.pi / omega_min, dt)):
-        state = step(state, forces, dt)
-        x, v = state.r[:, 1] - y_eq, state.v[:, 1]
-        amplitude = np.maximum(amplitude, np.sqrt(x**2 + (v / omega_all) ** 2))
-    if not np.all(np.isfinite(amplitude)):
-        raise ConstantError(f"the resonance sweep blew up: dt = {dt:g} s is too large for ω up to "
-                            f"{max(omega_max, np.sqrt(k / m)):.3g} rad/s")
-    shape = (len(b_each), len(omega))
-    exact = steady_state_amplitude(m=m, k=k, b=b_all, F0=F0, omega=omega_all)
-    return Sweep(omega=omega, b=b_each, amplitude=amplitude.reshape(shape), exact=exact.reshape(shape))
+    return omega, b_each, np.tile(omega, len(b_each)), np.repeat(b_each, len(omega))
 
 
 def build(*, m, k, L0, g, F0, b, b_ratio, curves, omega_min, omega_max, count, spacing, settle,
           periods, dt, until):
-    """The row shown: one driven, damped spring per ω of the grid, all with the first b."""
-    omega = frequency_grid(omega_min=omega_min, omega_max=omega_max, count=count)
-    b_row = damping_values(m=m, k=k, b=b, b_ratio=b_ratio, curves=curves)[0]
-    anchors, r0, forces = _driven_row(m=m, k=k, L0=L0, g=g, F0=F0, b=b_row, omega=omega, spacing=spacing)
+    """One driven, damped spring per (b, ω) pair: a row of `count` springs for each b, one row
+    behind the other. This one batch is the whole sweep: the browser shows it, and a headless run
+    measures the amplitudes from the same steps (:func:`amplitudes`)."""
+    omega, b_each, omega_all, b_all = _grid(m=m, k=k, b=b, b_ratio=b_ratio, curves=curves,
+                                            omega_min=omega_min, omega_max=omega_max, count=count)
+    row = anchors_in_a_row(count=count, spacing=spacing)
+    depth = np.repeat(np.arange(len(b_each)) * ROW_DEPTH, count)
+    anchors = np.tile(row, (len(b_each), 1)) - depth[:, None] * np.array([0.0, 0.0, 1.0])
+    r0 = start_positions(anchors=anchors, L0=L0, m=m, k=k, g=g, x0=0.0)
+    forces = [Spring(k=k, L0=L0, anchor=anchors), LinearDamping(b=b_all),
+              Driving(F0=F0, omega=omega_all, axis=DRIVE_AXIS)]
+    if g:
+        forces.append(Gravity(g=g))
     return Model(
         state=make_state(r=r0, m=m),
-        forces=forces,
+        forces=tuple(forces),
         dt=float(dt),
         until=float(until),
-        exact=exact_row(anchors=anchors, r0=r0, m=m, k=k, L0=L0, g=g, b=b_row, F0=F0, omega=omega,
+        exact=exact_row(anchors=anchors, r0=r0, m=m, k=k, L0=L0, g=g, b=b_all, F0=F0, omega=omega_all,
                         drive_axis=DRIVE_AXIS),
         anchors=anchors,
-        labels=tuple(f"ω = {w:.3g} rad/s" for w in omega),
+        labels=tuple(f"b = {b_j:.3g} kg/s, ω = {w:.3g} rad/s" for b_j, w in zip(b_all, omega_all)),
+        default_integrator=DEFAULT_INTEGRATOR,
     )
 
 
-def extra_json(setup) -> dict:
-    """The resonance curves for headless --json: the ω grid, and measured and exact amplitudes per b.
+def measure_window(values) -> tuple[float, float]:
+    """When the amplitudes are measured, s: from `settle` for `periods` periods of the slowest drive."""
+    return values["settle"], values["settle"] + values["periods"] * 2 * np.pi / values["omega_min"]
 
-    The exact curves are also given on a fine grid ("smooth_..."), for drawing them as lines.
+
+def amplitude_now(model, state) -> np.ndarray:
+    """A = √(x² + (v/ω)²) of every mass at this instant, m (x from the equilibrium it started at).
+
+    For a steady swing x = A cos(ωt − δ) this equals A at every instant (cos² + sin² = 1), so the
+    measurement does not depend on catching the sampled peak; a transient left makes it wobble.
+    """
+    omega = model.forces[2].omega[:, 0]
+    x = state.r[..., 1] - model.state.r[:, 1]
+    v = state.p[..., 1] / model.state.m
+    return np.sqrt(x**2 + (v / omega) ** 2)
+
+
+def amplitudes(setup, model, trajectory) -> Sweep | None:
+    """The sweep measured from a run's recorded steps: the largest A over the measuring window.
+
+    None if the run did not reach the end of the window (until < settle + the periods).
     """
     v = setup.values
-    result = sweep(**v)
+    start, end = measure_window(v)
+    inside = (trajectory.t >= start - 1e-9 * v["dt"]) & (trajectory.t <= end + v["dt"])
+    if trajectory.t[-1] < end or not inside.any():
+        return None
+    State = type(model.state)
+    measured = amplitude_now(model, State(t=trajectory.t[inside], r=trajectory.r[inside],
+                                          p=trajectory.p[inside], m=trajectory.m)).max(axis=0)
+    omega, b_each, omega_all, b_all = _grid(**{key: v[key] for key in (
+        "m", "k", "b", "b_ratio", "curves", "omega_min", "omega_max", "count")})
+    shape = (len(b_each), len(omega))
+    exact = steady_state_amplitude(m=v["m"], k=v["k"], b=b_all, F0=v["F0"], omega=omega_all)
+    return Sweep(omega=omega, b=b_each, amplitude=measured.reshape(shape), exact=exact.reshape(shape))
+
+
+def sweep(setup, *, integrator=None) -> Sweep:
+    """Run the scene's batch to the end of the measuring window and measure every amplitude."""
+    model = setup.build()
+    engine = model.simulation(integrator)
+    start, end = measure_window(setup.values)
+    samples = engine.run_until(end, record=time_grid(model.dt, t0=0.0, dt=model.dt, start=start, end=end))
+    return amplitudes(setup, model, trajectory(engine, samples, with_energy=False))
+
+
+def extra_json(result) -> dict:
+    """The resonance curves for headless --json, measured from the run itself: the ω grid, and
+    measured and exact amplitudes per b. The exact curves are also given on a fine grid
+    ("smooth_..."), for drawing them as lines. Where the run stopped before the measuring window
+    ended, the measured amplitudes are null and "amplitude_note" says why.
+    """
+    v = result.setup.values
+    measured = amplitudes(result.setup, result.model, result.trajectory)
+    omega, b_each, omega_all, b_all = _grid(**{key: v[key] for key in (
+        "m", "k", "b", "b_ratio", "curves", "omega_min", "omega_max", "count")})
+    exact = steady_state_amplitude(m=v["m"], k=v["k"], b=b_all, F0=v["F0"], omega=omega_all)
     smooth = np.linspace(v["omega_min"], v["omega_max"], SMOOTH_POINTS)
-    return {"resonance": {
-        "omega_rad_per_s": result.omega.tolist(),
-        "b_kg_per_s": result.b.tolist(),
-        "amplitude_m": result.amplitude.tolist(),
-        "exact_amplitude_m": result.exact.tolist(),
+    out = {
+        "omega_rad_per_s": omega.tolist(),
+        "b_kg_per_s": b_each.tolist(),
+        "amplitude_m": None if measured is None else measured.amplitude.tolist(),
+        "exact_amplitude_m": exact.reshape(len(b_each), len(omega)).tolist(),
         "smooth_omega_rad_per_s": smooth.tolist(),
-        "smooth_exact_amplitude_m": [steady_state_amplitude(m=v["m"], k=v["k"], b=b_j, F0=v["F0"], omega=smooth).tolist()
-                                     for b_j in result.b],
-    }}
+        "smooth_exact_amplitude_m": [steady_state_amplitude(m=v["m"], k=v["k"], b=b_j, F0=v["F0"],
+                                                            omega=smooth).tolist() for b_j in b_each],
+    }
+    if measured is None:
+        start, end = measure_window(v)
+        out["amplitude_note"] = (f"the amplitudes are measured from t = {start:g} s to {end:.4g} s; "
+                                 f"run until at least {end:.4g} s (--until or --set until=...)")
+    return {"resonance": out}
 
 
 CURVE_COLOURS = [(0.1, 0.3, 0.9), (0.85, 0.1, 0.1), (0.1, 0.6, 0.1), (0.6, 0.2, 0.8), (0.5, 0.5, 0.5)]
-ROW_COLOUR = (1.0, 0.55, 0.1)  # the live dots: the row shown in 3-D (orange)
+ROW_COLOUR = (1.0, 0.55, 0.1)  # the live dots: the springs shown in 3-D (orange)
 
 
 def view_graph(setup) -> dict:
     """The page's resonance graph (scenes/view.py): amplitude against driving frequency.
 
-    For each b: the exact A(ω) = F0/√((k − mω²)² + (bω)²) as a line, and the amplitudes :func:`sweep`
-    measured in its numpy batch as dots of the same colour. On top, the row shown in 3-D (the first
-    b): each spring's A = √(x² + (v/ω)²) at this instant, as orange dots that wobble while the
-    start-up transient lasts and settle onto the first curve as it dies away (like e^(−bt/2m)).
+    For each b, the exact A(ω) = F0/√((k − mω²)² + (bω)²) as a line. On top, every spring of the
+    batch shown in 3-D: its A = √(x² + (v/ω)²) at this instant, as dots that wobble while the
+    start-up transient lasts and settle onto their b's line as it dies away (like e^(−bt/2m)).
+    Nothing is run twice: the dots are the very springs the page steps.
     """
     v = setup.values
-    result = sweep(**v)
+    omega, b_each, *_ = _grid(**{key: v[key] for key in (
+        "m", "k", "b", "b_ratio", "curves", "omega_min", "omega_max", "count")})
     smooth = np.linspace(v["omega_min"], v["omega_max"], SMOOTH_POINTS)
-    lines, dots = [], []
-    for j, b_j in enumerate(result.b):
-        colour = CURVE_COLOURS[j % len(CURVE_COLOURS)]
+    lines = []
+    for j, b_j in enumerate(b_each):
         exact = steady_state_amplitude(m=v["m"], k=v["k"], b=b_j, F0=v["F0"], omega=smooth)
-        lines.append((f"b = {b_j:.3g} kg/s", smooth, exact, colour))
-        dots.append(("", result.omega, result.amplitude[j], colour))
+        lines.append((f"b = {b_j:.3g} kg/s", smooth, exact, CURVE_COLOURS[j % len(CURVE_COLOURS)]))
     top = float(max(np.max(line[2]) for line in lines))
-    omega = result.omega
+    omega_all = np.tile(omega, len(b_each))
 
     def live(model, state):
-        x = state.r[:, 1] - model.state.r[:, 1]   # the row starts at rest at equilibrium
-        return omega, np.sqrt(x**2 + (state.v[:, 1] / omega) ** 2)
+        return omega_all, amplitude_now(model, state)
 
-    return {"title": f"Amplitude: lines exact, dots measured after {v['settle']:g} s",
+    return {"title": "Amplitude: lines exact, dots the springs now",
             "xtitle": "driving angular frequency ω (rad/s)", "ytitle": "amplitude A (m)",
             "xmin": float(v["omega_min"]), "xmax": float(v["omega_max"]), "ymin": 0.0, "ymax": 1.15 * top,
-            "lines": lines, "dots": dots,
-            "live": live, "live_label": "3-D row, now", "live_colour": ROW_COLOUR}
+            "lines": lines, "dots": [],
+            "live": live, "live_label": "springs now", "live_colour": ROW_COLOUR}
 
 
 PRESETS = {"critical damping": {"b": None}}
 
-# The resonance curve itself is sweep(); the row's 25 exact curves would only crowd the graph.
+# The resonance graph shows the amplitudes; each spring's exact curve would only crowd the position graph.
 VIEW = {"support": "ceiling", "plot": "y", "trail": False, "exact": False, "sliders": ["b", "F0", "m", "k"]}

@@ -1,4 +1,4 @@
-"""The compiled loop for one mass (physics/compiled.py) against the numpy step it was traced from.
+"""The compiled loop (physics/compiled.py) against the engine's numpy tick it was traced from.
 
 The loop is written by tracing the integrators' own vector code, so it must take the very same
 steps: every integrator, every force, 1-D and 3-D, a few masses, the guard at |L| = 0, blow-up.
@@ -12,7 +12,7 @@ from hypothesis import given, settings, strategies as st
 from physics.compiled import MAX_COMPONENTS, compile_loop
 from physics.forces import Driving, Gravity, LinearDamping, QuadraticDrag, Spring, SpringBetween
 from physics.integrators import INTEGRATORS
-from physics.simulate import BlowUpError, run
+from physics.simulate import BlowUpError, Simulation, every, run
 from physics.state import make_state
 
 SYSTEMS = {
@@ -36,30 +36,34 @@ SYSTEMS = {
 }
 
 
-def numpy_steps(state, forces, dt, steps, integrator):
-    step = INTEGRATORS[integrator]
-    for _ in range(steps):
-        state = step(state, forces, dt)
-    return state
+def both_paths(system, integrator, *, dt=1e-3, steps=3000, record=None):
+    """The same advance of the engine with the compiled loop and with numpy alone."""
+    make, forces = SYSTEMS[system]
+    engines = [Simulation(make(), forces, dt=dt, integrator=integrator, compiled=compiled)
+               for compiled in (True, False)]
+    samples = [engine.advance(steps, record=record) for engine in engines]
+    return engines, samples
 
 
 @pytest.mark.parametrize("integrator", INTEGRATORS)
 @pytest.mark.parametrize("system", SYSTEMS)
 def test_the_loop_takes_the_numpy_steps(system, integrator):
-    make, forces = SYSTEMS[system]
-    start, dt, steps = make(), 1e-3, 3000
-    loop = compile_loop(INTEGRATORS[integrator], forces, dt, start)
-    assert loop is not None, "this system should trace"
-    rows = []
-    end = loop.advance(start, 0, steps, every=1000, total=steps, record=rows.append)
-    expected = numpy_steps(start, forces, dt, steps, integrator)
+    (fast, slow), (fast_rows, slow_rows) = both_paths(system, integrator, record=every(1000))
+    assert fast._loop is not None and slow._loop is None, "this system should trace"
     # Same IEEE operations in the same order: equal, apart from numpy's cos against math.cos.
-    np.testing.assert_allclose(end.r, expected.r, rtol=1e-12, atol=1e-12)
-    np.testing.assert_allclose(end.p, expected.p, rtol=1e-12, atol=1e-12)
-    assert end.t == pytest.approx(expected.t, abs=1e-12)
-    assert [round(row[0], 9) for row in rows] == [1.0, 2.0, 3.0]
-    np.testing.assert_allclose(rows[-1][1:1 + end.r.size], end.r.ravel(), rtol=0, atol=0)
-    assert loop.traces == 1, "no guard should have failed"
+    for a, b in ((fast.state.r, slow.state.r), (fast.state.p, slow.state.p), (fast.work, slow.work)):
+        np.testing.assert_allclose(a, b, rtol=1e-12, atol=1e-12)
+    assert fast.t == slow.t == 3000 * 1e-3     # t = n·Δt from the step count, on both paths
+    assert list(fast_rows.t) == list(slow_rows.t) == [1000 * 1e-3, 2000 * 1e-3, 3000 * 1e-3]
+    np.testing.assert_allclose(fast_rows.r, slow_rows.r, rtol=1e-12, atol=1e-12)
+    np.testing.assert_allclose(fast_rows.work, slow_rows.work, rtol=1e-12, atol=1e-12)
+    assert fast._loop.traces == 1, "no guard should have failed"
+
+
+def test_the_work_meter_runs_inside_the_loop():
+    (fast, slow), _ = both_paths("every force", "rk4")
+    assert "a3_0" in fast._loop.source and fast.work[0] < 0    # damping and drag took energy away
+    np.testing.assert_allclose(fast.work, slow.work, rtol=1e-12)
 
 
 @pytest.mark.parametrize("integrator", INTEGRATORS)
@@ -81,27 +85,32 @@ def test_the_pages_simple_example_by_hand():
     Step 2: stretched 0.578 m, F_net = 23.12 − 98 = −74.88 N, p_y = −15.288 kg·m/s,
     r_y = −1.578 + (−1.5288)(0.1) = −1.73088 m.
     """
-    make, forces = SYSTEMS["page spring"]
-    start = make_state(r=(0.0, -1.5, 0.0), m=10.0)
-    loop = compile_loop(INTEGRATORS["euler-cromer"], forces, 0.1, start)
-    rows = []
-    loop.advance(start, 0, 2, every=1, total=2, record=rows.append)
-    (t1, *_, y1, _, _, py1, _), (t2, *_, y2, _, _, py2, _) = rows
-    assert (t1, py1, y1) == pytest.approx((0.1, -7.8, -1.578), abs=1e-12)
-    assert (t2, py2, y2) == pytest.approx((0.2, -15.288, -1.73088), abs=1e-12)
-    assert "_sqrt(" in loop.source and "numpy" not in loop.source and "np." not in loop.source
+    _, forces = SYSTEMS["page spring"]
+    engine = Simulation(make_state(r=(0.0, -1.5, 0.0), m=10.0), forces, dt=0.1)
+    engine.advance(100)                       # long enough to compile; then back to the start
+    assert engine._loop is not None
+    engine.restart()
+    engine._loop = compile_loop(engine.tick, engine._arrays(), t0=0.0, dt=0.1)
+    rows = engine.advance(2, record=every(1))
+    assert list(rows.t) == [0.1, 0.2]
+    assert (rows.p[0, 0, 1], rows.r[0, 0, 1]) == pytest.approx((-7.8, -1.578), abs=1e-12)
+    assert (rows.p[1, 0, 1], rows.r[1, 0, 1]) == pytest.approx((-15.288, -1.73088), abs=1e-12)
+    source = engine._loop.source
+    assert "_sqrt(" in source and "numpy" not in source and "np." not in source
 
 
 def test_a_mass_on_its_anchor_falls_back_to_numpy_and_traces_again():
     """Spring asks |L| ≠ 0 before dividing by |L|: the loop checks that guard every step."""
     forces = (Spring(k=40.0, L0=1.0), Gravity(g=9.8))
-    traced_at = make_state(r=(0.0, -1.5, 0.0), m=10.0)
-    loop = compile_loop(INTEGRATORS["euler-cromer"], forces, 0.01, traced_at)
     on_anchor = make_state(r=(0.0, 0.0, 0.0), v=(0.0, 0.0, 0.0), m=10.0)
-    end = loop.advance(on_anchor, 0, 50, every=50, total=50, record=lambda row: None)
-    expected = numpy_steps(on_anchor, forces, 0.01, 50, "euler-cromer")
-    np.testing.assert_allclose(end.r, expected.r, rtol=1e-12, atol=1e-15)
-    assert loop.traces == 2, "the first step (F = 0 on the anchor) is numpy's, then a new trace"
+    fast = Simulation(on_anchor, forces, dt=0.01)
+    fast._loop = compile_loop(fast.tick, [np.array([[0.0, -1.5, 0.0]]), fast._p, fast._power, fast.work],
+                              t0=0.0, dt=0.01)                 # traced away from the anchor
+    fast.advance(50)
+    slow = Simulation(on_anchor, forces, dt=0.01, compiled=False)
+    slow.advance(50)
+    np.testing.assert_allclose(fast.state.r, slow.state.r, rtol=1e-12, atol=1e-15)
+    assert fast._loop.traces == 2, "the first step (F = 0 on the anchor) is numpy's, then a new trace"
 
 
 def test_a_force_the_tracer_cannot_follow_leaves_numpy_in_charge():
@@ -113,7 +122,8 @@ def test_a_force_the_tracer_cannot_follow_leaves_numpy_in_charge():
             return -5.0 * np.array([[float(r[0, 0]), 0.0, 0.0]])
 
     start = make_state(r=(1.0, 0.0, 0.0), m=1.0)
-    assert compile_loop(INTEGRATORS["euler-cromer"], (Opaque(),), 0.01, start) is None
+    engine = Simulation(start, (Opaque(),), dt=0.01)
+    assert compile_loop(engine.tick, engine._arrays(), t0=0.0, dt=0.01) is None
     traj = run(start, (Opaque(),), dt=0.01, until=math.pi / math.sqrt(5.0))
     assert traj.r[-1, 0, 0] == pytest.approx(-1.0, abs=0.02)      # half a period: x = −A
 
@@ -121,7 +131,8 @@ def test_a_force_the_tracer_cannot_follow_leaves_numpy_in_charge():
 def test_too_many_masses_are_left_to_numpy():
     n = MAX_COMPONENTS // 3 + 1
     start = make_state(r=np.tile((0.0, -1.5, 0.0), (n, 1)), m=1.0)
-    assert compile_loop(INTEGRATORS["euler-cromer"], (Spring(k=1.0, L0=1.0),), 0.01, start) is None
+    engine = Simulation(start, (Spring(k=1.0, L0=1.0),), dt=0.01)
+    assert compile_loop(engine.tick, engine._arrays(), t0=0.0, dt=0.01) is None
 
 
 @pytest.mark.parametrize("integrator", ["euler-cromer", "euler"])
@@ -149,47 +160,6 @@ def test_any_spring_agrees(k, m, L0, b, x, y, vx, integrator):
     slow = run(start, forces, dt=dt, until=300 * dt, integrator=integrator, record_every=None, compiled=False)
     np.testing.assert_allclose(fast.r[-1], slow.r[-1], rtol=1e-12, atol=1e-12)
     np.testing.assert_allclose(fast.p[-1], slow.p[-1], rtol=1e-12, atol=1e-12)
-
-
-def test_a_big_batch_run_in_blocks_takes_the_same_steps(monkeypatch):
-    """Masses that do not act on one another may be stepped a block at a time (physics.simulate)."""
-    import physics.simulate as simulate
-    rng = np.random.default_rng(3)
-    N = 50
-    start = make_state(r=np.column_stack([rng.uniform(-0.3, 0.3, N), np.full(N, -1.5), np.zeros(N)]),
-                       v=rng.uniform(-0.5, 0.5, (N, 3)), m=rng.uniform(1.0, 5.0, N))
-    forces = (Spring(k=rng.uniform(20, 60, N), L0=rng.uniform(0.8, 1.2, N), anchor=rng.uniform(-1, 1, (N, 3))),
-              Gravity(g=9.8, direction=(0.3, -1.0, 0.2)), LinearDamping(b=rng.uniform(0, 1, N)),
-              Driving(F0=1.0, omega=rng.uniform(1, 5, N), axis=(1.0, 1.0, 0.0)))
-    whole = run(start, forces, dt=1e-3, until=2.0, record_every=100)
-    monkeypatch.setattr(simulate, "BLOCK_NUMBERS", 36)       # blocks of 12 masses: 12, 12, 12, 12, 2
-    assert simulate._in_blocks(start, forces, "euler-cromer", False)
-    blocks = run(start, forces, dt=1e-3, until=2.0, record_every=100)
-    assert blocks.r.shape == whole.r.shape == (21, N, 3)
-    np.testing.assert_array_equal(blocks.t, whole.t)
-    np.testing.assert_array_equal(blocks.r, whole.r)
-    np.testing.assert_array_equal(blocks.p, whole.p)
-    coupled = forces + (SpringBetween(k=1.0, L0=1.0, i=0, j=1),)
-    assert not simulate._in_blocks(start, coupled, "euler-cromer", False), "a chain must stay whole"
-
-
-def test_a_batch_in_blocks_blows_up_as_the_whole_batch_does(monkeypatch):
-    """The earliest blow-up of any block, with the whole batch's ω in the advice."""
-    import physics.simulate as simulate
-    N = 40
-    k = np.full(N, 40.0)
-    k[25] = 90_000.0          # one stiff spring: ω Δt = 3 > 2 at Δt = 0.01 s, in the third block
-    k[5] = 40_030.0           # ω Δt = 2.0007: grows more slowly, in the first block
-    start = make_state(r=np.tile((0.0, -1.5, 0.0), (N, 1)), m=1.0)
-    forces = (Spring(k=k, L0=1.0), Gravity(g=9.8))
-    with pytest.raises(BlowUpError) as whole:
-        run(start, forces, dt=0.01, until=100.0, record_every=None)
-    monkeypatch.setattr(simulate, "BLOCK_NUMBERS", 30)        # blocks of 10 masses
-    assert simulate._in_blocks(start, forces, "euler-cromer", False)
-    with pytest.raises(BlowUpError) as blocks:
-        run(start, forces, dt=0.01, until=100.0, record_every=None)
-    assert str(blocks.value) == str(whole.value)
-    assert "ω = 300 rad/s" in str(blocks.value)
 
 
 def test_a_negative_base_to_a_fractional_power_is_left_to_numpy():

@@ -10,7 +10,7 @@ import warnings
 import numpy as np
 import pytest
 
-from physics.integrators import INTEGRATORS, STABILITY_LIMIT_OMEGA_DT
+from physics.integrators import INTEGRATORS
 from physics.simulate import BlowUpError, run
 from scenes import catalog
 
@@ -70,7 +70,8 @@ def test_a_tuple_of_names_steps_each_mass_by_its_own_method(line_oscillators):
     assert len({together.r[-1, i, 0] for i in range(count)}) == count
 
 
-STABLE_UP_TO = {name: limit for name, limit in STABILITY_LIMIT_OMEGA_DT.items() if limit is not None}
+STABLE_UP_TO = {name: entry.omega_dt_limit for name, entry in INTEGRATORS.items()
+                if entry.omega_dt_limit is not None}
 
 
 @pytest.mark.parametrize("integrator", STABLE_UP_TO)
@@ -167,7 +168,7 @@ def two_mass_fastest_omega(*, k1, k2, m1, m2):
 
 @pytest.mark.parametrize("k1, k2, m1, m2", [(40.0, 40.0, 10.0, 10.0), (10.0, 70.0, 2.0, 0.5), (100.0, 3.0, 1.0, 9.0)])
 def test_fastest_angular_frequency_of_a_two_mass_chain_is_its_fast_normal_mode(k1, k2, m1, m2):
-    from physics.simulate import fastest_angular_frequency
+    from physics.stability import fastest_angular_frequency
     state, forces = two_mass_chain(k1=k1, k2=k2, m1=m1, m2=m2)
     omega = fastest_angular_frequency(forces, state.m)
     assert omega == pytest.approx(two_mass_fastest_omega(k1=k1, k2=k2, m1=m1, m2=m2), rel=1e-12)
@@ -176,7 +177,7 @@ def test_fastest_angular_frequency_of_a_two_mass_chain_is_its_fast_normal_mode(k
 
 def test_equal_two_mass_chain_is_the_golden_ratio_times_sqrt_k_over_m():
     """k1 = k2 = k, m1 = m2 = m: ω² = (3 ± √5)/2 · k/m, so the fast mode is φ √(k/m), φ = 1.618…."""
-    from physics.simulate import fastest_angular_frequency
+    from physics.stability import fastest_angular_frequency
     state, forces = two_mass_chain(k1=40.0, k2=40.0, m1=10.0, m2=10.0)
     golden = (1 + np.sqrt(5)) / 2
     assert fastest_angular_frequency(forces, state.m) == pytest.approx(golden * 2.0, rel=1e-12)
@@ -186,7 +187,7 @@ def test_long_uniform_chain_approaches_two_sqrt_k_over_m():
     """A chain of n equal masses and springs, fixed at the top, free at the bottom: ω_max =
     2 √(k/m) sin((2n − 1)π / (2(2n + 1))), just under 2 √(k/m)."""
     from physics.forces import Spring, SpringBetween
-    from physics.simulate import fastest_angular_frequency
+    from physics.stability import fastest_angular_frequency
     n, k, m = 30, 40.0, 10.0
     forces = [Spring(k=[k] + [0.0] * (n - 1), L0=0.5)] + [SpringBetween(k=k, L0=0.5, i=i, j=i + 1) for i in range(n - 1)]
     expected = 2 * np.sqrt(k / m) * np.sin((2 * n - 1) * np.pi / (2 * (2 * n + 1)))
