@@ -1,4 +1,4 @@
-"""Stepping one mass fast: the vector update, written out in plain floats by the program itself.
+"""Stepping a few masses fast: the engine's tick, written out in plain floats by the program itself.
 
 Why: numpy pays about a microsecond for every call, whatever the size of the array. One
 Euler-Cromer step of the page's spring is some 19 numpy calls on arrays of 3 numbers, so one
@@ -8,7 +8,8 @@ of every force law in components would be fast, but it would be a second copy to
 
 How: the one copy of the physics (forces.py, integrators.py) writes the fast copy.
 
-1. Trace. Take one step of the integrator on a state whose numbers are :class:`Traced`: each
+1. Trace. Take one tick of the engine (physics/simulate.py: the integrator's step and the work
+   meter) on numbers that are :class:`Traced`: each
    +, −, ×, ÷, √ or cos of them works out its value and also writes one line of Python on a
    :class:`Tape`, such as ``_7 = _5 * 0.0001``. numpy's object arrays do the broadcasting, so the
    force and integrator code runs unchanged. Where the code decides something from a number
@@ -16,10 +17,15 @@ How: the one copy of the physics (forces.py, integrators.py) writes the fast cop
 2. Compile. The tape becomes the body of a loop over plain Python floats, one local variable per
    component: the page's update as a hand calculation would write it (``loop.source`` shows it).
 3. Run. The loop takes steps until it has done the number asked, or a guard fails, or the
-   arithmetic raises (÷ 0, √ of a negative, cos of inf). Then the caller takes that step with
-   numpy, which gives inf or NaN as usual, and traces again from there.
+   arithmetic raises (÷ 0, √ of a negative, cos of inf). Then the engine takes that step with
+   numpy, which gives inf or NaN as usual, and traces again from there. The time of each step is
+   t = t0 + n·Δt from its number n, as in the engine.
 
-The loop does the same IEEE double operations as the numpy step, in the same order, so the two
+Why not numba: measured on the user command (docs/performance.md), importing and compiling with
+numba costs as much as it saves at 10⁶ steps, it cannot compile forces.py as written, and it adds
+some 200 MB; this module is a few hundred lines and keeps one copy of the physics.
+
+The loop does the same IEEE double operations as the numpy tick, in the same order, so the two
 agree to round-off (numpy's cos may differ from math.cos in the last bit; tests/test_compiled.py
 compares them over every integrator and force).
 """

@@ -12,14 +12,12 @@ their potential energy per mass; the others are counted in the non-conservative 
 Every call returns a new array laid out like r (net_force adds into the first one). Anything
 that does not change in time, such as g times the direction of gravity, is worked out once when
 the force is made. A force whose uses_velocity is False never reads v, so a step may pass
-v = None. A force whose couples_masses is False gives each mass a force from that mass alone, so
-masses may be stepped in separate groups (physics/simulate.py runs big batches that way).
+v = None.
 For motion along one line, give r the shape (N, 1) and the forces 1-component vectors:
 Spring(anchor=(0.0,)), Gravity(direction=(-1.0,)), Driving(axis=(1.0,)).
 """
 from __future__ import annotations
 
-import copy
 from dataclasses import dataclass
 
 import numpy as np
@@ -62,7 +60,6 @@ class Spring:
     anchor: object = (0.0, 0.0, 0.0)
     conservative = True
     uses_velocity = False
-    couples_masses = False
 
     def __post_init__(self):
         object.__setattr__(self, "k", _per_mass(self.k))
@@ -109,7 +106,6 @@ class SpringBetween:
     j: int
     conservative = True
     uses_velocity = False
-    couples_masses = True
 
     def _stretch(self, r):
         L = r[self.i] - r[self.j]
@@ -143,7 +139,6 @@ class Gravity:
     direction: object = (0.0, -1.0, 0.0)
     conservative = True
     uses_velocity = False
-    couples_masses = False
 
     def __post_init__(self):
         object.__setattr__(self, "direction", _unit(self.direction))
@@ -168,7 +163,6 @@ class LinearDamping:
     b: object = 0.0
     conservative = False
     uses_velocity = True
-    couples_masses = False
 
     def __post_init__(self):
         object.__setattr__(self, "b", _per_mass(self.b))
@@ -190,7 +184,6 @@ class QuadraticDrag:
     rho: object = 0.0
     conservative = False
     uses_velocity = True
-    couples_masses = False
 
     def __post_init__(self):
         for name in ("C", "A", "rho"):
@@ -214,7 +207,6 @@ class Driving:
     axis: object = (1.0, 0.0, 0.0)
     conservative = False
     uses_velocity = False
-    couples_masses = False
 
     def __post_init__(self):
         object.__setattr__(self, "F0", _per_mass(self.F0))
@@ -224,21 +216,6 @@ class Driving:
     def __call__(self, t, r, v, m):
         # F = F0 cos(ω t) â for every mass, written into a new array laid out like r
         return np.multiply(self.F0 * np.cos(self.omega * t), self.axis, out=_new_like(r))
-
-
-def for_rows(force, rows: slice, count: int):
-    """The same force on masses `rows` of `count` alone: its per-mass parameters cut to those rows.
-
-    Per-mass parameters are the (count, ·) arrays (k, L0, b, per-mass anchors, ...); one value for
-    all masses stays as it is. The force is copied, not made again, so nothing worked out when it
-    was made (a unit axis, g ĝ) is worked out a second time. Only for forces whose
-    couples_masses is False.
-    """
-    cut = copy.copy(force)
-    for name, value in vars(force).items():
-        if isinstance(value, np.ndarray) and value.ndim == 2 and value.shape[0] == count:
-            object.__setattr__(cut, name, value[rows])
-    return cut
 
 
 def uses_velocity(forces) -> bool:
