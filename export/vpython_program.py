@@ -283,10 +283,11 @@ def _exact(model, values: _Values, forces: _Forces, *, axis: str, m: str):
     The closed form (physics/exact.py) follows the displacement x from equilibrium along the
     spring's line û: m x'' + b x' + k x = F cos(ω t), started from x0 and v0 along û.
     """
-    if model.exact is None or not _on_line(model, values):
-        return None
     n = values.name
     has = {type(force) for force in forces.forces}
+    linear = "L0" not in values.items     # L0 = 0: F = −k L, so each coordinate moves on its own
+    if model.exact is None or not (linear or _on_line(model, values)):
+        return None
     k_all = np.broadcast_to(next(f.k for f in forces.forces if isinstance(f, Spring)), (model.state.count, 1))[:, 0]
     damping = next((f.b for f in forces.forces if isinstance(f, LinearDamping)), 0.0)
     b_all = np.broadcast_to(damping, (model.state.count, 1))[:, 0]
@@ -295,11 +296,13 @@ def _exact(model, values: _Values, forces: _Forces, *, axis: str, m: str):
     b = n("b") if LinearDamping in has else "0"
     before = [
         "# the exact solution (physics/exact.py): x = displacement from equilibrium along the spring",
-        _commented(f"u = norm({n('r0')} - {n('anchor')})", "direction of the spring, û"),
+        _commented(f"u = {_vec(np.eye(3)['xyz'.index(axis)])}", "û: the plotted axis (L0 = 0: each axis on its own)")
+        if linear else _commented(f"u = norm({n('r0')} - {n('anchor')})", "direction of the spring, û"),
         _commented(f"s_eq = {L0} + {m}*{n('g')}*(-u.y)/{n('k')}" if Gravity in has else f"s_eq = {L0}",
                    "m: length of the spring at equilibrium"),
         _commented(f"omega0 = sqrt({n('k')}/{m})", "rad/s: natural angular frequency √(k/m)"),
-        _commented(f"x0 = mag({n('r0')} - {n('anchor')}) - s_eq", "m: start displacement"),
+        _commented(f"x0 = {'dot' if linear else 'mag'}({n('r0')} - {n('anchor')}{', u' if linear else ''}) - s_eq",
+                   "m: start displacement"),
         _commented(f"vx0 = dot({n('v0')}, u)", "m/s: start velocity along û"),
     ]
     if LinearDamping in has:
