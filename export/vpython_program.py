@@ -465,7 +465,11 @@ def _loop_condition(model) -> str:
 def _objects(model, view, values: _Values, single: bool) -> list[str]:
     """The support box, a helix per spring, a sphere per mass and the position graph."""
     anchors = np.broadcast_to(model.anchors, model.state.r.shape)
-    points = np.concatenate([anchors, model.state.r])
+    points = [anchors, model.state.r]
+    if model.exact is not None:   # where the masses go over the first 20 s, as the page frames it
+        points.append(np.reshape(model.exact(np.linspace(0.0, 20.0, 401))[0], (-1, 3)))
+    points = np.concatenate(points)
+    points = points[np.all(np.isfinite(points), axis=1)]
     size = max(float(np.max(points.max(axis=0) - points.min(axis=0))), 1e-3)
     gaps = [np.linalg.norm(a - b) for j, a in enumerate(anchors) for b in anchors[j + 1:]]
     radius = min([0.08 * size] + [0.3 * gap for gap in gaps if gap > 0])
