@@ -194,16 +194,20 @@ def run_headless(args, setup) -> int:
     return 0
 
 
-def write_programs(args, setup) -> int:
+def write_programs(args, setup) -> None:
     """--vpython FILE.py and --webvpython FILE.py: the scene as a program to hand out (export/).
 
-    Every program is made before any file is written, so bad input leaves no file at all.
+    Every program is made and every path checked before any file is written, so bad input leaves
+    no file at all.
     """
     import export
 
     try:
         texts = [(path, export.program(setup, integrator=args.integrator, web=web))
                  for path, web in ((args.vpython, False), (args.webvpython, True)) if path is not None]
+        for path, _ in texts:
+            if path != "-":
+                export.check_path(path)
         for path, text in texts:
             if path == "-":
                 print(text, end="")
@@ -212,7 +216,6 @@ def write_programs(args, setup) -> int:
                 print(f"wrote {path}", file=sys.stderr)
     except ValueError as problem:   # export.ProgramError, or constants the physics cannot take
         raise UsageError(str(problem)) from None
-    return 0
 
 
 def main(argv=None) -> int:
@@ -229,7 +232,9 @@ def main(argv=None) -> int:
             print(presets_report(setup))
             return 0
         if args.vpython is not None or args.webvpython is not None:
-            return write_programs(args, setup)
+            write_programs(args, setup)   # then a headless run too, if one is asked for
+            if not (args.headless or args.steps is not None or args.plot is not None):
+                return 0
         if args.headless or args.steps is not None or args.plot is not None:
             return run_headless(args, setup)
     except (ConstantError, UsageError, headless.OutputError) as problem:

@@ -333,14 +333,18 @@ def _exact(model, values: _Values, forces: _Forces, *, axis: str, m: str):
             ]
             steady = [f"x = x + amp*cos({w}*t - delta)"]
     branches = {
-        "under-damped": (["omega_d = sqrt(omega0**2 - gamma**2)", "c2 = (vx0 + gamma*x0)/omega_d"],
+        "under-damped": ([_commented("omega_d = sqrt(omega0**2 - gamma**2)",
+                                     "under-damped: x = e^(−γt) (x0 cos ω_d t + c2 sin ω_d t)"),
+                          "c2 = (vx0 + gamma*x0)/omega_d"],
                          ["x = exp(-gamma*t)*(x0*cos(omega_d*t) + c2*sin(omega_d*t))"]),
-        "critically damped": (["c2 = vx0 + gamma*x0"], ["x = exp(-gamma*t)*(x0 + c2*t)"]),
-        "over-damped": (["mu = sqrt(gamma**2 - omega0**2)", "c1 = (vx0 + (gamma + mu)*x0)/(2*mu)", "c2 = x0 - c1"],
+        "critically damped": ([_commented("c2 = vx0 + gamma*x0", "critically damped: x = e^(−γt) (x0 + c2 t)")],
+                              ["x = exp(-gamma*t)*(x0 + c2*t)"]),
+        "over-damped": ([_commented("mu = sqrt(gamma**2 - omega0**2)", "over-damped: x = c1 e^(λ1 t) + c2 e^(λ2 t)"),
+                         "c1 = (vx0 + (gamma + mu)*x0)/(2*mu)", "c2 = x0 - c1"],
                         ["x = c1*exp((mu - gamma)*t) + c2*exp(-(gamma + mu)*t)"]),
     }
     if LinearDamping not in has:
-        return before, ["x = x0*cos(omega0*t) + vx0/omega0*sin(omega0*t)"] + steady
+        return before, [_commented("x = x0*cos(omega0*t) + vx0/omega0*sin(omega0*t)", "undamped")] + steady
     if len(regimes) == 1:
         coefficients, now = branches[regimes.pop()]
         return before + coefficients, now + steady
@@ -526,11 +530,8 @@ def _round(x: float) -> str:
 
 # ---- writing the file ----
 
-def write_program(path: str, text: str) -> None:
-    """Write text to path atomically: a temporary file in the same folder, then renamed over it.
-
-    Raises ProgramError (one line) if the file cannot be written; no file is left behind then.
-    """
+def check_path(path: str) -> None:
+    """Raise ProgramError (one line) if a program obviously cannot be written to path."""
     if not path:
         raise ProgramError("cannot write the program to '': give a file name, like spring.py")
     if os.path.isdir(path):
@@ -540,6 +541,15 @@ def write_program(path: str, text: str) -> None:
         raise ProgramError(f"cannot write the program {path!r}: folder {folder!r} does not exist")
     if os.path.exists(path) and not os.access(path, os.W_OK):
         raise ProgramError(f"cannot write the program {path!r}: Permission denied")
+
+
+def write_program(path: str, text: str) -> None:
+    """Write text to path atomically: a temporary file in the same folder, then renamed over it.
+
+    Raises ProgramError (one line) if the file cannot be written; no file is left behind then.
+    """
+    check_path(path)
+    folder = os.path.dirname(os.path.abspath(path))
     temporary = None
     try:
         handle, temporary = tempfile.mkstemp(dir=folder, prefix=".program-", suffix=".tmp")

@@ -325,3 +325,31 @@ def test_program_replaces_an_old_file_whole(tmp_path):
     mask = os.umask(0)
     os.umask(mask)
     assert stat.S_IMODE(path.stat().st_mode) == 0o666 & ~mask      # not mkstemp's private 0600
+
+
+def test_writer_stays_in_its_layer():
+    """export/ imports only physics and scenes: never vpython, the command line or the browser view,
+    so that both front ends can use it (checked in a fresh interpreter)."""
+    code = ("import sys, export\n"
+            "from scenes import catalog\n"
+            "for name in catalog.SCENE_NAMES:\n"
+            "    export.program(catalog.configure(name), web=True)\n"
+            "print(sorted(m for m in sys.modules if m.split('.')[0] in ('vpython', 'headless', 'plotting', 'main')"
+            " or m == 'scenes.view'))\n")
+    done = subprocess.run([sys.executable, "-c", code], cwd=ROOT, capture_output=True, text=True, timeout=120)
+    assert done.returncode == 0, done.stderr
+    assert done.stdout.strip().splitlines()[-1] == "[]"
+
+
+def test_one_bad_path_of_two_leaves_neither_file(tmp_path):
+    good = tmp_path / "spring.py"
+    done = main_py("vertical", "--vpython", str(good), "--webvpython", str(tmp_path / "no" / "web.py"))
+    assert done.returncode == 2 and done.stderr.startswith("error: cannot write the program")
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_program_and_headless_run_together(tmp_path):
+    path = tmp_path / "spring.py"
+    done = main_py("vertical", "--headless", "--vpython", str(path))
+    assert done.returncode == 0 and path.exists()
+    assert "r = < 0, -1.73088, 0 > m" in done.stdout
