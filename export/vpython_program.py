@@ -36,17 +36,15 @@ first line and no import lines.
 """
 from __future__ import annotations
 
-import math
-import os
-import tempfile
-
 import numpy as np
 
-from physics.exact import damping_regime
 from physics.forces import Driving, Gravity, LinearDamping, QuadraticDrag, Spring
 from physics.integrators import DEFAULT_INTEGRATOR, INTEGRATORS
 from physics.simulate import steps_to_reach
 from scenes.catalog import summary
+
+from .exact_curve import exact_lines
+from .lines import ProgramError, align_comments, commented, number, vector
 
 WEB_FIRST_LINE = "Web VPython 3.2"
 IMPORTS = ["from vpython import *"]
@@ -68,26 +66,6 @@ COLOURS = ["color.orange", "color.cyan", "color.green", "color.magenta", "color.
 MOST_CURVES = 6            # more masses than this: their graph lines get no labels
 
 
-class ProgramError(ValueError):
-    """A program that cannot be written (a bad path, a scene the writer cannot follow): one line."""
-
-
-# ---- numbers as the program spells them ----
-
-def _num(x) -> str:
-    """A float as a literal that reads back exactly: 10, -1.5, 0.1 (whole numbers without .0)."""
-    x = float(x)
-    if not math.isfinite(x):
-        raise ProgramError(f"cannot write the value {x} into a program")
-    if x.is_integer() and abs(x) < 1e15:
-        return str(int(x))
-    return repr(x)
-
-
-def _vec(v) -> str:
-    return "vector(" + ", ".join(_num(c) for c in v) + ")"
-
-
 # ---- what the program needs from the model ----
 
 class _Values:
@@ -97,17 +75,17 @@ class _Values:
         self.setup, self.count = setup, count
         self.items: dict[str, tuple[str, str, str, bool]] = {}
 
-    def add(self, name: str, value, *, vector: bool = False) -> None:
+    def add(self, name: str, value, *, is_vector: bool = False) -> None:
         """Record a constant from the model's numbers: one value, or one per mass if they differ."""
         array = np.asarray(value, dtype=float)
-        if vector:
+        if is_vector:
             rows = np.broadcast_to(array, (self.count, 3)) if array.ndim == 2 else array[None]
             per_mass = array.ndim == 2 and not np.all(rows == rows[0])
-            literal = ("[" + ", ".join(_vec(row) for row in rows) + "]") if per_mass else _vec(rows[0])
+            literal = ("[" + ", ".join(vector(row) for row in rows) + "]") if per_mass else vector(rows[0])
         else:
             flat = np.broadcast_to(array.reshape(-1), (self.count,)) if array.ndim else array.reshape(1)
             per_mass = array.ndim > 0 and not np.all(flat == flat[0])
-            literal = ("[" + ", ".join(_num(x) for x in flat) + "]") if per_mass else _num(flat[0])
+            literal = ("[" + ", ".join(number(x) for x in flat) + "]") if per_mass else number(flat[0])
         if name in self.items and self.items[name][0] != literal:
             raise ProgramError(f"two forces use different values of {name}: the program cannot name both")
         unit, meaning = FALLBACK.get(name, ("", name))
@@ -116,7 +94,7 @@ class _Values:
             unit = constant.unit
             scene_value = self.setup.values.get(name)
             same = scene_value is not None and not per_mass and np.array_equal(
-                np.asarray(scene_value, dtype=float), rows[0] if vector else flat[0])
+                np.asarray(scene_value, dtype=float), rows[0] if is_vector else flat[0])
             meaning = constant.meaning if same else meaning
         if per_mass:
             meaning += ", one per mass"
@@ -138,7 +116,7 @@ class _Forces:
                 values.add("k", force.k)
                 if not force._zero_length:
                     values.add("L0", force.L0)
-                values.add("anchor", force.anchor, vector=True)
+                values.add("anchor", force.anchor, is_vector=True)
             elif isinstance(force, Gravity):
                 if not np.allclose(force.direction, (0.0, -1.0, 0.0), rtol=0, atol=0):
                     raise ProgramError("the program writes gravity along −y only")
@@ -151,7 +129,7 @@ class _Forces:
             elif isinstance(force, Driving):
                 values.add("F0", force.F0)
                 values.add("omega", force.omega)
-                values.add("drive_axis", force.axis, vector=True)
+                values.add("drive_axis", force.axis, is_vector=True)
             else:
                 raise ProgramError(f"the program cannot write the force {type(force).__name__}")
         self.uses_velocity = any(force.uses_velocity for force in self.forces)
@@ -184,23 +162,7 @@ class _Forces:
                             "driving: F = F0 cos(ω t) along drive_axis"))
                 terms.append("Fdrive")
         out.append(("Fnet = " + (" + ".join(terms) or "vector(0, 0, 0)"), "net force: the sum of the forces"))
-        return [_commented(code, comment if laws else "") for code, comment in out]
-
-
-COMMENT = "\0"             # marks where a line's comment starts, until _align_comments lines them up
-COMMENT_COLUMN = 48
-
-
-def _commented(code: str, comment: str, width: int | None = None) -> str:
-    """A line of code with a trailing comment: at column `width`, or where _align_comments puts it."""
-    if not comment:
-        return code
-    return f"{code:<{width}} # {comment}" if width else f"{code}{COMMENT}{comment}"
-
-
-def _align_comments(lines: list[str]) -> list[str]:
-    return [f"{line.partition(COMMENT)[0]:<{COMMENT_COLUMN - 1}} # {line.partition(COMMENT)[2]}"
-            if COMMENT in line else line for line in lines]
+        return [commented(code, comment if laws else "") for code, comment in out]
 
 
 # ---- the integrators, written out ----
@@ -212,29 +174,29 @@ def _update(method: str, forces: _Forces, *, r: str, p: str, m: str) -> list[str
 
     if method == "euler-cromer":
         # physics.integrators.euler_cromer works out v_i only if a force reads it
-        lines = [_commented(f"v = {p}/{m}", "velocity from momentum: v = p/m")] if forces.uses_velocity else []
+        lines = [commented(f"v = {p}/{m}", "velocity from momentum: v = p/m")] if forces.uses_velocity else []
         return lines + F("t", r, "v", laws=True) + [
-            _commented(f"{p} = {p} + Fnet*dt", "momentum principle: p_f = p_i + F_net Δt"),
-            _commented(f"{r} = {r} + {p}/{m}*dt", "r_f = r_i + v_f Δt, with v_f = p_f/m"),
+            commented(f"{p} = {p} + Fnet*dt", "momentum principle: p_f = p_i + F_net Δt"),
+            commented(f"{r} = {r} + {p}/{m}*dt", "r_f = r_i + v_f Δt, with v_f = p_f/m"),
         ]
     if method == "euler":
-        return [_commented(f"v = {p}/{m}", "velocity from momentum: v_i = p_i/m")] + F("t", r, "v", laws=True) + [
-            _commented(f"{r} = {r} + v*dt", "r_f = r_i + v_i Δt: the OLD velocity (why euler gains energy)"),
-            _commented(f"{p} = {p} + Fnet*dt", "momentum principle: p_f = p_i + F_net Δt"),
+        return [commented(f"v = {p}/{m}", "velocity from momentum: v_i = p_i/m")] + F("t", r, "v", laws=True) + [
+            commented(f"{r} = {r} + v*dt", "r_f = r_i + v_i Δt: the OLD velocity (why euler gains energy)"),
+            commented(f"{p} = {p} + Fnet*dt", "momentum principle: p_f = p_i + F_net Δt"),
         ]
     if method == "verlet":
         lines = ["# velocity Verlet: half a kick, a drift, half a kick",
-                 _commented(f"v = {p}/{m}", "velocity at the start of the step")]
+                 commented(f"v = {p}/{m}", "velocity at the start of the step")]
         lines += F("t", r, "v", laws=True)
-        lines += [_commented(f"{p} = {p} + Fnet*(dt/2)", "half a kick: p_½ = p_i + F_i Δt/2"),
-                  _commented(f"{r} = {r} + {p}/{m}*dt", "drift: r_f = r_i + (p_½/m) Δt"),
+        lines += [commented(f"{p} = {p} + Fnet*(dt/2)", "half a kick: p_½ = p_i + F_i Δt/2"),
+                  commented(f"{r} = {r} + {p}/{m}*dt", "drift: r_f = r_i + (p_½/m) Δt"),
                   f"v = {p}/{m}"]
         if forces.uses_velocity:
             lines += ["# damping needs v_f, not known yet: estimate it with one more half kick"]
             lines += F("(t + dt)", r, "v")
             lines += [f"v = ({p} + Fnet*(dt/2))/{m}"]
         lines += F("(t + dt)", r, "v")
-        lines += [_commented(f"{p} = {p} + Fnet*(dt/2)", "half a kick with the force at the end")]
+        lines += [commented(f"{p} = {p} + Fnet*(dt/2)", "half a kick with the force at the end")]
         return lines
     if method == "rk4":
         return [
@@ -243,7 +205,7 @@ def _update(method: str, forces: _Forces, *, r: str, p: str, m: str) -> list[str
             "dp = []",
             "v = vector(0, 0, 0)",
             "Fnet = vector(0, 0, 0)",
-            _commented("for h in [0, dt/2, dt/2, dt]:", "each point: h ahead along the slope before"),
+            commented("for h in [0, dt/2, dt/2, dt]:", "each point: h ahead along the slope before"),
             "    t_s = t + h",
             f"    r_s = {r} + v*h",
             f"    p_s = {p} + Fnet*h",
@@ -251,110 +213,10 @@ def _update(method: str, forces: _Forces, *, r: str, p: str, m: str) -> list[str
             *("    " + line for line in F("t_s", "r_s", "v", laws=True)),
             "    dr.append(v)",
             "    dp.append(Fnet)",
-            _commented(f"{r} = {r} + (dr[0] + 2*dr[1] + 2*dr[2] + dr[3])*(dt/6)", "the slopes' weighted average"),
+            commented(f"{r} = {r} + (dr[0] + 2*dr[1] + 2*dr[2] + dr[3])*(dt/6)", "the slopes' weighted average"),
             f"{p} = {p} + (dp[0] + 2*dp[1] + 2*dp[2] + dp[3])*(dt/6)",
         ]
     raise ProgramError(f"unknown integrator {method!r} (known: {', '.join(INTEGRATORS)})")
-
-
-# ---- the exact solution, where a closed form exists ----
-
-def _on_line(model, values: _Values) -> bool:
-    """Whether every mass moves on the line of its spring (what the closed form needs)."""
-    anchors = np.broadcast_to(model.anchors, model.state.r.shape)
-    offsets = model.state.r - anchors
-    lengths = np.linalg.norm(offsets, axis=1)
-    if np.any(lengths == 0):
-        return False
-    u = offsets / lengths[:, None]
-    along = [model.state.p / model.state.m[:, None]]
-    along += [np.broadcast_to(f.direction, u.shape) for f in model.forces if isinstance(f, Gravity)]
-    along += [np.broadcast_to(f.axis, u.shape) for f in model.forces if isinstance(f, Driving)]
-    for vectors in along:
-        off = vectors - np.sum(vectors * u, axis=1)[:, None] * u
-        if np.any(np.linalg.norm(off, axis=1) > 1e-12 * np.maximum(1.0, np.linalg.norm(vectors, axis=1))):
-            return False
-    return True
-
-
-def _exact(model, values: _Values, forces: _Forces, *, axis: str, m: str):
-    """(lines before the loop, lines giving x_exact at time t) of the closed form, or None.
-
-    The closed form (physics/exact.py) follows the displacement x from equilibrium along the
-    spring's line û: m x'' + b x' + k x = F cos(ω t), started from x0 and v0 along û.
-    """
-    n = values.name
-    has = {type(force) for force in forces.forces}
-    linear = "L0" not in values.items     # L0 = 0: F = −k L, so each coordinate moves on its own
-    if model.exact is None or not (linear or _on_line(model, values)):
-        return None
-    k_all = np.broadcast_to(next(f.k for f in forces.forces if isinstance(f, Spring)), (model.state.count, 1))[:, 0]
-    damping = next((f.b for f in forces.forces if isinstance(f, LinearDamping)), 0.0)
-    b_all = np.broadcast_to(damping, (model.state.count, 1))[:, 0]
-    regimes = {damping_regime(m=mi, k=ki, b=bi) for mi, ki, bi in zip(model.state.m, k_all, b_all)}
-    L0 = n("L0") if "L0" in values.items else "0"
-    b = n("b") if LinearDamping in has else "0"
-    before = [
-        "# the exact solution (physics/exact.py): x = displacement from equilibrium along the spring",
-        _commented(f"u = {_vec(np.eye(3)['xyz'.index(axis)])}", "û: the plotted axis (L0 = 0: each axis on its own)")
-        if linear else _commented(f"u = norm({n('r0')} - {n('anchor')})", "direction of the spring, û"),
-        _commented(f"s_eq = {L0} + {m}*{n('g')}*(-u.y)/{n('k')}" if Gravity in has else f"s_eq = {L0}",
-                   "m: length of the spring at equilibrium"),
-        _commented(f"omega0 = sqrt({n('k')}/{m})", "rad/s: natural angular frequency √(k/m)"),
-        _commented(f"x0 = {'dot' if linear else 'mag'}({n('r0')} - {n('anchor')}{', u' if linear else ''}) - s_eq",
-                   "m: start displacement"),
-        _commented(f"vx0 = dot({n('v0')}, u)", "m/s: start velocity along û"),
-    ]
-    if LinearDamping in has:
-        before.append(_commented(f"gamma = {b}/(2*{m})", "1/s: decay rate b/2m"))
-    steady = []
-    if Driving in has:
-        F0, w = n("F0"), n("omega")
-        omega_all = np.broadcast_to(next(f.omega for f in forces.forces if isinstance(f, Driving)),
-                                    (model.state.count, 1))[:, 0]
-        resonant = [bi == 0 and np.isclose(wi, math.sqrt(ki / mi), rtol=1e-12, atol=0)
-                    for bi, wi, ki, mi in zip(b_all, omega_all, k_all, model.state.m)]
-        if any(resonant) and not all(resonant):
-            return None
-        before.append(_commented(f"Fu = {F0}*dot({n('drive_axis')}, u)", "N: driving amplitude along û"))
-        if all(resonant):
-            steady = [_commented(f"x = x + Fu*t*sin(omega0*t)/(2*{m}*omega0)",
-                                 "resonance: the swing grows as F t/(2 m ω0)")]
-        elif LinearDamping not in has:   # undamped: the steady swing is in step (or opposite)
-            before += [_commented(f"amp = Fu/({n('k')} - {m}*{w}**2)", "m: steady-state amplitude (signed)"),
-                       "x0 = x0 - amp"]
-            steady = [f"x = x + amp*cos({w}*t)"]
-        else:
-            before += [
-                _commented(f"amp = Fu/sqrt(({n('k')} - {m}*{w}**2)**2 + ({b}*{w})**2)", "m: steady-state amplitude"),
-                _commented(f"delta = atan2({b}*{w}, {n('k')} - {m}*{w}**2)", "rad: its phase lag"),
-                "x0 = x0 - amp*cos(delta)",
-                _commented(f"vx0 = vx0 - amp*{w}*sin(delta)", "what is left for the free motion"),
-            ]
-            steady = [f"x = x + amp*cos({w}*t - delta)"]
-    branches = {
-        "under-damped": ([_commented("omega_d = sqrt(omega0**2 - gamma**2)",
-                                     "under-damped: x = e^(−γt) (x0 cos ω_d t + c2 sin ω_d t)"),
-                          "c2 = (vx0 + gamma*x0)/omega_d"],
-                         ["x = exp(-gamma*t)*(x0*cos(omega_d*t) + c2*sin(omega_d*t))"]),
-        "critically damped": ([_commented("c2 = vx0 + gamma*x0", "critically damped: x = e^(−γt) (x0 + c2 t)")],
-                              ["x = exp(-gamma*t)*(x0 + c2*t)"]),
-        "over-damped": ([_commented("mu = sqrt(gamma**2 - omega0**2)", "over-damped: x = c1 e^(λ1 t) + c2 e^(λ2 t)"),
-                         "c1 = (vx0 + (gamma + mu)*x0)/(2*mu)", "c2 = x0 - c1"],
-                        ["x = c1*exp((mu - gamma)*t) + c2*exp(-(gamma + mu)*t)"]),
-    }
-    if LinearDamping not in has:
-        return before, [_commented("x = x0*cos(omega0*t) + vx0/omega0*sin(omega0*t)", "undamped")] + steady
-    if len(regimes) == 1:
-        coefficients, now = branches[regimes.pop()]
-        return before + coefficients, now + steady
-    now = []
-    for keyword, regime, condition in (("if", "under-damped", f"{b}**2 < 4*{m}*{n('k')}"),
-                                       ("elif", "over-damped", f"{b}**2 > 4*{m}*{n('k')}"),
-                                       ("else", "critically damped", "")):
-        now.append(f"{keyword} {condition}:  # {regime}" if condition else f"else:  # {regime}")
-        now += ["    " + line for line in branches[regime][0] + branches[regime][1]]
-    return before, now + steady
 
 
 # ---- the program ----
@@ -385,8 +247,8 @@ def program(setup, *, integrator: str | None = None, web: bool = False) -> str:
     values = _Values(setup, count)
     values.add("m", model.state.m)
     forces = _Forces(model, values)
-    values.add("r0", model.state.r, vector=True)
-    values.add("v0", model.state.p / model.state.m[:, None], vector=True)
+    values.add("r0", model.state.r, is_vector=True)
+    values.add("v0", model.state.p / model.state.m[:, None], is_vector=True)
     values.add("dt", model.dt)
     values.add("until", model.until)
     n = values.name
@@ -400,27 +262,27 @@ def program(setup, *, integrator: str | None = None, web: bool = False) -> str:
     lines += IMPORTS
     lines += ["", "# ---- constants (unit: meaning) ----"]
     for name, (literal, unit, meaning, _) in values.items.items():
-        lines.append(_commented(f"{name} = {literal}", f"{unit}: {meaning}", width=24))
+        lines.append(commented(f"{name} = {literal}", f"{unit}: {meaning}", width=24))
     if methods:
-        lines.append(_commented("method = [" + ", ".join(f'"{x}"' for x in methods) + "]",
+        lines.append(commented("method = [" + ", ".join(f'"{x}"' for x in methods) + "]",
                                 "the integrator of each mass", width=24))
     if not single:
-        lines.append(_commented("labels = [" + ", ".join(f'"{label}"' for label in model.labels) + "]",
+        lines.append(commented("labels = [" + ", ".join(f'"{label}"' for label in model.labels) + "]",
                                 "what each mass shows", width=24))
 
     lines += ["", "# ---- the objects ----"] + _objects(model, view, values, single)
     axes = list(view["plot"])
-    exact = _exact(model, values, forces, axis=axes[0], m=m) if view["exact"] and len(axes) == 1 else None
+    exact = exact_lines(model, values, forces, axis=axes[0], m=m) if view["exact"] and len(axes) == 1 else None
     if exact is not None:
-        lines.append(_commented("exact = " + ("gcurve(color=color.black, label=\"exact\")" if single else
+        lines.append(commented("exact = " + ("gcurve(color=color.black, label=\"exact\")" if single else
                                               "[gcurve(color=color.black) for i in range(len(labels))]"),
                                 "the closed form, where there is one"))
         if single:
             lines += [""] + exact[0]
 
     lines += ["", "# ---- the loop: one momentum update per step ----",
-              _commented("t = 0", "s: time, n·Δt after n steps"), "n = 0"]
-    lines += [_loop_condition(model), _commented("    rate(1/dt)", "real time: 1/Δt steps a second")]
+              commented("t = 0", "s: time, n·Δt after n steps"), "n = 0"]
+    lines += [_loop_condition(model), commented("    rate(1/dt)", "real time: 1/Δt steps a second")]
     if methods:
         body = []
         for name in INTEGRATORS:
@@ -434,9 +296,9 @@ def program(setup, *, integrator: str | None = None, web: bool = False) -> str:
         lines += ["    " + line for line in body]
     else:
         lines += ["    for i in range(len(pos)):"] + ["        " + line for line in body]
-    lines += ["    n = n + 1", _commented("    t = n*dt", "a whole number of steps: no round-off piles up")]
+    lines += ["    n = n + 1", commented("    t = n*dt", "a whole number of steps: no round-off piles up")]
     draw = [f"balls{i}.pos = pos{i}".replace("balls", "ball" if single else "balls"),
-            _commented(f"spring{'s[i]' if not single else ''}.axis = pos{i} - {n('anchor')}",
+            commented(f"spring{'s[i]' if not single else ''}.axis = pos{i} - {n('anchor')}",
                        "the helix follows the sphere")]
     draw += [f"{'position' if single else 'curves[i]'}"
              + (f"[{k}]" if len(axes) > 1 else "") + f".plot(t, pos{i}.{axis})" for k, axis in enumerate(axes)]
@@ -453,7 +315,7 @@ def program(setup, *, integrator: str | None = None, web: bool = False) -> str:
     lines += ["", "# ---- the answer ----"]
     lines += [result] if single else ["for i in range(len(pos)):", "    print(labels[i] + \":\", "
                                       + result[len("print("):]]
-    lines = _align_comments(lines)
+    lines = align_comments(lines)
     if web:
         lines = [WEB_FIRST_LINE] + [line for line in lines[1:] if line not in IMPORTS]
     return "\n".join(lines) + "\n"
@@ -467,7 +329,7 @@ def _loop_condition(model) -> str:
         taken += 1
     if taken == steps:
         return "while t < until:"
-    return _commented("while t < until - 1e-9*dt:", "1e-9·Δt forgives round-off in n·Δt")
+    return commented("while t < until - 1e-9*dt:", "1e-9·Δt forgives round-off in n·Δt")
 
 
 def _objects(model, view, values: _Values, single: bool) -> list[str]:
@@ -495,14 +357,14 @@ def _objects(model, view, values: _Values, single: bool) -> list[str]:
     n = values.name
     axes = list(view["plot"])
     ytitle = ", ".join(axes) + " (m)"
-    lines = [_commented(f"radius = {_round(radius)}", "m: size of the sphere (display only)"),
-             _commented(box, "the support")]
+    lines = [commented(f"radius = {_round(radius)}", "m: size of the sphere (display only)"),
+             commented(box, "the support")]
     if single:
         lines += [f"spring = helix(pos=anchor, axis=r0 - anchor, radius=0.45*radius, thickness=0.12*radius, coils=12)",
                   f"ball = sphere(pos=r0, radius=radius, color=color.orange"
                   + (", make_trail=True, retain=300)" if view.get("trail") else ")"),
-                  _commented("pos = r0", "m: position of the mass"),
-                  _commented(f"p = {n('m')}*v0", "kg·m/s: its momentum"),
+                  commented("pos = r0", "m: position of the mass"),
+                  commented(f"p = {n('m')}*v0", "kg·m/s: its momentum"),
                   f"graph(title=\"Position\", xtitle=\"t (s)\", ytitle=\"{ytitle}\")"]
         if len(axes) > 1:
             lines.append("position = [" + ", ".join(f"gcurve(color={COLOURS[k]}, label=\"{axis}\")"
@@ -514,8 +376,8 @@ def _objects(model, view, values: _Values, single: bool) -> list[str]:
     label = "labels[i]" if model.state.count <= MOST_CURVES else "\"\""
     lines += [f"graph(title=\"Position\", xtitle=\"t (s)\", ytitle=\"{ytitle}\")",
               "colours = [" + ", ".join(COLOURS) + "]",
-              _commented("pos = []", "m: position of each mass"),
-              _commented("p = []", "kg·m/s: momentum of each mass"),
+              commented("pos = []", "m: position of each mass"),
+              commented("p = []", "kg·m/s: momentum of each mass"),
               "springs = []", "balls = []", "curves = []",
               "for i in range(len(labels)):",
               f"    pos.append({n('r0')})",
@@ -529,41 +391,6 @@ def _objects(model, view, values: _Values, single: bool) -> list[str]:
 
 def _round(x: float) -> str:
     """A display size, to 3 significant figures (the physics numbers are written exactly)."""
-    return _num(float(f"{float(x):.3g}"))
+    return number(float(f"{float(x):.3g}"))
 
 
-# ---- writing the file ----
-
-def check_path(path: str) -> None:
-    """Raise ProgramError (one line) if a program obviously cannot be written to path."""
-    if not path:
-        raise ProgramError("cannot write the program to '': give a file name, like spring.py")
-    if os.path.isdir(path):
-        raise ProgramError(f"cannot write the program {path!r}: it is a directory")
-    folder = os.path.dirname(os.path.abspath(path))
-    if not os.path.isdir(folder):
-        raise ProgramError(f"cannot write the program {path!r}: folder {folder!r} does not exist")
-    if os.path.exists(path) and not os.access(path, os.W_OK):
-        raise ProgramError(f"cannot write the program {path!r}: Permission denied")
-
-
-def write_program(path: str, text: str) -> None:
-    """Write text to path atomically: a temporary file in the same folder, then renamed over it.
-
-    Raises ProgramError (one line) if the file cannot be written; no file is left behind then.
-    """
-    check_path(path)
-    folder = os.path.dirname(os.path.abspath(path))
-    temporary = None
-    try:
-        handle, temporary = tempfile.mkstemp(dir=folder, prefix=".program-", suffix=".tmp")
-        with os.fdopen(handle, "w", encoding="utf-8") as out:
-            out.write(text)
-        umask = os.umask(0)
-        os.umask(umask)
-        os.chmod(temporary, 0o666 & ~umask)   # as an ordinary new file, not mkstemp's 0600
-        os.replace(temporary, path)
-    except OSError as problem:
-        if temporary is not None and os.path.exists(temporary):
-            os.remove(temporary)
-        raise ProgramError(f"cannot write the program {path!r}: {problem.strerror or problem}") from None
