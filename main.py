@@ -81,6 +81,10 @@ def build_parser() -> argparse.ArgumentParser:
                         help="print the first N steps as a table (t, F_net, p_f, v_f, r_f); implies --headless")
     parser.add_argument("--plot", metavar="FILE.png",
                         help="save the position and energy graphs as a figure; implies --headless")
+    parser.add_argument("--vpython", metavar="FILE.py",
+                        help="write the scene as a standalone VPython program to hand out ('-': print it)")
+    parser.add_argument("--webvpython", metavar="FILE.py",
+                        help="the same program for Web VPython (glowscript.org, trinket)")
     parser.add_argument("--no-browser", action="store_true",
                         help="print the page's URL instead of opening a browser")
     parser.add_argument("--port", type=int, metavar="P", help="port for the browser page")
@@ -192,6 +196,30 @@ def run_headless(args, setup) -> int:
     return 0
 
 
+def write_programs(args, setup) -> None:
+    """--vpython FILE.py and --webvpython FILE.py: the scene as a program to hand out (export/).
+
+    Every program is made and every path checked before any file is written, so bad input leaves
+    no file at all.
+    """
+    import export
+
+    try:
+        texts = [(path, export.program(setup, integrator=args.integrator, web=web))
+                 for path, web in ((args.vpython, False), (args.webvpython, True)) if path is not None]
+        for path, _ in texts:
+            if path != "-":
+                export.check_path(path)
+        for path, text in texts:
+            if path == "-":
+                print(text, end="")
+            else:
+                export.write_program(path, text)
+                print(f"wrote {path}", file=sys.stderr)
+    except ValueError as problem:   # export.ProgramError, or constants the physics cannot take
+        raise UsageError(str(problem)) from None
+
+
 def main(argv=None) -> int:
     args = build_parser().parse_args(argv)
     if args.list:
@@ -205,6 +233,10 @@ def main(argv=None) -> int:
             print(headless.constants_report(setup))
             print(presets_report(setup))
             return 0
+        if args.vpython is not None or args.webvpython is not None:
+            write_programs(args, setup)   # then a headless run too, if one is asked for
+            if not (args.headless or args.steps is not None or args.plot is not None):
+                return 0
         if args.headless or args.steps is not None or args.plot is not None:
             return run_headless(args, setup)
     except (ConstantError, UsageError, headless.OutputError) as problem:

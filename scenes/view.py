@@ -35,6 +35,8 @@ How the page behaves, for the teacher:
   with the same columns as the command line's --csv: t, x, y, z, vx, vy, vz, px, py, pz, K, U, E,
   W_nc (and body for several masses). The file is made here and handed to the browser as a
   data: link that a one-line script clicks; the link stays on the page as a fallback.
+* Download program saves the scene, with the constants, integrator and preset chosen now, as a
+  standalone VPython program to hand out (export/, the same as main.py SCENE --vpython FILE.py).
 * The graphs show one point per 0.05 s of simulation time (at most 20 per simulated second), in a
   window of the last `window` seconds that scrolls. A curve keeps at most 2 × window × 20 points
   (1,200 for 30 s), so a 30-minute run costs the page no more than a 1-minute run.
@@ -373,6 +375,8 @@ class SceneView:
         scene.append_to_caption("    ")
         vp.button(text="Download CSV", bind=lambda _: put(("csv",)))
         scene.append_to_caption(" ")
+        vp.button(text="Download program", bind=lambda _: put(("program",)))
+        scene.append_to_caption(" ")
         self.download_text = vp.wtext(text="")
         scene.append_to_caption("\n\n")
         self.time_text = vp.wtext(text="t = 0.00 s")
@@ -531,6 +535,8 @@ class SceneView:
                 changes[command[1]] = float(command[2])
             elif kind == "csv":
                 self._offer_csv()
+            elif kind == "program":
+                self._offer_program()
             elif kind == "preset" and command[1] != PRESET_PROMPT:
                 self._switch(self.setup.with_preset(command[1]), preset=command[1])
                 changes, integrator = {}, None
@@ -659,6 +665,24 @@ class SceneView:
         self.download_text.text = (
             f'<a id="{link}" download="{name}" href="data:text/csv;charset=utf-8,{quote(text, safe=",.-+")}">'
             f'{name}</a> ({rows} rows, t = {samples[0].t:.{self.decimals}f} to {samples[-1].t:.{self.decimals}f} s)'
+            f'<script>document.getElementById("{link}").click()</script>')
+
+    def _offer_program(self) -> None:
+        """Hand the scene as chosen now (constants, integrator, preset) to the browser as a VPython
+        program (export/), the way Download CSV hands over its file."""
+        from export import program
+
+        try:
+            text = program(self.setup, integrator=self.integrator)
+        except ValueError as problem:
+            self.download_text.text = f"<i>no program: {problem}</i>"
+            return
+        self.downloads += 1
+        link = f"program-download-{self.downloads}"
+        name = f"{self.setup.name}.py"
+        self.download_text.text = (
+            f'<a id="{link}" download="{name}" href="data:text/x-python;charset=utf-8,{quote(text)}">'
+            f'{name}</a> (a VPython program to hand out, {text.count(chr(10))} lines)'
             f'<script>document.getElementById("{link}").click()</script>')
 
     def _fit_position_axis(self, values) -> None:

@@ -1,0 +1,118 @@
+"""The exact solution as lines of the program, where a closed form exists (physics/exact.py).
+
+The closed form follows the displacement x from equilibrium along the spring's line û,
+
+    m x'' + b x' + k x = F cos(ω t),   x(0) = x0,  x'(0) = v0 along û,
+
+as a transient in its damping regime (under-damped, critically damped, over-damped) plus the
+steady swing the driving force keeps up. The lines work the coefficients out from the program's
+own constants, so the curve still fits after a student edits m, k or b (within the same regime).
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from physics.exact import damping_regime
+from physics.forces import Driving, Gravity, LinearDamping, Spring
+
+from .lines import commented, vector
+
+def on_line(model) -> bool:
+    """Whether every mass moves on the line of its spring (what the closed form needs)."""
+    anchors = np.broadcast_to(model.anchors, model.state.r.shape)
+    offsets = model.state.r - anchors
+    lengths = np.linalg.norm(offsets, axis=1)
+    if np.any(lengths == 0):
+        return False
+    u = offsets / lengths[:, None]
+    along = [model.state.p / model.state.m[:, None]]
+    along += [np.broadcast_to(f.direction, u.shape) for f in model.forces if isinstance(f, Gravity)]
+    along += [np.broadcast_to(f.axis, u.shape) for f in model.forces if isinstance(f, Driving)]
+    for vectors in along:
+        off = vectors - np.sum(vectors * u, axis=1)[:, None] * u
+        if np.any(np.linalg.norm(off, axis=1) > 1e-12 * np.maximum(1.0, np.linalg.norm(vectors, axis=1))):
+            return False
+    return True
+
+
+def exact_lines(model, values, forces, *, axis: str, m: str):
+    """(lines before the loop, lines giving x_exact at time t) of the closed form, or None.
+
+    The closed form (physics/exact.py) follows the displacement x from equilibrium along the
+    spring's line û: m x'' + b x' + k x = F cos(ω t), started from x0 and v0 along û.
+    """
+    n = values.name
+    has = {type(force) for force in forces.forces}
+    linear = "L0" not in values.items     # L0 = 0: F = −k L, so each coordinate moves on its own
+    if model.exact is None or not (linear or on_line(model)):
+        return None
+    k_all = np.broadcast_to(next(f.k for f in forces.forces if isinstance(f, Spring)), (model.state.count, 1))[:, 0]
+    damping = next((f.b for f in forces.forces if isinstance(f, LinearDamping)), 0.0)
+    b_all = np.broadcast_to(damping, (model.state.count, 1))[:, 0]
+    regimes = {damping_regime(m=mi, k=ki, b=bi) for mi, ki, bi in zip(model.state.m, k_all, b_all)}
+    L0 = n("L0") if "L0" in values.items else "0"
+    b = n("b") if LinearDamping in has else "0"
+    before = [
+        "# the exact solution (physics/exact.py): x = displacement from equilibrium along the spring",
+        commented(f"u = {vector(np.eye(3)['xyz'.index(axis)])}", "û: the plotted axis (L0 = 0: each axis on its own)")
+        if linear else commented(f"u = norm({n('r0')} - {n('anchor')})", "direction of the spring, û"),
+        commented(f"s_eq = {L0} + {m}*{n('g')}*(-u.y)/{n('k')}" if Gravity in has else f"s_eq = {L0}",
+                   "m: length of the spring at equilibrium"),
+        commented(f"omega0 = sqrt({n('k')}/{m})", "rad/s: natural angular frequency √(k/m)"),
+        commented(f"x0 = {'dot' if linear else 'mag'}({n('r0')} - {n('anchor')}{', u' if linear else ''}) - s_eq",
+                   "m: start displacement"),
+        commented(f"vx0 = dot({n('v0')}, u)", "m/s: start velocity along û"),
+    ]
+    if LinearDamping in has:
+        before.append(commented(f"gamma = {b}/(2*{m})", "1/s: decay rate b/2m"))
+    steady = []
+    if Driving in has:
+        F0, w = n("F0"), n("omega")
+        omega_all = np.broadcast_to(next(f.omega for f in forces.forces if isinstance(f, Driving)),
+                                    (model.state.count, 1))[:, 0]
+        resonant = [bi == 0 and np.isclose(wi, math.sqrt(ki / mi), rtol=1e-12, atol=0)
+                    for bi, wi, ki, mi in zip(b_all, omega_all, k_all, model.state.m)]
+        if any(resonant) and not all(resonant):
+            return None
+        before.append(commented(f"Fu = {F0}*dot({n('drive_axis')}, u)", "N: driving amplitude along û"))
+        if all(resonant):
+            steady = [commented(f"x = x + Fu*t*sin(omega0*t)/(2*{m}*omega0)",
+                                 "resonance: the swing grows as F t/(2 m ω0)")]
+        elif LinearDamping not in has:   # undamped: the steady swing is in step (or opposite)
+            before += [commented(f"amp = Fu/({n('k')} - {m}*{w}**2)", "m: steady-state amplitude (signed)"),
+                       "x0 = x0 - amp"]
+            steady = [f"x = x + amp*cos({w}*t)"]
+        else:
+            before += [
+                commented(f"amp = Fu/sqrt(({n('k')} - {m}*{w}**2)**2 + ({b}*{w})**2)", "m: steady-state amplitude"),
+                commented(f"delta = atan2({b}*{w}, {n('k')} - {m}*{w}**2)", "rad: its phase lag"),
+                "x0 = x0 - amp*cos(delta)",
+                commented(f"vx0 = vx0 - amp*{w}*sin(delta)", "what is left for the free motion"),
+            ]
+            steady = [f"x = x + amp*cos({w}*t - delta)"]
+    branches = {
+        "under-damped": ([commented("omega_d = sqrt(omega0**2 - gamma**2)",
+                                     "under-damped: x = e^(−γt) (x0 cos ω_d t + c2 sin ω_d t)"),
+                          "c2 = (vx0 + gamma*x0)/omega_d"],
+                         ["x = exp(-gamma*t)*(x0*cos(omega_d*t) + c2*sin(omega_d*t))"]),
+        "critically damped": ([commented("c2 = vx0 + gamma*x0", "critically damped: x = e^(−γt) (x0 + c2 t)")],
+                              ["x = exp(-gamma*t)*(x0 + c2*t)"]),
+        "over-damped": ([commented("mu = sqrt(gamma**2 - omega0**2)", "over-damped: x = c1 e^(λ1 t) + c2 e^(λ2 t)"),
+                         "c1 = (vx0 + (gamma + mu)*x0)/(2*mu)", "c2 = x0 - c1"],
+                        ["x = c1*exp((mu - gamma)*t) + c2*exp(-(gamma + mu)*t)"]),
+    }
+    if LinearDamping not in has:
+        return before, [commented("x = x0*cos(omega0*t) + vx0/omega0*sin(omega0*t)", "undamped")] + steady
+    if len(regimes) == 1:
+        coefficients, now = branches[regimes.pop()]
+        return before + coefficients, now + steady
+    now = []
+    for keyword, regime, condition in (("if", "under-damped", f"{b}**2 < 4*{m}*{n('k')}"),
+                                       ("elif", "over-damped", f"{b}**2 > 4*{m}*{n('k')}"),
+                                       ("else", "critically damped", "")):
+        now.append(f"{keyword} {condition}:  # {regime}" if condition else f"else:  # {regime}")
+        now += ["    " + line for line in branches[regime][0] + branches[regime][1]]
+    return before, now + steady
+

@@ -1,0 +1,43 @@
+"""How the program spells things: numbers that read back exactly, and comments lined up.
+
+Every physics number goes into the program through :func:`number` (repr of the float, whole
+numbers without .0), so the program starts from exactly the model's values.
+"""
+from __future__ import annotations
+
+import math
+
+
+class ProgramError(ValueError):
+    """A program that cannot be written (a bad path, a scene the writer cannot follow): one line."""
+
+
+def number(x) -> str:
+    """A float as a literal that reads back exactly: 10, -1.5, 0.1 (whole numbers without .0)."""
+    x = float(x)
+    if not math.isfinite(x):
+        raise ProgramError(f"cannot write the value {x} into a program")
+    if x.is_integer() and abs(x) < 1e15:
+        return str(int(x))
+    return repr(x)
+
+
+def vector(v) -> str:
+    return "vector(" + ", ".join(number(c) for c in v) + ")"
+
+
+COMMENT = "\0"             # marks where a line's comment starts, until align_comments lines them up
+COMMENT_COLUMN = 48
+
+
+def commented(code: str, comment: str, width: int | None = None) -> str:
+    """A line of code with a trailing comment: at column `width`, or where align_comments puts it."""
+    if not comment:
+        return code
+    return f"{code:<{width}} # {comment}" if width else f"{code}{COMMENT}{comment}"
+
+
+def align_comments(lines: list[str]) -> list[str]:
+    """The lines, with every marked comment at COMMENT_COLUMN (or just after longer code)."""
+    return [f"{line.partition(COMMENT)[0]:<{COMMENT_COLUMN - 1}} # {line.partition(COMMENT)[2]}"
+            if COMMENT in line else line for line in lines]
