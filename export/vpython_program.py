@@ -233,7 +233,7 @@ def program(setup, *, integrator: str | None = None, web: bool = False) -> str:
     model = setup.build()
     count = model.state.count
     methods = tuple(model.integrators) if model.integrators is not None else None
-    method = integrator or DEFAULT_INTEGRATOR
+    method = integrator or model.default_integrator or DEFAULT_INTEGRATOR   # as the engine picks
     for name in methods or (method,):
         if name not in INTEGRATORS:
             raise ProgramError(f"unknown integrator {name!r} (known: {', '.join(INTEGRATORS)})")
