@@ -23,11 +23,22 @@ import os
 import signal
 import sys
 
-import headless
-from physics.integrators import DEFAULT_INTEGRATOR, INTEGRATORS
-from physics.simulate import BlowUpError
-from scenes import catalog
-from scenes.constants import ConstantError, check_value
+
+def _stop_while_loading(signum, frame):
+    """Ctrl-C or SIGTERM while numpy and the scenes load: nothing has started, so stop at once."""
+    os.write(2, b"stopped: interrupted while loading; nothing was run\n")
+    os._exit(128 + signum)
+
+
+if __name__ == "__main__":  # run() takes over once everything is loaded
+    signal.signal(signal.SIGINT, _stop_while_loading)
+    signal.signal(signal.SIGTERM, _stop_while_loading)
+
+import headless  # noqa: E402 (after the handlers above, so loading can be interrupted cleanly)
+from physics.integrators import DEFAULT_INTEGRATOR, INTEGRATORS  # noqa: E402
+from physics.simulate import BlowUpError  # noqa: E402
+from scenes import catalog  # noqa: E402
+from scenes.constants import ConstantError, check_value  # noqa: E402
 
 
 EXAMPLES = """examples:
@@ -274,7 +285,7 @@ def run(argv=None) -> int:
     reports them); an output file being written is removed, the old one left as it was. Anything
     unforeseen is a bug of ours: one line naming it, and exit status 1.
     """
-    previous = signal.signal(signal.SIGTERM, _terminate)
+    previous = signal.signal(signal.SIGINT, signal.default_int_handler), signal.signal(signal.SIGTERM, _terminate)
     try:
         return main(argv)
     except KeyboardInterrupt:
@@ -295,7 +306,8 @@ def run(argv=None) -> int:
               f"it with the command you ran)", file=sys.stderr)
         return 1
     finally:
-        signal.signal(signal.SIGTERM, previous)
+        signal.signal(signal.SIGINT, previous[0])
+        signal.signal(signal.SIGTERM, previous[1])
 
 
 if __name__ == "__main__":
