@@ -77,7 +77,7 @@ _Thread = threading.Thread  # the real one, also while _patched replaces it
 _last_contact: float | None = None  # time.monotonic() of the page's last message
 _page_loads = 0  # how many times a page has connected: a reload connects again
 _page_built = 1  # the page load the scene has been built on (the first page gets it as it is made)
-CLOSE_GRACE = 0.8  # s: after the page closes, the program ends this long after, unless it comes back
+CLOSE_GRACE = 0.5  # s: after the page closes, the program ends this long after, unless it comes back
 RELOAD_WAIT = 20.0  # s: how long a reload (the page fetched again as it closed) may take to connect
 REPORT_EVERY = 5.0  # s: refused connections are summed up on stderr at most this often
 
@@ -229,6 +229,7 @@ class _State:
     pages: set = field(default_factory=set)  # open websocket connections of the page (at most one)
     closing: object = None  # the timer that ends the program once the last page has closed
     fetched: float = -math.inf  # time.monotonic() when the page ("/") was last fetched
+    fetched_while_open: float = -math.inf  # ... while a page was connected: a reload, or a second tab
     refusals: "_Refusals | None" = None
 
 
@@ -416,6 +417,8 @@ def _safe_handler(vpython_handler, state: _State):
             if path == "/":
                 vpython_server.httpserving = True  # what vpython's own handler notes: the page was fetched
                 state.fetched = time.monotonic()
+                if state.pages:
+                    state.fetched_while_open = state.fetched
                 return self._send(page.encode("utf-8"), "text/html; charset=utf-8", fresh=True)
             if path == "/status":  # asked by the page when its websocket closed: which message to show
                 return self._send(b"busy" if state.pages else b"free", "text/plain", fresh=True)
@@ -525,9 +528,11 @@ def _guarded_protocol(vpython_protocol, state: _State):
             def end_unless_back():
                 if state.pages:
                     return
-                # A reload fetches the page again just before the old one closes; its scripts
-                # may take seconds to load before it connects, so wait for it (within reason).
-                if state.fetched > closed - 1.0 and time.monotonic() - closed < RELOAD_WAIT:
+                # A reload fetches the page again just before the old one closes (or, in some
+                # browsers, just after); its scripts may take seconds to load before it
+                # connects, so wait for it (within reason).
+                reloading = state.fetched_while_open > closed - CLOSE_GRACE or state.fetched > closed
+                if reloading and time.monotonic() - closed < RELOAD_WAIT:
                     state.closing = loop.call_later(0.1, end_unless_back)
                     return
                 super(GuardedWSserver, self).onClose(wasClean, code, reason)
