@@ -17,10 +17,13 @@ which is exactly the arithmetic a student does by hand. Nothing here imports vpy
 """
 from __future__ import annotations
 
+import contextlib
 import csv
+import json
 import math
 import os
 import sys
+import tempfile
 from dataclasses import dataclass
 
 import numpy as np
@@ -56,8 +59,13 @@ class TooManySteps(ConstantError):
 
 # ---- numbers and vectors as a student writes them ----
 
+NO_VALUE = "(no value)"  # what a quantity that overflowed or is undefined prints instead of inf or nan
+
+
 def number(x: float, digits: int = SIGNIFICANT) -> str:
-    """x to `digits` significant figures, with no '-0'."""
+    """x to `digits` significant figures, with no '-0'; NO_VALUE for inf and nan."""
+    if not math.isfinite(float(x)):
+        return NO_VALUE
     text = f"{float(x):.{digits}g}"
     return "0" if text in ("-0", "0", "-0.0") else text
 
@@ -140,10 +148,16 @@ def simulate(setup, *, model=None, integrator: str | None = None, until: float |
     engine = model.simulation(integrator)
     until = model.until if until is None else until
     step_count(model, until=until, rows_per_step=model.state.count if every_step else 0)
+    window = getattr(setup.module, "measure_window", None)
+    if window is not None and window(setup.values)[1] > until:
+        start, end = window(setup.values)
+        raise ConstantError(
+            f"the scene measures from t = {number(start)} s to {number(end)} s (settle, then "
+            f"{number(setup.values['periods'])} periods of the slowest drive), after the run ends at "
+            f"t = {number(until)} s; set until to at least {number(end)} s, or a smaller settle")
     if every_step:
         record = every(1)
     else:
-        window = getattr(setup.module, "measure_window", None)
         record = None if window is None else time_grid(
             model.dt, t0=model.state.t, dt=model.dt, **dict(zip(("start", "end"), window(setup.values))))
     stream = sys.stderr if progress == "stderr" else progress     # looked up now, not at import
@@ -196,7 +210,7 @@ def stability_warning(model, methods) -> str | None:
                           ignore=model.may_run_away),
                     judge(model.forces, model.state.m, methods, model.dt, v=model.state.v)):
         if verdict.past_limit:
-            raise BlowUpError(f"the run would blow up: {verdict.message}")
+            raise BlowUpError(f"the run would blow up, past the stability limit: {verdict.message}")
         if not verdict.stable:
             return f"warning: expect the motion to grow: {verdict.message}"
     return None
@@ -312,6 +326,31 @@ def as_json(result: Result) -> dict:
     return out
 
 
+def to_json(out: dict) -> str:
+    """`out` as strict JSON (no NaN or Infinity, which strict parsers reject).
+
+    A number with no finite value (an overflow, an undefined quantity) becomes null, and a
+    "notes" list names each such place and why, so no reader mistakes it for an answer.
+    """
+    places = []
+
+    def finite(value, place):
+        if isinstance(value, dict):
+            return {key: finite(item, f"{place}.{key}" if place else key) for key, item in value.items()}
+        if isinstance(value, (list, tuple)):
+            return [finite(item, f"{place}[{n}]") for n, item in enumerate(value)]
+        if isinstance(value, float) and not math.isfinite(value):
+            places.append(place)
+            return None
+        return value
+
+    clean = finite(out, "")
+    if places:
+        clean.setdefault("notes", []).extend(
+            f"{place}: null, no finite value (it overflowed or is undefined at this time)" for place in places)
+    return json.dumps(clean, ensure_ascii=False, allow_nan=False)
+
+
 def _exact_entry(r, v, r_exact, v_exact) -> dict:
     return {"r": r_exact.tolist(), "v": v_exact.tolist(),
             "error": {"r": float(np.linalg.norm(r - r_exact)), "v": float(np.linalg.norm(v - v_exact))}}
@@ -347,21 +386,66 @@ def check_writable(path: str, *, what: str, allow_stdout: bool = False) -> None:
         raise OutputError(f"cannot write {what} {path!r}: {problem.strerror or problem}") from None
     if not existed:
         os.remove(path)
+    os.remove(_temporary_beside(path, what=what))  # the folder must take the temporary file too
 
 
 def write_csv(result: Result, path: str) -> int:
     """One row per step (per mass): t, r, v, p, then the system's K, U, E, W_nc in J; returns rows written.
 
     Multi-mass scenes add a `body` column with each mass's label; the energy columns are totals.
-    path "-" writes to standard output. A file that cannot be written raises OutputError.
+    path "-" writes to standard output. A file that cannot be written raises OutputError; the
+    rows go to a temporary file that replaces `path` only when complete (see atomic_file).
     """
     if path == STDOUT:
         return _write_rows(result, sys.stdout)
-    try:
-        with open(path, "w", newline="", encoding="utf-8") as handle:
+    with atomic_file(path, what="CSV file") as temporary:
+        with open(temporary, "w", newline="", encoding="utf-8") as handle:
             return _write_rows(result, handle)
+
+
+def same_file(first: str, second: str) -> bool:
+    """Whether two output paths name the same file (after ., .., symbolic links and case on disk)."""
+    if first == STDOUT or second == STDOUT:
+        return first == second
+    if os.path.exists(first) and os.path.exists(second):
+        return os.path.samefile(first, second)
+    return os.path.realpath(first) == os.path.realpath(second)
+
+
+def _temporary_beside(path: str, *, what: str) -> str:
+    """A new empty file in path's folder, with the permissions `path` has or a new file would get."""
+    folder, name = os.path.split(os.path.abspath(path))
+    try:
+        handle, temporary = tempfile.mkstemp(prefix=f".{name}.", suffix=".part", dir=folder)
+        os.close(handle)
+        if os.path.exists(path):  # keep the old file's permissions, not mkstemp's private 0600
+            os.chmod(temporary, os.stat(path).st_mode & 0o7777)
+        else:
+            umask = os.umask(0)
+            os.umask(umask)
+            os.chmod(temporary, 0o666 & ~umask)
     except OSError as problem:
-        raise OutputError(f"cannot write CSV file {path!r}: {problem.strerror or problem}") from None
+        raise OutputError(f"cannot write {what} {path!r}: {problem.strerror or problem}") from None
+    return temporary
+
+
+@contextlib.contextmanager
+def atomic_file(path: str, *, what: str):
+    """Yield a temporary file name in path's folder; on success it is renamed onto `path`.
+
+    A rename within one folder is atomic, so `path` is always either the old file, untouched, or
+    the complete new one: a full disk, a file-size limit, Ctrl-C or SIGTERM part-way leave no
+    half-written file (the temporary one is removed). An OSError becomes OutputError.
+    """
+    temporary = _temporary_beside(path, what=what)
+    try:
+        yield temporary
+        os.replace(temporary, path)
+    except OSError as problem:
+        raise OutputError(f"cannot write {what} {path!r}: {problem.strerror or problem}") from None
+    finally:
+        with contextlib.suppress(FileNotFoundError):
+            os.remove(temporary)
 
 
 def _write_rows(result: Result, handle) -> int:

@@ -19,15 +19,26 @@ status 2; a run that blows up gives its reason (Δt and the stability limit) and
 from __future__ import annotations
 
 import argparse
-import json
-import math
+import os
+import signal
 import sys
 
-import headless
-from physics.integrators import DEFAULT_INTEGRATOR, INTEGRATORS
-from physics.simulate import BlowUpError
-from scenes import catalog
-from scenes.constants import ConstantError
+
+def _stop_while_loading(signum, frame):
+    """Ctrl-C or SIGTERM while numpy and the scenes load: nothing has started, so stop at once."""
+    os.write(2, b"stopped: interrupted while loading; nothing was run\n")
+    os._exit(128 + signum)
+
+
+if __name__ == "__main__":  # run() takes over once everything is loaded
+    signal.signal(signal.SIGINT, _stop_while_loading)
+    signal.signal(signal.SIGTERM, _stop_while_loading)
+
+import headless  # noqa: E402 (after the handlers above, so loading can be interrupted cleanly)
+from physics.integrators import DEFAULT_INTEGRATOR, INTEGRATORS  # noqa: E402
+from physics.simulate import BlowUpError  # noqa: E402
+from scenes import catalog  # noqa: E402
+from scenes.constants import ConstantError, check_value  # noqa: E402
 
 
 EXAMPLES = """examples:
@@ -126,21 +137,59 @@ def presets_report(setup) -> str:
     return "\n".join(lines)
 
 
+BROWSER_ONLY = (("--port", "port"), ("--no-browser", "no_browser"))
+RUN_OPTIONS = (("--headless", "headless"), ("--json", "json"), ("--csv", "csv"), ("--plot", "plot"),
+               ("--steps", "steps"), ("--until", "until"), ("--integrator", "integrator"))
+
+
+def _given(args, attribute) -> bool:
+    value = getattr(args, attribute)
+    return value is not None and value is not False and value != []  # --port 0 is given
+
+
 def check_options(args) -> None:
-    """Combinations and ranges argparse cannot check by itself."""
-    headless = args.headless or args.steps is not None or args.plot is not None
+    """Combinations and ranges argparse cannot check by itself: each flag must do something."""
+    runs_headless = args.headless or args.steps is not None or args.plot is not None
+    if args.list:
+        others = [flag for flag, attribute in (("--constants", "constants"), ("--set", "assignments"),
+                                               ("--scenario", "scenario"), ("--preset", "preset"),
+                                               *RUN_OPTIONS, *BROWSER_ONLY) if _given(args, attribute)]
+        if args.scene is not None or others:
+            what = f"scene {args.scene!r}" if args.scene is not None else others[0]
+            raise UsageError(f"--list takes no scene or other option (got {what}); "
+                             f"use 'python main.py SCENE --constants' for one scene")
+        return
+    if args.constants:
+        for flag, attribute in (*RUN_OPTIONS, *BROWSER_ONLY):
+            if _given(args, attribute):
+                raise UsageError(f"--constants only prints the constants, so {flag} would do nothing; "
+                                 f"leave out one of them")
     for flag, given in (("--json", args.json), ("--csv", args.csv is not None)):
         if given and not args.headless:
             raise UsageError(f"{flag} needs --headless (it describes a run without the browser)")
+    if runs_headless:
+        for flag, attribute in BROWSER_ONLY:
+            if _given(args, attribute):
+                raise UsageError(f"{flag} is for the browser page, and a headless run (--headless, "
+                                 f"--steps, --plot) has none; leave out one of them")
     if args.until is not None:
-        if not headless:
+        if not runs_headless:
             raise UsageError("--until needs --headless (the browser runs until you stop it)")
-        if not math.isfinite(args.until) or args.until < 0:
-            raise UsageError(f"--until must be a finite time of 0 s or more (got {args.until:g} s)")
+        try:
+            check_value("until", args.until, "s")  # the same range as the scenes' own `until`
+        except ConstantError as problem:
+            raise UsageError(f"--{problem}") from None
+        if args.steps is not None and args.csv is None and args.plot is None:
+            raise UsageError("--until does nothing with --steps alone (the table stops after N steps); "
+                             "leave out one of them")
     if args.steps is not None and args.steps < 1:
         raise UsageError(f"--steps needs a whole number of 1 or more (got {args.steps})")
-    if args.port is not None and not 0 <= args.port <= 65535:
-        raise UsageError(f"--port must be between 0 and 65535 (got {args.port})")
+    if args.port is not None and not 1 <= args.port <= 65535:
+        raise UsageError(f"--port must be a whole number from 1 to 65535 (got {args.port}); "
+                         f"leave --port out for any free port")
+    outputs = [(flag, path) for flag, path in (("--csv", args.csv), ("--plot", args.plot)) if path]
+    if len(outputs) == 2 and headless.same_file(outputs[0][1], outputs[1][1]):
+        raise UsageError(f"--csv and --plot both write {args.csv!r}: give them different files")
 
 
 def run_headless(args, setup) -> int:
@@ -173,7 +222,7 @@ def run_headless(args, setup) -> int:
         table = headless.step_table(setup, model=model, integrator=args.integrator, steps=args.steps)
         if args.json:
             rows = table.pop("rows")
-            print(json.dumps({**table, "steps": args.steps, "step_table": rows}, ensure_ascii=False))
+            print(headless.to_json({**table, "steps": args.steps, "step_table": rows}))
         else:
             print(headless.format_step_table(table))
         if args.csv is None and args.plot is None:
@@ -191,7 +240,7 @@ def run_headless(args, setup) -> int:
 
         plotting.plot(result, args.plot)
     if args.steps is None:
-        print(json.dumps(headless.as_json(result), ensure_ascii=False) if args.json
+        print(headless.to_json(headless.as_json(result)) if args.json
               else headless.final_report(result))
     return 0
 
@@ -222,11 +271,11 @@ def write_programs(args, setup) -> None:
 
 def main(argv=None) -> int:
     args = build_parser().parse_args(argv)
-    if args.list:
-        print(list_scenes())
-        return 0
     try:
         check_options(args)
+        if args.list:
+            print(list_scenes())
+            return 0
         setup = catalog.configure(args.scene or catalog.DEFAULT_SCENE, assignments=args.assignments,
                                   scenario=args.scenario, preset=args.preset)
         if args.constants:
@@ -255,11 +304,45 @@ def main(argv=None) -> int:
                   open_browser=not args.no_browser, preset=preset))
 
 
-if __name__ == "__main__":
-    try:
-        sys.exit(main())
-    except BrokenPipeError:  # output piped into `head` and cut short: not an error of ours
-        import os
+class Terminated(BaseException):
+    """SIGTERM arrived: unwinds like Ctrl-C, so every half-written output file is removed on the way."""
 
+
+def _terminate(signum, frame):
+    raise Terminated()
+
+
+def run(argv=None) -> int:
+    """main() as a user meets it: whatever happens, at most one line on stderr and never a traceback.
+
+    Ctrl-C exits with status 130 and SIGTERM with 143 (128 + the signal's number, as a shell
+    reports them); an output file being written is removed, the old one left as it was. Anything
+    unforeseen is a bug of ours: one line naming it, and exit status 1.
+    """
+    previous = signal.signal(signal.SIGINT, signal.default_int_handler), signal.signal(signal.SIGTERM, _terminate)
+    try:
+        return main(argv)
+    except KeyboardInterrupt:
+        print("stopped: interrupted (Ctrl-C); no file was left half-written", file=sys.stderr)
+        return 128 + signal.SIGINT
+    except Terminated:
+        print("stopped: terminated (SIGTERM); no file was left half-written", file=sys.stderr)
+        return 128 + signal.SIGTERM
+    except BrokenPipeError:  # output piped into `head` and cut short: not an error of ours
         os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
-        sys.exit(0)
+        return 0
+    except MemoryError:
+        print("error: not enough memory for this run; use a larger dt or a shorter --until", file=sys.stderr)
+        return 1
+    except Exception as problem:  # the last resort: a bug, but still no traceback for the user
+        text = " ".join(str(problem).split()) or "no message"
+        print(f"error: unexpected {type(problem).__name__}: {text} (a bug in main.py; please report "
+              f"it with the command you ran)", file=sys.stderr)
+        return 1
+    finally:
+        signal.signal(signal.SIGINT, previous[0])
+        signal.signal(signal.SIGTERM, previous[1])
+
+
+if __name__ == "__main__":
+    sys.exit(run())

@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from headless import OutputError
+from headless import OutputError, atomic_file
 
 
 class MissingMatplotlib(OutputError):
@@ -134,8 +134,8 @@ def plot(result, path: str) -> None:
     ax_e.grid(alpha=0.3)
     fig.tight_layout()
     try:
-        fig.savefig(path, dpi=110)
-    except OSError as problem:
-        raise OutputError(f"cannot write figure {path!r}: {problem.strerror or problem}") from None
+        # A temporary file renamed into place: a failure part-way leaves the old figure as it was.
+        with atomic_file(path, what="figure") as temporary:
+            fig.savefig(temporary, dpi=110, format=path.rsplit(".", 1)[-1].lower())
     finally:
         plt.close(fig)

@@ -22,7 +22,7 @@ from dataclasses import dataclass
 
 from physics.exact import critical_damping
 
-from .constants import ConstantError, Constant, parse_assignments, read_constants
+from .constants import ConstantError, Constant, check_value, parse_assignments, read_constants
 from .model import Model
 
 SCENE_NAMES = ["vertical", "damped", "driven", "regimes", "drag", "pendulum", "integrators", "resonance"]
@@ -140,4 +140,6 @@ def configure(name: str, *, assignments=(), scenario: int | None = None, preset:
     if preset is not None:
         values.update(find_preset(module, preset)[1])
     values.update(parse_assignments(assignments, constants))
+    for key, value in values.items():  # the file's own values and the presets' obey the same ranges
+        check_value(key, tuple(value) if isinstance(value, list) else value, constants[key].unit)
     return Setup(name, module, constants, resolve(values))

@@ -13,30 +13,96 @@ import difflib
 import inspect
 import io
 import math
+import re
 import tokenize
 from dataclasses import dataclass
 
 VECTOR_NAMES = {"anchor", "r0", "v0", "drive_axis"}
 
-# name -> (test, what it must be)
-RULES = {
-    "m": (lambda x: x > 0, "greater than 0 kg"),
-    "k": (lambda x: x >= 0, "0 N/m or more"),
-    "b": (lambda x: x >= 0, "0 kg/s or more"),
-    "C": (lambda x: x >= 0, "0 or more"),
-    "A": (lambda x: x >= 0, "0 m² or more"),
-    "rho": (lambda x: x >= 0, "0 kg/m³ or more"),
-    "L0": (lambda x: x >= 0, "0 m or more"),
-    "g": (lambda x: x >= 0, "0 m/s² or more (it is a magnitude; gravity acts along −y)"),
-    "omega": (lambda x: x >= 0, "0 rad/s or more"),
-    "dt": (lambda x: x > 0, "greater than 0 s"),
-    "until": (lambda x: x >= 0, "0 s or more"),
-    "drive_axis": (lambda v: any(c != 0 for c in v), "a non-zero direction"),
-}
 
 
 class ConstantError(ValueError):
     """A bad constant: its message is one line a teacher can act on."""
+
+
+def _short(x: float) -> str:
+    """1e+06 -> 1e6, 1e-06 -> 1e-6, 0.5 -> 0.5: a bound as a teacher writes it."""
+    return re.sub(r"e([+-])0*(\d)", lambda m: "e" + ("-" if m[1] == "-" else "") + m[2], f"{x:g}")
+
+
+@dataclass(frozen=True)
+class Declared:
+    """What values one constant may take, in the unit of the scene files, and why.
+
+    Every number a constant (or each component of a vector constant) may take lies from `low` to
+    `high`; `above_low` leaves `low` itself out (m > 0). The bounds are wide for teaching, and
+    narrow enough that the products the forces take, m·g, k·(|L| − L0), b·v, ½ρCA|v|², stay
+    far from floating-point overflow (10³⁰⁸) and Δt stays far from round-off (10⁻¹⁶ of t).
+    `whole` asks for a whole number (a count); `nonzero` asks a vector for a non-zero length
+    (a direction). `note` is added to the range in the message. One declaration per name, for
+    every scene: a later field (symbol, unit, slider range) belongs here too.
+    """
+
+    low: float
+    high: float
+    above_low: bool = False
+    whole: bool = False
+    nonzero: bool = False
+    note: str = ""
+
+    def allows(self, value) -> bool:
+        numbers = value if isinstance(value, tuple) else (value,)
+        inside = all((x > self.low if self.above_low else x >= self.low) and x <= self.high
+                     and (not self.whole or x == int(x)) for x in numbers)
+        return inside and (not self.nonzero or max(abs(x) for x in numbers) >= NONZERO)
+
+    def words(self, unit: str = "", *, vector: bool = False) -> str:
+        """`from 0 to 1e6 N/m`, `greater than 0 and at most 1e6 kg`, `a whole number from 2 to 10000`."""
+        unit = f" {unit}" if unit and unit != "1" else ""
+        low, high = _short(self.low), _short(self.high)
+        span = (f"greater than {low} and at most {high}{unit}" if self.above_low
+                else f"from {low} to {high}{unit}")
+        if self.whole:
+            span = f"a whole number {span}"
+        if vector:
+            span = f"three numbers, each {span}"
+            if self.nonzero:
+                span += f", not all near 0 (the largest at least {_short(NONZERO)})"
+        return f"{span} ({self.note})" if self.note else span
+
+
+NONZERO = 1e-6  # a direction's largest component must be at least this, so its length is not round-off
+
+# The one table of what each constant may be, for every scene (the units are the scene files').
+DECLARED = {
+    "m": Declared(1e-6, 1e6),
+    "k": Declared(0, 1e6),
+    "b": Declared(0, 1e6),
+    "C": Declared(0, 100),
+    "A": Declared(0, 1e3),
+    "rho": Declared(0, 1e5),
+    "L0": Declared(0, 1e4),
+    "g": Declared(0, 1e3, note="it is a magnitude; gravity acts along −y"),
+    "F0": Declared(-1e6, 1e6),
+    "omega": Declared(0, 1e4),
+    "drive_axis": Declared(-1e6, 1e6, nonzero=True),
+    "anchor": Declared(-1e4, 1e4),
+    "r0": Declared(-1e4, 1e4),
+    "v0": Declared(-1e4, 1e4),
+    "x0": Declared(-1e4, 1e4),
+    "spacing": Declared(0, 1e3),
+    "under_fraction": Declared(0, 1e3),
+    "over_multiple": Declared(0, 1e3),
+    "b_ratio": Declared(0, 1e3, above_low=True),
+    "curves": Declared(1, 100, whole=True),
+    "count": Declared(2, 10_000, whole=True),
+    "omega_min": Declared(0, 1e4, above_low=True),
+    "omega_max": Declared(0, 1e4, above_low=True),
+    "settle": Declared(0, 1e6),
+    "periods": Declared(0, 1e4, above_low=True),
+    "dt": Declared(1e-6, 1e3),
+    "until": Declared(0, 1e6),
+}
 
 
 @dataclass(frozen=True)
@@ -100,16 +166,22 @@ def parse_value(name: str, text: str):
 
 
 def check_value(name: str, value, unit: str = "") -> None:
-    """Raise ConstantError unless value is finite and within the rule for its name."""
+    """Raise ConstantError unless value is finite and within its declaration (DECLARED[name]).
+
+    The message names the constant, the value given and the range that works.
+    """
     numbers = value if isinstance(value, tuple) else (value,)
     if value is None:
         return
-    if not all(isinstance(x, (int, float)) and math.isfinite(x) for x in numbers):
-        what = "three finite numbers" if isinstance(value, tuple) else "a finite number"
+    declared = DECLARED.get(name)
+    vector = isinstance(value, tuple)
+    if not all(isinstance(x, (int, float)) and not isinstance(x, bool) and math.isfinite(x) for x in numbers):
+        what = declared.words(unit, vector=vector) if declared else (
+            "three finite numbers" if vector else "a finite number")
         raise ConstantError(f"{name} must be {what} (got {format_value(value, unit)})")
-    rule = RULES.get(name)
-    if rule and not rule[0](value):
-        raise ConstantError(f"{name} must be {rule[1]} (got {format_value(value, unit)})")
+    if declared is not None and not declared.allows(value):
+        raise ConstantError(f"{name} must be {declared.words(unit, vector=vector)} "
+                            f"(got {format_value(value, unit)})")
 
 
 def unknown_name_message(name: str, known) -> str:

@@ -46,6 +46,7 @@ from __future__ import annotations
 import contextlib
 import errno
 import importlib
+import math
 import os
 import signal
 import socket
@@ -72,7 +73,54 @@ _CONTENT_TYPES = {
     ".ico": "image/x-icon",
 }
 
+_Thread = threading.Thread  # the real one, also while _patched replaces it
 _last_contact: float | None = None  # time.monotonic() of the page's last message
+_page_loads = 0  # how many times a page has connected: a reload connects again
+_page_built = 1  # the page load the scene has been built on (the first page gets it as it is made)
+CLOSE_GRACE = 0.5  # s: after the page closes, the program ends this long after, unless it comes back
+RELOAD_WAIT = 20.0  # s: how long a reload (the page fetched again as it closed) may take to connect
+REPORT_EVERY = 5.0  # s: refused connections are summed up on stderr at most this often
+
+
+# Added to vpython's page: when its websocket closes, say why on the page instead of leaving it
+# blank or frozen (vpython's own page only tries window.close(), which browsers ignore for a tab
+# the user opened). /status tells a second tab ("busy") from a program that has ended.
+TAB_SCRIPT = """<script>
+(function () {
+  var Real = window.WebSocket;
+  function say(html) {
+    var box = document.getElementById('tab-message') || document.createElement('div');
+    box.id = 'tab-message';
+    box.style.cssText = 'position:fixed;top:0;left:0;right:0;z-index:1000;padding:16px;' +
+      'background:#fff4c2;color:#222;font:20px sans-serif;border-bottom:2px solid #c90';
+    box.innerHTML = html;
+    document.body.appendChild(box);
+  }
+  window.WebSocket = function (url, protocols) {
+    var ws = protocols === undefined ? new Real(url) : new Real(url, protocols);
+    var opened = false;
+    ws.addEventListener('open', function () { opened = true; });
+    ws.addEventListener('close', function () {
+      fetch('/status', {cache: 'no-store'}).then(function (r) { return r.text(); }).then(function (t) {
+        if (t === 'busy') {
+          say('This scene is already open in another tab. Use that tab, or close it and reload this one.');
+        } else if (opened) {
+          say('The connection to the program was lost. Reload this tab to see the scene again.');
+        } else {
+          say('This page could not connect to the program. Reload this tab to try again.');
+        }
+      }, function () {
+        say('The program has ended, so this page no longer changes. ' +
+            'Run <code>python main.py</code> again to start it.');
+      });
+    });
+    return ws;
+  };
+  window.WebSocket.prototype = Real.prototype;
+  ['CONNECTING', 'OPEN', 'CLOSING', 'CLOSED'].forEach(function (k) { window.WebSocket[k] = Real[k]; });
+})();
+</script>
+"""
 
 
 class ServerError(RuntimeError):
@@ -98,6 +146,20 @@ class ServerInfo:
     def seconds_since_contact(self) -> float:
         return time.monotonic() - self.last_contact()
 
+    def page_loads(self) -> int:
+        """How many times a page has connected; it goes up when the tab is reloaded, and the
+        reloaded page is empty until the scene is built on it again."""
+        return _page_loads
+
+    def page_built(self, load: int) -> None:
+        """The scene has been built again for page load `load`: send that page its updates.
+
+        Until then a reloaded page is answered with no updates at all, since vpython's queue
+        still holds changes to objects of the old page, which the new one would choke on.
+        """
+        global _page_built
+        _page_built = load
+
 
 def start(*, port: int | None = None, open_browser: bool = True,
           remind_after: float = 10.0) -> ServerInfo:
@@ -115,6 +177,8 @@ def start(*, port: int | None = None, open_browser: bool = True,
     http_port = state.reservation.getsockname()[1]
     state.url = url = f"http://{LOOPBACK}:{http_port}/"
     state.origins = {f"http://{host}:{http_port}" for host in (LOOPBACK, "localhost")}
+    state.hosts = {f"{host}:{http_port}" for host in (LOOPBACK, "localhost")}
+    state.refusals = _Refusals()
     state.open_browser = open_browser
     waiting = threading.Event()
     # Until vpython installs its own SIGINT handler, Ctrl-C only sets a flag: a KeyboardInterrupt
@@ -161,6 +225,12 @@ class _State:
     bind_error: OSError | None = None
     connected: bool = False  # the page's websocket has opened
     interrupted: bool = False  # Ctrl-C came before that
+    hosts: set[str] = field(default_factory=set)  # Host header values the HTTP server answers
+    pages: set = field(default_factory=set)  # open websocket connections of the page (at most one)
+    closing: object = None  # the timer that ends the program once the last page has closed
+    fetched: float = -math.inf  # time.monotonic() when the page ("/") was last fetched
+    fetched_while_open: float = -math.inf  # ... while a page was connected: a reload, or a second tab
+    refusals: "_Refusals | None" = None
 
 
 def _reserve(port: int | None) -> socket.socket:
@@ -189,6 +259,45 @@ def _reserve(port: int | None) -> socket.socket:
         raise ServerError(f"port {port} {reason}; pick another with --port") from None
     sock.listen(LISTEN_QUEUE)
     return sock
+
+
+class _Refusals:
+    """Refused connections and ignored messages, summed up on stderr at most every REPORT_EVERY s.
+
+    A hostile page can knock thousands of times a second; the teacher's terminal gets one line
+    every few seconds saying how many, and why, instead of one line each.
+    """
+
+    def __init__(self, stream=None, every: float = REPORT_EVERY):
+        self.stream, self.every = stream, every
+        self.lock = threading.Lock()
+        self.counts: dict[str, int] = {}
+        self.last_report = -math.inf
+        self.pending = False
+
+    def add(self, reason: str) -> None:
+        with self.lock:
+            self.counts[reason] = self.counts.get(reason, 0) + 1
+            wait = self.last_report + self.every - time.monotonic()
+            if self.pending:
+                return
+            self.pending = True
+        if wait <= 0:
+            self.report()
+        else:  # threading.Timer would not do: while vpython loads, threading.Thread is patched
+            _Thread(target=lambda: (time.sleep(wait), self.report()), name="refusal-report",
+                    daemon=True).start()
+
+    def report(self) -> None:
+        with self.lock:
+            counts, self.counts, self.pending = self.counts, {}, False
+            self.last_report = time.monotonic()
+        if counts:
+            total = sum(counts.values())
+            parts = "; ".join(f"{count} {reason}" for reason, count in counts.items())
+            print(f"note: refused {total} connection{'s' if total != 1 else ''} or message"
+                  f"{'s' if total != 1 else ''} ({parts}); the page here is unaffected",
+                  file=self.stream or sys.stderr, flush=True)
 
 
 def _remind(url: str, every: float, stop: threading.Event) -> None:
@@ -262,7 +371,7 @@ def _http_server_class(state: _State):
             # Serve from the socket start() bound and has listened on since it printed the URL
             # (vpython asks for ('', port); we ignore the address). No new bind, so no bind error.
             try:
-                super().__init__((LOOPBACK, 0), _safe_handler(handler_class), bind_and_activate=False)
+                super().__init__((LOOPBACK, 0), _safe_handler(handler_class, state), bind_and_activate=False)
             except OSError as exc:
                 state.bind_error = exc  # vpython swallows it; start() reports it
                 raise
@@ -281,8 +390,9 @@ def _http_server_class(state: _State):
     return LoopbackHTTPServer
 
 
-def _safe_handler(vpython_handler):
-    """vpython's request handler, answering only "/" and its own library and data files."""
+def _safe_handler(vpython_handler, state: _State):
+    """vpython's request handler, answering only "/", "/status" and vpython's library and data
+    files, and only to requests addressed to this program's own host name and port."""
     package_dir = os.path.dirname(sys.modules[vpython_handler.__module__].__file__)
     files = {}  # URL path -> file on disk
     for folder, prefix in (("vpython_data", "/"), ("vpython_libraries", "/"),
@@ -291,22 +401,39 @@ def _safe_handler(vpython_handler):
             if entry.is_file() and os.path.splitext(entry.name)[1] in _CONTENT_TYPES:
                 files[prefix + entry.name] = entry.path
 
+    vpython_server = sys.modules[vpython_handler.__module__]
+    page = vpython_server.glowcomm.replace("</head>", TAB_SCRIPT + "</head>", 1)
+
     class SafeHandler(vpython_handler):
         timeout = 10  # seconds; drop idle connections
 
         def do_GET(self):
+            # A page from another site can point a DNS name at 127.0.0.1 (DNS rebinding); its
+            # requests then carry that name as Host, so only our own names are answered.
+            if self.headers.get("Host", "") not in state.hosts:
+                state.refusals.add("with a Host header other than this program's")
+                return self.send_error(421, "this server answers only " + " or ".join(sorted(state.hosts)))
             path = unquote(self.path.split("?", 1)[0])
             if path == "/":
-                self.path = "/"
-                return super().do_GET()  # vpython's page, with its websocket port filled in
+                vpython_server.httpserving = True  # what vpython's own handler notes: the page was fetched
+                state.fetched = time.monotonic()
+                if state.pages:
+                    state.fetched_while_open = state.fetched
+                return self._send(page.encode("utf-8"), "text/html; charset=utf-8", fresh=True)
+            if path == "/status":  # asked by the page when its websocket closed: which message to show
+                return self._send(b"busy" if state.pages else b"free", "text/plain", fresh=True)
             file = files.get(path)  # exact names only: "..", "%2e%2e", "//", "\\" never match
             if file is None:
                 return self.send_error(404)
             with open(file, "rb") as f:
-                body = f.read()
+                self._send(f.read(), _CONTENT_TYPES[os.path.splitext(file)[1]])
+
+        def _send(self, body: bytes, content_type: str, *, fresh: bool = False) -> None:
             self.send_response(200)
-            self.send_header("Content-Type", _CONTENT_TYPES[os.path.splitext(file)[1]])
+            self.send_header("Content-Type", content_type)
             self.send_header("Content-Length", str(len(body)))
+            if fresh:  # the page names this run's websocket port; /status changes
+                self.send_header("Cache-Control", "no-store")
             self.end_headers()
             self.wfile.write(body)
 
@@ -328,37 +455,88 @@ def _create_server(original, state: _State):
     return create_server
 
 
+class _Quiet:
+    """A logger that says nothing: what matters is summed up by _Refusals instead."""
+
+    def __getattr__(self, name):
+        return lambda *args, **kwargs: None
+
+
 def _guarded_protocol(vpython_protocol, state: _State):
+    import asyncio
+
     from autobahn.exception import Disconnected
     from autobahn.websocket.types import ConnectionDeny
 
     class GuardedWSserver(vpython_protocol):
         opened = False
+        log = _Quiet()  # autobahn would print a line for every refused or dropped connection
 
         def onConnect(self, request):
             # Browsers always send Origin; a page from anywhere else must not drive (or stop) us.
             if request.origin not in state.origins:
+                state.refusals.add("from another web page or program")
                 raise ConnectionDeny(ConnectionDeny.FORBIDDEN, "origin not allowed")
+            # A second tab would take half of the page's updates: it gets a message instead
+            # (TAB_SCRIPT asks /status), and closing it does not end the program.
+            if state.pages:
+                state.refusals.add("from a second tab of the page")
+                raise ConnectionDeny(409, "the page is already open in another tab")
             return super().onConnect(request)
 
         def onOpen(self):
-            global _last_contact
+            global _last_contact, _page_loads
+            if state.pages:  # two tabs raced through onConnect: the first one keeps the page
+                state.refusals.add("from a second tab of the page")
+                self.sendClose(code=1000, reason="the page is already open in another tab")
+                return
+            if state.closing is not None:  # the page came back (a reload) before the program ended
+                state.closing.cancel()
+                state.closing = None
             self.opened = state.connected = True
+            state.pages.add(self)
             _last_contact = time.monotonic()
+            _page_loads += 1
             super().onOpen()
 
         async def onMessage(self, data, isBinary):
             global _last_contact
+            if not self.opened:
+                return
             _last_contact = time.monotonic()
+            if _page_loads > _page_built:  # a reloaded page, not built yet: "nothing new" keeps it asking
+                self.sendMessage(b"trigger", isBinary=False)
+                return
             try:
                 await super().onMessage(data, isBinary)
             except Disconnected:  # the page closed while vpython was replying; onClose follows
                 pass
+            except Exception:  # not something the page sends: ignored, and counted
+                state.refusals.add("message the page could not have sent, ignored")
 
         def onClose(self, wasClean, code, reason):
             # vpython's onClose sends SIGINT to the process; autobahn calls it for every lost
-            # connection, even refused ones. Only the page's own connection may end the program.
-            if self.opened:
-                super().onClose(wasClean, code, reason)
+            # connection, even refused ones. Only the page's own connection may end the program,
+            # and only if no page connects again within CLOSE_GRACE (a reload closes, then connects).
+            if not self.opened:
+                return
+            state.pages.discard(self)
+            if state.pages:
+                return
+            closed, loop = time.monotonic(), asyncio.get_event_loop()
+
+            def end_unless_back():
+                if state.pages:
+                    return
+                # A reload fetches the page again just before the old one closes (or, in some
+                # browsers, just after); its scripts may take seconds to load before it
+                # connects, so wait for it (within reason).
+                reloading = state.fetched_while_open > closed - CLOSE_GRACE or state.fetched > closed
+                if reloading and time.monotonic() - closed < RELOAD_WAIT:
+                    state.closing = loop.call_later(0.1, end_unless_back)
+                    return
+                super(GuardedWSserver, self).onClose(wasClean, code, reason)
+
+            state.closing = loop.call_later(CLOSE_GRACE, end_unless_back)
 
     return GuardedWSserver

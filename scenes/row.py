@@ -59,13 +59,16 @@ def exact_row(*, anchors, r0, m, k, L0, g, b=0.0, F0=0.0, omega=0.0, drive_axis=
     anchors, r0 = np.asarray(anchors, dtype=float), np.asarray(r0, dtype=float)
     count = len(anchors)
     b, F0, omega = (np.broadcast_to(np.asarray(x, dtype=float), (count,)) for x in (b, F0, omega))
-    motions = [single_mass_motion(m=m, k=k, L0=L0, g=g, b=b[i], C=0.0, F0=F0[i], omega=omega[i],
+    def motion(i):
+        return single_mass_motion(m=m, k=k, L0=L0, g=g, b=b[i], C=0.0, F0=F0[i], omega=omega[i],
                                   drive_axis=drive_axis, anchor=anchors[i], r0=r0[i], v0=(0, 0, 0))
-               for i in range(count)]
-    if any(motion is None for motion in motions):
+    if motion(0) is None:      # the same forces for every mass: one without a closed form, all
         return None
+    motions = []
 
     def exact(t):
-        rs, vs = zip(*(motion(t) for motion in motions))
+        if not motions:        # worked out when first asked for: a big batch may never need it
+            motions.extend(motion(i) for i in range(count))
+        rs, vs = zip(*(each(t) for each in motions))
         return np.stack(rs, axis=1), np.stack(vs, axis=1)
     return exact

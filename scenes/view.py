@@ -243,6 +243,7 @@ class SceneView:
         self.shapes, self.graphs = [], []
         self.page = 0  # which build of the page the controls' clicks come from
         self.downloads = 0
+        self.loads_shown = self._page_loads()
         self._build_page(setup, model, preset=preset)
 
     # ---- building the page ----
@@ -264,6 +265,31 @@ class SceneView:
         self._build_graphs(model)
         self._restart(model)
         self.clock.restart(now=time.perf_counter())
+
+    # ---- a reloaded tab ----
+
+    def _page_loads(self) -> int:
+        """How often a page has connected (1 in a notebook, whose server does not count reloads)."""
+        return self.server.page_loads() if hasattr(self.server, "page_loads") else 1
+
+    def _page_reloaded(self) -> None:
+        """The tab was reloaded (F5): the new page is empty, and vpython cannot send it the objects
+        made for the old one, so the scene is built again, from t = 0, on a new canvas.
+
+        vpython's queue of changes is dropped first: they are for the old page's objects, and the
+        new page would stop at the first object it does not know.
+        """
+        from vpython.vpython import baseObj
+
+        loads = self._page_loads()
+        baseObj.initialize()
+        for kept in (baseObj.attach_arrows, baseObj.attach_trails, baseObj.follow_objects):
+            kept.clear()
+        self.shapes, self.graphs = [], []  # on the old page only: nothing to take down
+        self.vp.scene = self.vp.canvas()
+        self._build_page(self.setup, self.setup.build())
+        self.loads_shown = loads
+        self.server.page_built(loads)
 
     def _take_down(self) -> None:
         """Hide the 3-D objects and remove the graphs and controls of the scene shown so far.
@@ -492,6 +518,8 @@ class SceneView:
         notebook, scenes/notebook.py calls it from the kernel's event loop, so the cell returns.
         """
         start = time.perf_counter()
+        if self._page_loads() > self.loads_shown:
+            self._page_reloaded()
         changed = self._apply_commands(now=start)
         steps = self.clock.steps_due(now=start, running=self.running and not self.live.problem,
                                      quiet=self.server.seconds_since_contact(),

@@ -172,7 +172,7 @@ CASES = [
     ("pendulum", "--set", "until=3", "--integrator", "rk4", "--set", "b=0.2"),
     ("integrators",),
     ("integrators", "--set", "dt=0.01", "--set", "until=2"),
-    ("resonance", "--set", "until=10"),
+    ("resonance", "--set", "until=10", "--set", "settle=0.5"),
 ]
 
 

@@ -78,7 +78,7 @@ def test_outside_a_notebook_show_refuses_and_never_imports_vpython():
 @pytest.mark.parametrize("call, expected", [
     (dict(name="vertcal"), "did you mean 'vertical'"),
     (dict(name="vertical", kk=60), "did you mean 'k'"),
-    (dict(name="vertical", m=-1), "m must be greater than 0 kg"),
+    (dict(name="vertical", m=-1), "m must be from 1e-6 to 1e6 kg"),
     (dict(name="vertical", r0=(0, 1)), "r0 needs a 3-vector"),
     (dict(name="driven", scenario=9), "scenario 9 is out of range"),
     (dict(name="vertical", integrator="leapfrog"), "unknown integrator 'leapfrog'"),
