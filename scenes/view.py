@@ -87,6 +87,15 @@ ENERGY_COLOURS = {"K": (0.85, 0.1, 0.1), "U": (0.1, 0.3, 0.9), "E": (0.0, 0.0, 0
 ENERGY_LABELS = {"K": "K", "U": "U", "E": "E = K + U", "E_minus_W_nc": "E − W_nc"}
 PRESET_PROMPT = "choose a preset"
 LIVE_EVERY = 0.5          # s of wall time between redraws of a scene graph's live dots
+# vpython 7.6.5's page sends a slider's value only when it differs from the last value it sent, and
+# before the first move there is none, so the first move of every slider was lost. This script tells
+# the page each new slider's starting value, by calling the slider's own change handler once with a
+# stand-in for a mouse event (its handlers ignore events without one), so the first move is sent.
+# It runs in the page from a wtext (jQuery runs scripts in the HTML it inserts); each slider is primed once.
+PRIME_SLIDERS = ("<script>$('.ui-slider').each(function () {"
+                 " if (this.dataset.primed) return; this.dataset.primed = '1';"
+                 " var change = $(this).slider('option', 'change');"
+                 " if (change) change({originalEvent: {}}); });</script>")
 
 
 def show(setup, *, integrator: str, port: int | None, open_browser: bool, preset: str | None = None) -> int:
@@ -386,6 +395,8 @@ class SceneView:
             self.sliders[name] = vp.slider(min=low, max=high, step=step, value=self.setup.values[name],
                                            length=320, bind=lambda s, name=name: put(("set", name, s.value)))
             self.slider_texts[name] = vp.wtext(text="")
+        if self.sliders:
+            vp.wtext(text="").text = PRIME_SLIDERS  # set, not made with it: the setter runs scripts
         scene.append_to_caption("\n\n")
         self.constants_text = vp.wtext(text="")
         scene.append_to_caption("\n<i>Moving a slider, choosing another integrator or a preset restarts "
