@@ -66,6 +66,8 @@ from physics.state import velocity
 from . import catalog
 from .clock import LiveRun, RealTimeClock, Sample, StepBudget, Trace, window
 from .constants import format_value
+from .palette import (ENERGY_COLOURS, ENERGY_LABELS, EXACT_COLOUR, EXACT_WIDTH, mass_colour, shade,
+                      simulation_width)
 
 FRAME_RATE = 50           # frames per second the loop aims for
 SAMPLE_EVERY = 0.05       # s of simulation time between graph points
@@ -80,11 +82,6 @@ CANVAS_SIZE = (900, 440)  # px
 GRAPH_SIZE = (580, 290)   # px
 # Larger text than vpython's default, for a projector at the back of a classroom.
 PAGE_STYLE = "<style>body { font-size: 17px; } button, select { font-size: 17px; }</style>"
-MASS_COLOURS = [(1.0, 0.55, 0.1), (0.25, 0.65, 1.0), (0.3, 0.85, 0.35), (0.95, 0.35, 0.6),
-                (0.8, 0.75, 0.2), (0.65, 0.45, 0.95)]
-ENERGY_COLOURS = {"K": (0.85, 0.1, 0.1), "U": (0.1, 0.3, 0.9), "E": (0.0, 0.0, 0.0),
-                  "E_minus_W_nc": (0.1, 0.6, 0.1)}
-ENERGY_LABELS = {"K": "K", "U": "U", "E": "E = K + U", "E_minus_W_nc": "E − W_nc"}
 PRESET_PROMPT = "choose a preset"
 LIVE_EVERY = 0.5          # s of wall time between redraws of a scene graph's live dots
 # vpython 7.6.5's page sends a slider's value only when it differs from the last value it sent, and
@@ -328,7 +325,7 @@ class SceneView:
         # A long row gets fewer turns per spring: each turn is many triangles for the browser.
         coils = max(4, min(self.view["coils"], round(4 * self.view["coils"] / len(anchors))))
         for i, (anchor, r) in enumerate(zip(anchors, model.state.r)):
-            colour = vp.vector(*MASS_COLOURS[i % len(MASS_COLOURS)])
+            colour = vp.vector(*mass_colour(i))
             self.springs.append(vp.helix(pos=_vec(vp, anchor), axis=_vec(vp, r - anchor),
                                          radius=0.45 * radius, thickness=0.12 * radius,
                                          coils=coils, color=vp.vector(0.85, 0.85, 0.9)))
@@ -421,16 +418,18 @@ class SceneView:
             for axis in self.axes:
                 name = "xyz"[axis] + (f" {label}" if many or len(self.axes) > 1 else " (simulation)")
                 name = name if legend else ""
-                colour = vp.vector(*_shade(MASS_COLOURS[i % len(MASS_COLOURS)], axis, self.axes))
-                self._curve(self.position_graph, name, colour, ("r", i, axis), width=3)
+                colour = vp.vector(*shade(mass_colour(i), self.axes.index(axis)))
+                self._curve(self.position_graph, name, colour, ("r", i, axis),
+                            width=simulation_width(i, model.state.count, crowded=not legend))
         self.exact_curves = bool(self.view["exact"]) and model.exact is not None
         self.show_exact = self.exact_curves
-        if self.show_exact:
+        if self.show_exact:  # made last, so drawn on top: thin and dark inside the thick simulated curves
             for i, label in enumerate(model.labels):
                 for axis in self.axes:
                     # one legend entry for all the exact curves: they share a colour
                     name = f"{'xyz'[axis]} exact" if i == 0 and legend else ""
-                    self._curve(self.position_graph, name, vp.vector(0.1, 0.1, 0.1), ("exact", i, axis), width=1)
+                    self._curve(self.position_graph, name, vp.vector(*EXACT_COLOUR), ("exact", i, axis),
+                                width=EXACT_WIDTH)
         self.energy_graph = vp.graph(title="Energy", xtitle="t (s)", ytitle="energy (J)",
                                      width=width, height=height, align="left", fast=True,
                                      xmin=0, xmax=self.span)
@@ -754,12 +753,6 @@ def _replace_points(series, points) -> None:
 
 def _vec(vp, a):
     return vp.vector(float(a[0]), float(a[1]), float(a[2]))
-
-
-def _shade(colour, axis, axes):
-    """The mass's colour, darker for the second and third plotted coordinate."""
-    factor = 1.0 - 0.3 * axes.index(axis)
-    return tuple(c * factor for c in colour)
 
 
 def _summary(module) -> str:

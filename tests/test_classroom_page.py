@@ -3,6 +3,9 @@
 * The first move of a slider takes effect: a single click on the k track and a single drag of the
   m handle, each the first move of that slider, change its label and restart the run from t = 0
   (vpython 7.6.5's page dropped a slider's first value; scenes/view.py primes it).
+* Where the simulation agrees with the exact solution (rk4, damped), both curves show: the thick
+  simulated curve in the mass's colour, the thin dark exact one inside it; the two balls of `drag`,
+  whose curves coincide at first, both show.
 
 Skipped, with the reason, where Chromium or Playwright is missing.
 """
@@ -12,9 +15,11 @@ import re
 
 import pytest
 
-from browser_support import wait_for
+from browser_support import colours, pixels_like, wait_for
+from scenes.palette import mass_colour
 from scenes.view import slider_range
-from test_browser import Program, browser, caption_lines, shown_time  # noqa: F401 (browser is a fixture)
+from test_browser import (Program, browser, caption_lines, crop, graph_boxes, menu,  # noqa: F401 (a fixture)
+                          shown_time)
 
 pytestmark = pytest.mark.browser
 VIEWPORT = {"width": 1400, "height": 1000}
@@ -75,3 +80,49 @@ def test_the_first_click_and_the_first_drag_of_a_slider_take_effect(browser):
     finally:
         page.close()
         program.stop()
+
+
+def graph_image(page, index: int, path):
+    """The index-th graph of the page (its drawing canvas), cut from a screenshot saved at `path`."""
+    page.screenshot(path=str(path), full_page=True)
+    return crop(path, graph_boxes(page)[index])
+
+
+def dark_pixels(image) -> int:
+    """Near-black pixels in the left 40 % of a graph, inside its frame (the exact curve)."""
+    width, height = image.size
+    inside = image.crop((int(0.1 * width), int(0.08 * height), int(0.4 * width), int(0.88 * height)))
+    return sum(n for rgb, n in colours(inside).items() if max(rgb) < 90)
+
+
+def test_the_simulation_and_the_exact_curve_both_show_where_they_agree(browser, tmp_path):
+    """rk4 on the damped spring follows the exact solution to well under a pixel."""
+    program, page = open_scene(browser, "damped")
+    try:
+        menu(page, "rk4").select_option("rk4")
+        wait_for(lambda: shown_time(page) >= 6.0, timeout=60.0, what="t to reach 6 s")
+        image = graph_image(page, 0, tmp_path / "damped.png")
+        orange = pixels_like(image, tuple(round(255 * c) for c in mass_colour(0)), within=60)
+        exact = dark_pixels(image)
+        assert exact > 300, f"the exact curve hardly shows ({exact} dark pixels)"
+        assert orange > 2 * exact, f"the simulated curve hardly shows ({orange} orange, {exact} dark pixels)"
+    finally:
+        page.close()
+        program.stop()
+
+
+def test_the_two_balls_of_drag_both_show_while_their_curves_coincide(browser, tmp_path):
+    program, page = open_scene(browser, "drag")
+    try:
+        wait_for(lambda: shown_time(page) >= 6.0, timeout=60.0, what="t to reach 6 s")
+        image = graph_image(page, 0, tmp_path / "drag.png")
+        for i in (0, 1):
+            colour = tuple(round(255 * c) for c in mass_colour(i))
+            assert curve_pixels_like(image, colour) > 400, f"ball {i}'s curve does not show"
+    finally:
+        page.close()
+        program.stop()
+
+
+def curve_pixels_like(image, rgb) -> int:
+    return pixels_like(image.crop((0, 0, int(0.4 * image.width), image.height)), rgb, within=60)
