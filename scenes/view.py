@@ -64,6 +64,7 @@ from physics.integrators import INTEGRATORS
 from physics.state import velocity
 
 from . import catalog
+from .axes import AxisFit, nice_range
 from .clock import LiveRun, RealTimeClock, Sample, StepBudget, Trace, window
 from .constants import format_value
 from .palette import (ENERGY_COLOURS, ENERGY_LABELS, EXACT_COLOUR, EXACT_WIDTH, mass_colour, shade,
@@ -80,6 +81,7 @@ DEFAULT_VIEW = {"support": "ceiling", "plot": "y", "trail": False, "exact": True
 
 CANVAS_SIZE = (900, 440)  # px
 GRAPH_SIZE = (580, 290)   # px
+GRAPH_CANVAS_HEIGHT = GRAPH_SIZE[1] + 26  # px: vpython adds room for the title; flot spaces ticks by this
 # Larger text than vpython's default, for a projector at the back of a classroom.
 PAGE_STYLE = "<style>body { font-size: 17px; } button, select { font-size: 17px; }</style>"
 PRESET_PROMPT = "choose a preset"
@@ -262,7 +264,8 @@ class SceneView:
         self.axes = ["xyz".index(axis) for axis in self.view["plot"]]
         self.live = RecordedRun(model, integrator=self.integrator, sample_every=SAMPLE_EVERY)
         self.recorded: deque = deque()
-        self.position_axis = None
+        self.position_fit = AxisFit(pixels=GRAPH_CANVAS_HEIGHT)
+        self.energy_fit = AxisFit(pixels=GRAPH_CANVAS_HEIGHT)
         self._build_scene(model)
         self._build_controls(preset)
         self._build_graphs(model)
@@ -469,9 +472,13 @@ class SceneView:
     def _fill_scene_graph(self, spec) -> None:
         """Put a view_graph spec's points and labels into the scene graph's curves and dots."""
         graph = self.scene_graph
-        for key in ("xmin", "xmax", "ymin", "ymax"):
-            if key in spec:
-                setattr(graph, key, spec[key])
+        for axis, pixels in (("x", GRAPH_SIZE[0]), ("y", GRAPH_CANVAS_HEIGHT)):
+            low, high = spec.get(f"{axis}min"), spec.get(f"{axis}max")
+            if low is not None and high is not None:  # widened to round ticks
+                low, high = nice_range(low, high, pixels=pixels)
+            for key, value in ((f"{axis}min", low), (f"{axis}max", high)):
+                if value is not None:
+                    setattr(graph, key, value)
         for series, (label, xs, ys, _) in zip(self.scene_series, spec.get("lines", []) + spec.get("dots", [])):
             _replace_points(series, [[float(x), float(y)] for x, y in zip(xs, ys)])
             if series.label != label:
@@ -590,9 +597,8 @@ class SceneView:
         self._draw()
 
     def _clear_graphs(self, samples):
-        if getattr(self, "position_axis", None) is not None:  # back to autoscale until refitted
-            self.position_graph.ymin = self.position_graph.ymax = None
-        self.exact_range, self.position_axis = (math.inf, -math.inf), None
+        self.position_fit.clear()
+        self.energy_fit.clear()
         for curve, trace, _ in self.curves:
             trace.clear()
         self.recorded.clear()
@@ -628,7 +634,11 @@ class SceneView:
             elif points:
                 curve.plot(points)
         if exact is not None and len(exact):
-            self._fit_position_axis(exact[..., self.axes])
+            self._fit(self.position_graph, self.position_fit, exact[..., self.axes].ravel())
+        elif len(t):
+            self._fit(self.position_graph, self.position_fit, r[..., self.axes].ravel())
+        self._fit(self.energy_graph, self.energy_fit,
+                  [s.energy[what[1]] for s in samples for _, _, what in self.curves if what[0] == "energy"])
         if len(t):
             start, end = window(float(t[-1]), span=self.span)
             if start != self.position_graph.xmin:
@@ -671,21 +681,17 @@ class SceneView:
             f'{name}</a> ({rows} rows, t = {samples[0].t:.{self.decimals}f} to {samples[-1].t:.{self.decimals}f} s)'
             f'<script>document.getElementById("{link}").click()</script>')
 
-    def _fit_position_axis(self, values) -> None:
-        """Scale the position axis to the exact motion so far (padded, rounded outward).
+    @staticmethod
+    def _fit(graph, fit: AxisFit, values) -> None:
+        """Widen a graph's y axis, to round ticks, when the values leave it (scenes/axes.py).
 
-        A numerical curve that strays far from the exact one runs off the graph, rather than
-        squashing every other curve flat, as euler's growing swing would.
+        The position axis follows the exact motion where there is one: a numerical curve that
+        strays far from it runs off the graph, rather than squashing every other curve flat, as
+        euler's growing swing would.
         """
-        low = min(self.exact_range[0], float(np.min(values)))
-        high = max(self.exact_range[1], float(np.max(values)))
-        self.exact_range = (low, high)
-        pad = 0.25 * (high - low) + 1e-3
-        grid = 10 ** math.floor(math.log10(high - low + 2 * pad)) / 2
-        ymin, ymax = math.floor((low - pad) / grid) * grid, math.ceil((high + pad) / grid) * grid
-        if (ymin, ymax) != self.position_axis:
-            self.position_axis = (ymin, ymax)
-            self.position_graph.ymin, self.position_graph.ymax = ymin, ymax
+        ends = fit.update(values)
+        if ends is not None:
+            graph.ymin, graph.ymax = ends
 
     def _draw(self) -> None:
         """Move the masses and springs to the state now and update the caption: once per frame."""

@@ -3,6 +3,7 @@
 * The first move of a slider takes effect: a single click on the k track and a single drag of the
   m handle, each the first move of that slider, change its label and restart the run from t = 0
   (vpython 7.6.5's page dropped a slider's first value; scenes/view.py primes it).
+* Every graph ticks its y axis at even steps of 1, 2 or 5 × 10ⁿ (read from the tick labels).
 * Where the simulation agrees with the exact solution (rk4, damped), both curves show: the thick
   simulated curve in the mass's colour, the thin dark exact one inside it; the two balls of `drag`,
   whose curves coincide at first, both show.
@@ -11,6 +12,7 @@ Skipped, with the reason, where Chromium or Playwright is missing.
 """
 from __future__ import annotations
 
+import math
 import re
 
 import pytest
@@ -126,3 +128,29 @@ def test_the_two_balls_of_drag_both_show_while_their_curves_coincide(browser, tm
 
 def curve_pixels_like(image, rgb) -> int:
     return pixels_like(image.crop((0, 0, int(0.4 * image.width), image.height)), rgb, within=60)
+
+
+def tick_values(page) -> list[list[float]]:
+    """The y-axis tick labels of each graph on the page, as numbers, read from the page's text."""
+    graphs = page.locator(".glowscript-graph")
+    return [[float(text.replace("−", "-")) for text in graphs.nth(i).locator(".yAxis .tickLabel").all_inner_texts()]
+            for i in range(graphs.count())]
+
+
+@pytest.mark.parametrize("scene", ["regimes", "pendulum", "resonance", "integrators"])
+def test_every_graph_ticks_at_round_even_steps(browser, scene):
+    program, page = open_scene(browser, scene)
+    try:
+        wait_for(lambda: shown_time(page) >= 8.0, timeout=90.0, what="t to reach 8 s")
+        graphs = tick_values(page)
+        assert len(graphs) >= 2
+        for ticks in graphs:
+            assert len(ticks) >= 3, ticks
+            steps = [b - a for a, b in zip(ticks, ticks[1:])]
+            step = abs(steps[0])
+            assert all(abs(abs(s) - step) <= 1e-6 * step for s in steps), f"uneven ticks {ticks}"
+            mantissa = step / 10 ** math.floor(math.log10(step) + 1e-9)
+            assert min(abs(mantissa - r) for r in (1, 2, 5, 10)) < 1e-6, f"ticks {ticks} step by {step}"
+    finally:
+        page.close()
+        program.stop()
