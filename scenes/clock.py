@@ -33,6 +33,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from physics.energy import WorkMeter, report
+from physics.integrators import STABILITY_LIMIT_OMEGA_DT
 from physics.simulate import fastest_angular_frequency, stability_advice, stepper
 from physics.state import State
 
@@ -161,6 +162,13 @@ class LiveRun:
 
     Reset is reassignment: :meth:`restart` puts back the model's own initial state and a new
     work meter, so the start is restored exactly.
+
+    Runaways: where masses are stepped by different integrators side by side (the `integrators`
+    scene), a mass whose method is unstable at this Δt (euler at every Δt) is expected to run away.
+    Once it is farther than ``runaway_reach`` metres from its anchor it is frozen there (at rest)
+    and recorded in :attr:`runaways` as {mass index: (t in s, reason sentence)}, while the other
+    masses run on; the whole run stops (:attr:`problem`) only if a mass not expected to run away
+    blows up.
     """
 
     def __init__(self, model, *, integrator: str, sample_every: float = 0.05,
@@ -176,6 +184,8 @@ class LiveRun:
         speed = float(np.max(np.linalg.norm(v0, axis=-1)))
         self._omega = omega
         self._limit = growth_limit * (1.0 + size + (speed / omega if omega else speed))
+        self.runaway_reach = 3.0 * (size + (speed / omega if omega else speed))
+        self._may_run_away = expected_runaways(model)
         self.restart()
 
     def restart(self) -> list[Sample]:
@@ -183,6 +193,8 @@ class LiveRun:
         self.state: State = self.model.state
         self.meter = WorkMeter(self.state, self.model.forces) if self._uses_work else None
         self.problem: str | None = None
+        self.runaways: dict[int, tuple[float, str]] = {}
+        self._frozen: dict[int, np.ndarray] = {}  # mass index -> where it was frozen, m
         self._next = 1
         return [self.sample()]
 
@@ -203,6 +215,8 @@ class LiveRun:
         next_t = self._next * self.sample_every
         for _ in range(steps):
             state = step(state, forces, dt)
+            if self._may_run_away:
+                state = self._hold_runaways(state)
             if meter:
                 meter.advance(state)
             if state.t >= next_t - 1e-9 * dt:
@@ -215,6 +229,23 @@ class LiveRun:
             self._check()
         return samples
 
+    def _hold_runaways(self, state: State) -> State:
+        """Freeze, at rest where they are, the masses expected to run away that have gone too far."""
+        r = state.r
+        for i in self._may_run_away:
+            if i not in self._frozen and not (np.all(np.isfinite(r[i]))
+                                              and np.linalg.norm(r[i] - self.model.anchors[i]) <= self.runaway_reach):
+                self._frozen[i] = r[i] if np.all(np.isfinite(r[i])) else self.state.r[i]
+                name = self.model.integrators[i]
+                self.runaways[i] = (state.t, f"{name} ran away at t = {state.t:.3g} s (its swing grew past "
+                                    f"{self.runaway_reach:.2g} m): " + stability_advice(name, self.model.dt, self._omega))
+        if not self._frozen:
+            return state
+        r, p = state.r.copy(), state.p.copy()
+        for i, where in self._frozen.items():
+            r[i], p[i] = where, 0.0
+        return State(t=state.t, r=r, p=p, m=state.m)
+
     def _check(self) -> None:
         r = self.state.r
         finite = bool(np.all(np.isfinite(r)) and np.all(np.isfinite(self.state.p)))
@@ -223,6 +254,16 @@ class LiveRun:
         what = "non-finite state" if not finite else "motion growing without bound"
         self.problem = (f"the simulation blew up by t = {self.state.t:.4g} s ({what}): "
                         + stability_advice(self.integrator, self.model.dt, self._omega))
+
+
+def expected_runaways(model) -> list[int]:
+    """The masses a scene expects may run away: stepped side by side with their own integrator,
+    by one that is unstable at this Δt (euler at every Δt; the others beyond their ω·Δt limit)."""
+    if not model.integrators:
+        return []
+    omega_dt = fastest_angular_frequency(model.forces, model.state.m) * model.dt
+    return [i for i, name in enumerate(model.integrators)
+            if STABILITY_LIMIT_OMEGA_DT[name] is None or omega_dt >= STABILITY_LIMIT_OMEGA_DT[name]]
 
 
 class Trace:

@@ -60,12 +60,13 @@ from urllib.parse import quote
 import numpy as np
 
 from headless import CSV_HEADER, ENERGY_KEYS
+from physics.energy import kinetic, potential, rest_potential
 from physics.integrators import INTEGRATORS
-from physics.state import velocity
+from physics.state import State, velocity
 
 from . import catalog
 from .axes import AxisFit, nice_range
-from .clock import LiveRun, RealTimeClock, Sample, StepBudget, Trace, window
+from .clock import LiveRun, RealTimeClock, Sample, StepBudget, Trace, expected_runaways, window
 from .constants import format_value
 from .palette import (ENERGY_COLOURS, ENERGY_LABELS, EXACT_COLOUR, EXACT_WIDTH, mass_colour, shade,
                       simulation_width)
@@ -81,9 +82,12 @@ DEFAULT_VIEW = {"support": "ceiling", "plot": "y", "trail": False, "exact": True
 
 CANVAS_SIZE = (900, 440)  # px
 GRAPH_SIZE = (580, 290)   # px
+NARROW_GRAPH_WIDTH = 440  # px: three graphs side by side fit a 1400-px window (a projector's 1440 × 900)
 GRAPH_CANVAS_HEIGHT = GRAPH_SIZE[1] + 26  # px: vpython adds room for the title; flot spaces ticks by this
 # Larger text than vpython's default, for a projector at the back of a classroom.
-PAGE_STYLE = "<style>body { font-size: 17px; } button, select { font-size: 17px; }</style>"
+# A row of graphs that wraps leaves room under the x-axis titles for the next row's titles.
+PAGE_STYLE = ("<style>body { font-size: 17px; } button, select { font-size: 17px; }"
+              " .glowscript-graph { margin-bottom: 36px; }</style>")
 PRESET_PROMPT = "choose a preset"
 LIVE_EVERY = 0.5          # s of wall time between redraws of a scene graph's live dots
 # vpython 7.6.5's page sends a slider's value only when it differs from the last value it sent, and
@@ -322,6 +326,8 @@ class SceneView:
                              size=vp.vector(span_x, thickness, 2 * radius), color=vp.vector(0.6, 0.6, 0.65))
             low = np.minimum(low, [centre[0] - span_x / 2, low[1], low[2]])
             high = np.maximum(high, [centre[0] + span_x / 2, ceiling_y + thickness, high[2]])
+        self.support_box = (np.asarray(_array(support.pos) - 0.5 * _array(support.size)),
+                            np.asarray(_array(support.pos) + 0.5 * _array(support.size)))
         low, high = low - 0.3 * radius, high + 0.3 * radius
         self._frame_camera(low, high)
         self.masses, self.springs = [], []
@@ -336,6 +342,17 @@ class SceneView:
                              make_trail=bool(self.view["trail"]), retain=300)
             self.masses.append(mass)
         self.shapes = [support, *self.springs, *self.masses]
+
+    def _reframe(self, model) -> None:
+        """Frame the new motion and the support once, after a new constant: in or out, as it needs.
+
+        Without this the view would only zoom out after the mass (a heavier mass hangs lower), and
+        the masses would shrink with every change.
+        """
+        low, high = motion_box(model)
+        low = np.minimum(low - 1.3 * self.radius, self.support_box[0])
+        high = np.maximum(high + 1.3 * self.radius, self.support_box[1])
+        self._frame_camera(low, high)
 
     def _frame_camera(self, low, high) -> None:
         scene = self.vp.scene
@@ -407,8 +424,10 @@ class SceneView:
 
     def _build_graphs(self, model) -> None:
         vp = self.vp
+        has_own = hasattr(self.setup.module, "view_graph")
+        self.graph_size = (NARROW_GRAPH_WIDTH if has_own else GRAPH_SIZE[0], GRAPH_SIZE[1])
         self._build_scene_graph()
-        width, height = GRAPH_SIZE
+        width, height = self.graph_size
         names = ", ".join("xyz"[axis] for axis in self.axes)
         legend = model.state.count <= LEGEND_MASSES  # a long row's legend would hide the graph
         title = "Position" if legend else f"Position of each of the {model.state.count} masses"
@@ -433,13 +452,28 @@ class SceneView:
                     name = f"{'xyz'[axis]} exact" if i == 0 and legend else ""
                     self._curve(self.position_graph, name, vp.vector(*EXACT_COLOUR), ("exact", i, axis),
                                 width=EXACT_WIDTH)
-        self.energy_graph = vp.graph(title="Energy", xtitle="t (s)", ytitle="energy (J)",
+        # What the energy graph shows, so that it tells the story (what would fill it otherwise):
+        # one method per mass: each mass's own E = K + U (summed, euler's runaway would swamp it);
+        # a system that starts at rest at equilibrium: energies measured from there (else a large
+        # constant m g h would flatten every curve).
+        self.per_mass_energy = bool(model.integrators)
+        self.energy_offset = 0.0 if self.per_mass_energy else (rest_potential(model.state, model.forces) or 0.0)
+        title = ("Energy of each mass, E = K + U" if self.per_mass_energy else
+                 "Energy, measured from rest at equilibrium" if self.energy_offset else "Energy")
+        self.energy_graph = vp.graph(title=title, xtitle="t (s)", ytitle="energy (J)",
                                      width=width, height=height, align="left", fast=True,
                                      xmin=0, xmax=self.span)
-        for key, colour in ENERGY_COLOURS.items():
-            # E − W_nc comes last and thinner, so it shows on top of E when no work is done
-            self._curve(self.energy_graph, ENERGY_LABELS[key], vp.vector(*colour), ("energy", key),
-                        width=4 if key == "E" else 2)
+        if self.per_mass_energy:
+            for i, label in enumerate(model.labels):
+                # half the position curves' widths: an energy that wobbles fast would fill a band
+                self._curve(self.energy_graph, f"E {label}", vp.vector(*mass_colour(i)), ("mass_energy", i),
+                            width=simulation_width(i, model.state.count) / 2)
+        else:
+            for key, colour in ENERGY_COLOURS.items():
+                # E − W_nc comes last and thinner, so it shows on top of E when no work is done
+                label = ENERGY_LABELS[key] + (" − U_rest" if self.energy_offset and key != "K" else "")
+                self._curve(self.energy_graph, label, vp.vector(*colour), ("energy", key),
+                            width=4 if key == "E" else 2)
         self.graphs.extend([self.position_graph, self.energy_graph])
 
     def _build_scene_graph(self) -> None:
@@ -454,7 +488,7 @@ class SceneView:
         if make is None:
             return
         spec = make(self.setup)
-        width, height = GRAPH_SIZE
+        width, height = self.graph_size
         self.scene_graph = vp.graph(title=spec["title"], xtitle=spec["xtitle"], ytitle=spec["ytitle"],
                                     width=width, height=height, align="left", fast=True)
         self.graphs.append(self.scene_graph)
@@ -472,7 +506,7 @@ class SceneView:
     def _fill_scene_graph(self, spec) -> None:
         """Put a view_graph spec's points and labels into the scene graph's curves and dots."""
         graph = self.scene_graph
-        for axis, pixels in (("x", GRAPH_SIZE[0]), ("y", GRAPH_CANVAS_HEIGHT)):
+        for axis, pixels in (("x", self.graph_size[0]), ("y", GRAPH_CANVAS_HEIGHT)):
             low, high = spec.get(f"{axis}min"), spec.get(f"{axis}max")
             if low is not None and high is not None:  # widened to round ticks
                 low, high = nice_range(low, high, pixels=pixels)
@@ -582,10 +616,13 @@ class SceneView:
             self._fill_scene_graph(setup.module.view_graph(setup))
         self.live = RecordedRun(model, integrator=integrator, sample_every=SAMPLE_EVERY)
         self.show_exact = self.exact_curves and model.exact is not None
+        self._reframe(model)
         self._restart(model)
         self.clock.restart(now=time.perf_counter())
 
     def _restart(self, model) -> None:
+        self.may_run_away = expected_runaways(model)
+        self.matter = [i for i in range(model.state.count) if i not in self.may_run_away]
         self._plot(self._clear_graphs(self.live.restart()), redraw=True)
         self.clock.dt = model.dt
         self.decimals = time_decimals(model.dt)
@@ -599,6 +636,9 @@ class SceneView:
     def _clear_graphs(self, samples):
         self.position_fit.clear()
         self.energy_fit.clear()
+        for label in getattr(self, "runaway_labels", {}).values():
+            label.visible = False
+        self.runaway_labels = {}
         for curve, trace, _ in self.curves:
             trace.clear()
         self.recorded.clear()
@@ -618,6 +658,7 @@ class SceneView:
         if exact is not None:  # past the anchor the closed form no longer describes the mass
             keep = t <= self._exact_valid_until(float(t[-1]))
             exact = exact[keep] if not keep.all() else exact
+        energies = self._energies(samples)
         for curve, trace, what in self.curves:
             if what[0] == "r":
                 values = r[:, what[1], what[2]]
@@ -627,8 +668,11 @@ class SceneView:
                 else:
                     values = exact[:, what[1], what[2]]
             else:
-                values = [s.energy[what[1]] for s in samples]
+                values = energies[what[1]]
             points = [[float(a), float(b)] for a, b in zip(t, values)]  # zip stops where exact does
+            if what[0] in ("r", "mass_energy") and what[1] in self.live.runaways:
+                frozen = self.live.runaways[what[1]][0]  # the curve ends where the mass ran away
+                points = [point for point in points if point[0] <= frozen]
             if trace.add(points) or redraw:
                 _replace_points(curve, list(trace.points))
             elif points:
@@ -636,15 +680,29 @@ class SceneView:
         if exact is not None and len(exact):
             self._fit(self.position_graph, self.position_fit, exact[..., self.axes].ravel())
         elif len(t):
-            self._fit(self.position_graph, self.position_fit, r[..., self.axes].ravel())
+            self._fit(self.position_graph, self.position_fit, r[:, self.matter][..., self.axes].ravel())
         self._fit(self.energy_graph, self.energy_fit,
-                  [s.energy[what[1]] for s in samples for _, _, what in self.curves if what[0] == "energy"])
+                  [value for key, values in energies.items() if key not in self.may_run_away for value in values])
         if len(t):
             start, end = window(float(t[-1]), span=self.span)
             if start != self.position_graph.xmin:
                 for graph in (self.position_graph, self.energy_graph):
                     graph.xmin, graph.xmax = start, end
         self._plot_live(redraw=redraw)
+
+    def _energies(self, samples) -> dict:
+        """What the energy graph plots, per curve key, one value per sample, J.
+
+        K, U, E, E − W_nc of the system (U, E and E − W_nc less energy_offset), or, with one
+        integrator per mass, each mass's own E = K + U (key: the mass's index).
+        """
+        if not self.per_mass_energy:
+            return {key: [s.energy[key] - (0.0 if key == "K" else self.energy_offset) for s in samples]
+                    for key in ENERGY_COLOURS}
+        forces, m = self.live.model.forces, self.live.state.m
+        per_mass = [kinetic(State(t=s.t, r=s.r, p=s.p, m=m)) + potential(State(t=s.t, r=s.r, p=s.p, m=m), forces)
+                    for s in samples]
+        return {i: [float(E[i]) for E in per_mass] for i in range(len(m))}
 
     def _plot_live(self, *, redraw: bool) -> None:
         """Move the scene graph's live dots to the state now, at most every LIVE_EVERY seconds."""
@@ -696,15 +754,17 @@ class SceneView:
     def _draw(self) -> None:
         """Move the masses and springs to the state now and update the caption: once per frame."""
         vp, state, anchors = self.vp, self.live.state, self.live.model.anchors
-        for mass, spring, anchor, r in zip(self.masses, self.springs, anchors, state.r):
+        for i, (mass, spring, anchor, r) in enumerate(zip(self.masses, self.springs, anchors, state.r)):
+            if i in self.live.runaways:  # frozen: shown, and labelled, where it leaves the picture
+                r = self._runaway_label(i, self._inside_frame(anchor, r))
             if np.all(np.isfinite(r)):
                 mass.pos = _vec(vp, r)
                 spring.axis = _vec(vp, r - anchor)  # the helix runs from the anchor to the mass
-        self._keep_in_view(state.r)
+        self._keep_in_view(state.r[self.matter])
         self.time_text.text = f"<b style='font-size:150%'>t = {state.t:.{self.decimals}f} s</b>"
         self.run_button.text = "Pause" if self.running else "Run"
         self.error_text.text = self._error_readout()
-        status = self.live.problem or ""
+        status = self.live.problem or "\n".join(_wrap(reason) for _, reason in self.live.runaways.values())
         if self.clock.dropped > 0.01 and not status:
             status = (f"Running slower than real time (Δt = {self.live.model.dt:g} s is small for "
                       f"this computer at this speed).")
@@ -725,18 +785,44 @@ class SceneView:
             return (f"no exact value after t = {valid_until:.3g} s: the closed form "
                     f"stops holding {model.exact_limit}")
         exact = model.exact(np.array([state.t]))[0][0]
-        errors = state.r[:, self.axes] - exact[:, self.axes]
+        errors = state.r[self.matter][:, self.axes] - exact[self.matter][:, self.axes]
         worst = float(np.max(np.abs(errors)))
         if errors.size == 1:
             name = "xyz"[self.axes[0]]
             return f"error {name} − {name}<sub>exact</sub> = {float(errors.flat[0]):+.3g} m"
-        return f"largest |error| against the exact solutions = {worst:.3g} m"
+        others = (f" ({', '.join(model.labels[i] for i in self.may_run_away)} left out)"
+                  if self.may_run_away else "")
+        return f"largest |error| against the exact solutions = {worst:.3g} m{others}"
+
+    def _inside_frame(self, anchor, r):
+        """The point where the line from the anchor to r leaves the picture (r itself if inside), m."""
+        width, height = CANVAS_SIZE
+        half = np.array([self.range * width / height, self.range, math.inf]) - 1.5 * self.radius
+        d = r - anchor
+        scale = 1.0
+        for axis in (0, 1):
+            if abs(d[axis]) > 1e-12:
+                edge = self.centre[axis] + math.copysign(half[axis], d[axis])
+                scale = min(scale, max(0.0, (edge - anchor[axis]) / d[axis]))
+        return anchor + scale * d if np.all(np.isfinite(d)) else anchor
+
+    def _runaway_label(self, i: int, where):
+        """Label mass i, frozen after running away, with its method and time; returns where it is shown."""
+        if i not in self.runaway_labels:
+            t, _ = self.live.runaways[i]
+            inward = 60 if where[0] < self.centre[0] else -60  # px: the text stays inside the picture
+            label = self.vp.label(pos=_vec(self.vp, where), text=f"{self.live.model.labels[i]} ran away\nat t = {t:.2f} s",
+                                  xoffset=inward, yoffset=30, height=15, color=self.vp.vector(1, 1, 1),
+                                  box=False, line=False)
+            self.runaway_labels[i] = label
+            self.shapes.append(label)
+        return where
 
     def _keep_in_view(self, r) -> None:
-        """Zoom out (never in) if a mass leaves the framed region, up to twice the first view.
+        """Zoom out (never in) if a mass that matters leaves the framed region, up to max_range.
 
-        A mass that runs away further (euler blowing up) leaves the picture instead of shrinking
-        every other mass to a dot.
+        A mass the scene expects may run away (euler) is not followed: it leaves the picture, is
+        frozen and labelled, instead of shrinking every other mass to a dot.
         """
         finite = r[np.all(np.isfinite(r), axis=1)]
         if not len(finite):
@@ -755,6 +841,17 @@ def _replace_points(series, points) -> None:
     series._data = []  # vpython 7.6.5's delete() keeps its Python copy of the points
     if points:
         series.plot(points)
+
+
+def _wrap(text: str, width: int = 110) -> str:
+    """Line breaks in a long sentence: the caption keeps line breaks but does not wrap."""
+    import textwrap
+
+    return "\n".join(textwrap.wrap(text, width))
+
+
+def _array(v) -> np.ndarray:
+    return np.array([v.x, v.y, v.z])
 
 
 def _vec(vp, a):

@@ -3,6 +3,9 @@
 * The first move of a slider takes effect: a single click on the k track and a single drag of the
   m handle, each the first move of that slider, change its label and restart the run from t = 0
   (vpython 7.6.5's page dropped a slider's first value; scenes/view.py primes it).
+* In `integrators` euler's mass runs away alone: the page names it and the time, the other three
+  run on and stay large spheres; after a new k in `vertical` the mass is framed again, not shrunk.
+* At 1400 px the resonance page's three graphs share one row.
 * Every graph ticks its y axis at even steps of 1, 2 or 5 × 10ⁿ (read from the tick labels).
 * Where the simulation agrees with the exact solution (rk4, damped), both curves show: the thick
   simulated curve in the mass's colour, the thin dark exact one inside it; the two balls of `drag`,
@@ -151,6 +154,67 @@ def test_every_graph_ticks_at_round_even_steps(browser, scene):
             assert all(abs(abs(s) - step) <= 1e-6 * step for s in steps), f"uneven ticks {ticks}"
             mantissa = step / 10 ** math.floor(math.log10(step) + 1e-9)
             assert min(abs(mantissa - r) for r in (1, 2, 5, 10)) < 1e-6, f"ticks {ticks} step by {step}"
+    finally:
+        page.close()
+        program.stop()
+
+
+def canvas_pixels_like(page, path, colour) -> int:
+    """Pixels of the 3-D canvas within reach of a mass's colour (its sphere, lit and shaded)."""
+    page.screenshot(path=str(path), full_page=True)
+    box = page.locator(".glowscript-canvas-wrapper canvas").first.bounding_box()
+    return pixels_like(crop(path, box), tuple(round(255 * c) for c in colour), within=90)
+
+
+def status_text(page) -> str:
+    return page.locator("body").inner_text()
+
+
+def test_in_integrators_euler_runs_away_alone_and_the_good_masses_stay_large(browser, tmp_path):
+    program, page = open_scene(browser, "integrators")
+    try:
+        wait_for(lambda: shown_time(page) >= 0.5, timeout=60.0, what="t to pass 0.5 s")
+        start = [canvas_pixels_like(page, tmp_path / "start.png", mass_colour(i)) for i in (1, 2, 3)]
+        wait_for(lambda: shown_time(page) >= 16.0, timeout=120.0, what="t to pass 16 s (euler ran away by ~5 s)")
+        text = status_text(page)
+        assert "Stopped" not in text
+        assert re.search(r"euler ran away at t = [\d.]+ s", text), "no sentence about euler's runaway"
+        later = [canvas_pixels_like(page, tmp_path / "later.png", mass_colour(i)) for i in (1, 2, 3)]
+        for i, (a, b) in enumerate(zip(start, later), start=1):   # euler-cromer, verlet, rk4
+            assert a > 200 and b > 0.8 * a, f"mass {i} shrank from {a} to {b} pixels"
+        # and the comparison is still going on: t advances, the graphs keep growing
+        later = shown_time(page)
+        wait_for(lambda: shown_time(page) > later + 1.0, timeout=60.0, what="t to advance after the runaway")
+    finally:
+        page.close()
+        program.stop()
+
+
+def test_after_a_new_k_the_mass_is_framed_again_not_shrunk(browser, tmp_path):
+    program, page = open_scene(browser, "vertical")
+    try:
+        wait_for(lambda: shown_time(page) >= 3.0, timeout=60.0, what="t to reach 3 s")
+        before = canvas_pixels_like(page, tmp_path / "before.png", mass_colour(0))
+        for position in (0.05, 0.95):   # a soft spring (the mass hangs low), then a stiff one
+            track = page.locator(".ui-slider").nth(1).bounding_box()
+            page.mouse.click(track["x"] + position * track["width"], track["y"] + track["height"] / 2)
+            wait_for(lambda: shown_time(page) < 1.0, timeout=10.0, what="the run to restart")
+            wait_for(lambda: shown_time(page) >= 3.0, timeout=60.0, what="t to reach 3 s")
+            after = canvas_pixels_like(page, tmp_path / f"after-{position}.png", mass_colour(0))
+            assert after > 0.5 * before, f"the mass shrank from {before} to {after} pixels"
+    finally:
+        page.close()
+        program.stop()
+
+
+def test_at_1400_px_the_resonance_graphs_share_one_row(browser):
+    program, page = open_scene(browser, "resonance")
+    try:
+        wait_for(lambda: shown_time(page) >= 1.0, timeout=90.0, what="t to reach 1 s")
+        tops = [round(box["y"]) for box in graph_boxes(page)]
+        assert len(tops) == 3 and len(set(tops)) == 1, f"graph tops at {tops}"
+        right = max(box["x"] + box["width"] for box in graph_boxes(page))
+        assert right <= VIEWPORT["width"]
     finally:
         page.close()
         program.stop()
