@@ -59,7 +59,7 @@ from urllib.parse import quote
 
 import numpy as np
 
-from headless import CSV_HEADER, ENERGY_KEYS
+from headless import CSV_HEADER, ENERGY_KEYS, clean, clean_time
 from physics.energy import kinetic, potential, rest_potential
 from physics.integrators import INTEGRATORS
 from physics.state import State, velocity
@@ -214,11 +214,12 @@ class RecordedRun(LiveRun):
         return StateSample(t=shown.t, r=shown.r, energy=shown.energy, p=self.state.p)
 
 
-def csv_text(samples, *, m, labels) -> str:
+def csv_text(samples, *, m, labels, dt) -> str:
     """The samples as CSV, with the command line's columns (headless.CSV_HEADER).
 
     One row per sample and mass: t, r, v = p/m, p, then the system's K, U, E, W_nc in J; several
-    masses add a `body` column with each mass's label.
+    masses add a `body` column with each mass's label. Numbers as in --csv: t rounded to Δt's
+    decimals, the rest to 15 significant digits.
     """
     single = len(labels) == 1
     out = io.StringIO()
@@ -226,9 +227,10 @@ def csv_text(samples, *, m, labels) -> str:
     writer.writerow(CSV_HEADER + ([] if single else ["body"]))
     for sample in samples:
         v = velocity(sample.p, m)
-        energy = [sample.energy[key] for key in ENERGY_KEYS]
+        energy = [clean(sample.energy[key]) for key in ENERGY_KEYS]
         for i, label in enumerate(labels):
-            row = [sample.t, *sample.r[i].tolist(), *v[i].tolist(), *sample.p[i].tolist(), *energy]
+            row = [clean_time(sample.t, dt), *map(clean, sample.r[i]), *map(clean, v[i]), *map(clean, sample.p[i]),
+                   *energy]
             writer.writerow(row + ([] if single else [label]))
     return out.getvalue()
 
@@ -729,7 +731,7 @@ class SceneView:
         if not samples:
             self.download_text.text = "<i>nothing graphed yet</i>"
             return
-        text = csv_text(samples, m=self.live.state.m, labels=self.live.model.labels)
+        text = csv_text(samples, m=self.live.state.m, labels=self.live.model.labels, dt=self.live.model.dt)
         self.downloads += 1
         link = f"csv-download-{self.downloads}"
         name = f"{self.setup.name}.csv"

@@ -14,6 +14,7 @@ from __future__ import annotations
 import csv
 import json
 import math
+import re
 import subprocess
 import sys
 from concurrent.futures import ThreadPoolExecutor
@@ -589,3 +590,43 @@ def test_no_exact_value_once_the_mass_has_passed_its_anchor():
     early = cli_json("driven", "--scenario", "1", "--set", "L0=1", "--until", "40")
     assert early["exact"]["r"][0] == pytest.approx(1.0 + 40 * math.sin(200) / 40, abs=1e-9)
     assert "exact_note" not in early
+
+
+# ---- clean numbers ----
+
+def significant_digits(text: str) -> int:
+    mantissa = text.lstrip("-").split("e")[0].replace(".", "").lstrip("0")
+    return len(mantissa.rstrip("0")) if "." in text else len(mantissa)
+
+
+def test_csv_prints_t_with_the_decimals_of_dt_and_15_significant_digits(tmp_path):
+    path = tmp_path / "v.csv"
+    done = cli("vertical", "--headless", "--csv", str(path), "--until", "15")
+    assert done.returncode == 0, done.stderr
+    with open(path, newline="") as handle:
+        rows = list(csv.reader(handle))
+    assert rows[0] == ["t", "x", "y", "z", "vx", "vy", "vz", "px", "py", "pz", "K", "U", "E", "W_nc"]
+    times = [row[0] for row in rows[1:]]
+    assert times[:4] == ["0.0", "0.1", "0.2", "0.3"] and times[-1] == "15.0"
+    assert times[146] == "14.6"                               # was 14.599999999999964
+    assert all(len(t.partition(".")[2]) <= 1 for t in times)  # Δt = 0.1 s: one decimal
+    assert rows[2][8] == "-7.8"                               # p_y after one step, by hand
+    assert all(significant_digits(field) <= 15 for row in rows[1:] for field in row)
+
+
+def test_json_reports_the_until_that_was_run_and_a_clean_t():
+    done = cli("driven", "--headless", "--scenario", "3", "--until", "10", "--json")
+    assert done.returncode == 0, done.stderr
+    answer = json.loads(done.stdout)
+    assert answer["t"] == 10.0 and '"t": 10.0,' in done.stdout
+    assert answer["constants"]["until"]["value"] == 10.0
+    numbers = re.findall(r"-?\d+\.\d+(?:e-?\d+)?", done.stdout)
+    assert numbers and all(significant_digits(n) <= 15 for n in numbers)
+
+
+def test_the_step_table_json_has_clean_times_and_momenta():
+    done = cli("vertical", "--steps", "3", "--headless", "--json")
+    assert done.returncode == 0, done.stderr
+    rows = json.loads(done.stdout)["step_table"]
+    assert [row["t"] for row in rows] == [0.1, 0.2, 0.3]
+    assert rows[0]["p_f"] == [0.0, -7.8, 0.0]
