@@ -9,6 +9,8 @@ with the Agg backend so no window is needed.
 """
 from __future__ import annotations
 
+import sys
+
 import numpy as np
 
 from headless import OutputError
@@ -22,7 +24,7 @@ class MissingMatplotlib(OutputError):
     """matplotlib is not installed."""
 
     def __init__(self):
-        super().__init__("--plot needs matplotlib: pip install matplotlib")
+        super().__init__(f"--plot needs matplotlib: {sys.executable} -m pip install matplotlib")
 
 
 def _pyplot():
@@ -99,7 +101,9 @@ def plot(result, path: str) -> None:
     traj, model = result.trajectory, result.model
     preferred = getattr(result.setup.module, "VIEW", {}).get("plot")
     axes_shown = moving_axes(traj.r, preferred if isinstance(preferred, str) else None)
-    exact = exact_curve(model, traj.t)
+    # closed forms drawn smooth, whatever Δt is: at least 50 points a second, 2,000 in all
+    smooth_t = np.linspace(traj.t[0], traj.t[-1], max(2000, int(50 * (traj.t[-1] - traj.t[0]))))
+    exact = exact_curve(model, smooth_t)
     extra = getattr(result.setup.module, "extra_json", None)
     curve = extra(result.setup).get("resonance") if extra is not None else None
     fig, axes = plt.subplots(3 if curve else 2, 1, figsize=(8, 10 if curve else 7))
@@ -117,7 +121,7 @@ def plot(result, path: str) -> None:
                       color=shade(mass_colour(i), axes_shown.index(axis)))
             if exact is not None and not crowded and np.any(np.isfinite(exact[0][:, i, axis])):
                 first = not any(line.get_label() == "exact" for line in ax_r.lines)
-                ax_r.plot(traj.t, exact[0][:, i, axis], "--", lw=1.2, color=EXACT_COLOUR, zorder=3,
+                ax_r.plot(smooth_t, exact[0][:, i, axis], "--", lw=1.2, color=EXACT_COLOUR, zorder=3,
                           label="exact" if first else "_nolegend_")
     ax_r.set_ylabel("position (m)")
     ax_r.set_title(f"{result.setup.name}: dt = {model.dt:g} s, "

@@ -367,7 +367,7 @@ def test_plot_without_matplotlib_says_how_to_install_it(tmp_path):
             "runpy.run_path('main.py', run_name='__main__')\n")
     done = cli(code=code)
     assert done.returncode == 2
-    assert done.stderr.strip() == "error: --plot needs matplotlib: pip install matplotlib"
+    assert done.stderr.strip() == f"error: --plot needs matplotlib: {sys.executable} -m pip install matplotlib"
     assert not path.exists()
 
 
@@ -630,3 +630,35 @@ def test_the_step_table_json_has_clean_times_and_momenta():
     rows = json.loads(done.stdout)["step_table"]
     assert [row["t"] for row in rows] == [0.1, 0.2, 0.3]
     assert rows[0]["p_f"] == [0.0, -7.8, 0.0]
+
+
+def test_every_readme_example_does_what_its_comment_says(tmp_path):
+    """The README's `--csv` example writes one row per step for 20 s (it once stopped at 0.2 s)."""
+    readme = (ROOT / "README.md").read_text(encoding="utf-8")
+    line = next(line for line in readme.splitlines() if "--csv damped.csv" in line)
+    args = line.split("#")[0].split()[2:]                     # after `python main.py`
+    assert "--until" in args
+    args[args.index("damped.csv")] = str(tmp_path / "damped.csv")
+    done = cli(*args)
+    assert done.returncode == 0, done.stderr
+    rows = (tmp_path / "damped.csv").read_text().splitlines()
+    assert len(rows) - 1 == 201 and "201 rows" in line and rows[-1].startswith("20.0,")
+
+
+def test_the_plot_draws_the_exact_solution_smooth_even_at_a_coarse_dt(tmp_path, monkeypatch):
+    """vertical at Δt = 0.1 s to 0.2 s has 3 step times; the exact curve still gets 2,000 points."""
+    pytest.importorskip("matplotlib")
+    import headless
+    import plotting
+    from scenes import catalog
+
+    drawn = []
+    import matplotlib.axes
+    original = matplotlib.axes.Axes.plot
+    monkeypatch.setattr(matplotlib.axes.Axes, "plot",
+                        lambda self, *a, **k: drawn.append((a, k)) or original(self, *a, **k))
+    result = headless.simulate(catalog.configure("vertical"), progress=None)
+    assert len(result.trajectory.t) == 3
+    plotting.plot(result, str(tmp_path / "v.png"))
+    exact = [a for a, k in drawn if k.get("label") == "exact"]
+    assert len(exact) == 1 and len(exact[0][0]) >= 2000
