@@ -40,6 +40,7 @@ UNITS = {"t": "s", "dt": "s", "r": "m", "v": "m/s", "p": "kg·m/s", "F_net": "N"
 ENERGY_KEYS = ("K", "U", "E", "W_nc")
 CSV_HEADER = ["t", "x", "y", "z", "vx", "vy", "vz", "px", "py", "pz", *ENERGY_KEYS]
 SIGNIFICANT = 6
+FILE_DIGITS = 15  # significant digits of every number in --json and --csv (a double holds 15 to 17)
 
 
 # A run is refused before it starts if the engine estimates it longer than MAX_RUN_SECONDS
@@ -68,6 +69,39 @@ def number(x: float, digits: int = SIGNIFICANT) -> str:
         return NO_VALUE
     text = f"{float(x):.{digits}g}"
     return "0" if text in ("-0", "0", "-0.0") else text
+
+
+def clean(x: float) -> float:
+    """x to FILE_DIGITS significant digits: -7.800000000000001 → -7.8 (round-off, not information)."""
+    return float(f"{float(x):.{FILE_DIGITS}g}")
+
+
+def time_decimals(dt: float) -> int:
+    """The decimals Δt is written with: 1 for 0.1 s, 3 for 0.005 s, 0 for 2 s."""
+    text = f"{float(dt):.{FILE_DIGITS}g}"
+    if "e" in text:
+        mantissa, exponent = text.split("e")
+        return max(0, len(mantissa.partition(".")[2]) - int(exponent))
+    return len(text.partition(".")[2])
+
+
+def clean_time(t: float, dt: float) -> float:
+    """A time on the grid of Δt, rounded to Δt's decimals: 0.30000000000000004 → 0.3 when Δt = 0.1 s.
+
+    Every step time n·Δt has no more decimals than Δt, so the rounding removes only round-off.
+    """
+    return clean(round(float(t), time_decimals(dt)))
+
+
+def _cleaned(value):
+    """Every float in a JSON-ready structure to FILE_DIGITS significant digits."""
+    if isinstance(value, float):
+        return clean(value) if math.isfinite(value) else value
+    if isinstance(value, dict):
+        return {key: _cleaned(item) for key, item in value.items()}
+    if isinstance(value, list):
+        return [_cleaned(item) for item in value]
+    return value
 
 
 def vector(v, unit: str = "", digits: int = SIGNIFICANT) -> str:
@@ -147,6 +181,8 @@ def simulate(setup, *, model=None, integrator: str | None = None, until: float |
     model = model if model is not None else setup.build()
     engine = model.simulation(integrator)
     until = model.until if until is None else until
+    if "until" in setup.values and setup.values["until"] != until:  # report the until that was run
+        setup = setup.with_values(until=float(until))
     step_count(model, until=until, rows_per_step=model.state.count if every_step else 0)
     window = getattr(setup.module, "measure_window", None)
     if window is not None and window(setup.values)[1] > until:
@@ -323,6 +359,8 @@ def as_json(result: Result) -> dict:
     extra = getattr(setup.module, "extra_json", None)  # a scene's own results, e.g. a resonance curve
     if extra is not None:
         out.update(extra(result))
+    out = _cleaned(out)
+    out["t"] = clean_time(traj.t[-1], model.dt)
     return out
 
 
@@ -456,10 +494,12 @@ def _write_rows(result: Result, handle) -> int:
     rows = 0
     writer = csv.writer(handle)
     writer.writerow(header)
+    dt = result.model.dt
     for n, t in enumerate(traj.t):
-        energy = [float(traj.energy[key][n]) for key in ENERGY_KEYS] if traj.energy else [""] * 4
+        energy = [clean(traj.energy[key][n]) for key in ENERGY_KEYS] if traj.energy else [""] * 4
         for i, label in enumerate(result.labels):
-            row = [float(t), *traj.r[n, i].tolist(), *v[n, i].tolist(), *traj.p[n, i].tolist(), *energy]
+            row = [clean_time(t, dt), *map(clean, traj.r[n, i]), *map(clean, v[n, i]), *map(clean, traj.p[n, i]),
+                   *energy]
             writer.writerow(row + ([] if single else [label]))
             rows += 1
     return rows
@@ -493,8 +533,9 @@ def step_table(setup, *, model=None, integrator: str | None = None, steps: int) 
         F_start = net_force(model.forces, traj.t[n - 1], traj.r[n - 1], v[n - 1], traj.m)
         F_net = np.where(at_start, F_start, (traj.p[n] - traj.p[n - 1]) / dt)
         for i, label in enumerate(model.labels):
-            rows.append({"step": n, "body": label, "t": float(traj.t[n]), "F_net": F_net[i].tolist(),
-                         "p_f": traj.p[n, i].tolist(), "v_f": v[n, i].tolist(), "r_f": traj.r[n, i].tolist()})
+            rows.append({"step": n, "body": label, "t": clean_time(traj.t[n], dt), "F_net": _cleaned(F_net[i].tolist()),
+                         "p_f": _cleaned(traj.p[n, i].tolist()), "v_f": _cleaned(v[n, i].tolist()),
+                         "r_f": _cleaned(traj.r[n, i].tolist())})
     uniform = len(set(engine.methods)) == 1
     return {"scene": setup.name, "integrator": engine.integrator if uniform else list(engine.methods),
             "dt": float(dt), "m": traj.m.tolist(),

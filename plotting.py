@@ -9,16 +9,22 @@ with the Agg backend so no window is needed.
 """
 from __future__ import annotations
 
+import sys
+
 import numpy as np
 
 from headless import OutputError, atomic_file
+from scenes.palette import (ENERGY_COLOURS, ENERGY_LABELS, EXACT_COLOUR, mass_colour, shade,
+                            simulation_width)
+
+POINTS_PER_PX = 0.75 # matplotlib widths are in points: the page's px widths, scaled to this figure
 
 
 class MissingMatplotlib(OutputError):
     """matplotlib is not installed."""
 
     def __init__(self):
-        super().__init__("--plot needs matplotlib: pip install matplotlib")
+        super().__init__(f"--plot needs matplotlib: {sys.executable} -m pip install matplotlib")
 
 
 def _pyplot():
@@ -95,7 +101,9 @@ def plot(result, path: str) -> None:
     traj, model = result.trajectory, result.model
     preferred = getattr(result.setup.module, "VIEW", {}).get("plot")
     axes_shown = moving_axes(traj.r, preferred if isinstance(preferred, str) else None)
-    exact = exact_curve(model, traj.t)
+    # closed forms drawn smooth, whatever Δt is: at least 50 points a second, 2,000 in all
+    smooth_t = np.linspace(traj.t[0], traj.t[-1], max(2000, int(50 * (traj.t[-1] - traj.t[0]))))
+    exact = exact_curve(model, smooth_t)
     extra = getattr(result.setup.module, "extra_json", None)
     curve = extra(result).get("resonance") if extra is not None else None
     fig, axes = plt.subplots(3 if curve else 2, 1, figsize=(8, 10 if curve else 7))
@@ -108,10 +116,12 @@ def plot(result, path: str) -> None:
             name = "xyz"[axis]
             tag = f"{label}: {name}" if len(model.labels) > 1 or len(axes_shown) > 1 else name
             crowded = len(model.labels) * len(axes_shown) > MAX_LEGEND
-            line, = ax_r.plot(traj.t, traj.r[:, i, axis], lw=0.8 if crowded else 2.5, alpha=0.7, label=tag)
+            width = POINTS_PER_PX * simulation_width(i, len(model.labels), crowded=crowded)
+            ax_r.plot(traj.t, traj.r[:, i, axis], lw=width, label=tag,
+                      color=shade(mass_colour(i), axes_shown.index(axis)))
             if exact is not None and not crowded and np.any(np.isfinite(exact[0][:, i, axis])):
                 first = not any(line.get_label() == "exact" for line in ax_r.lines)
-                ax_r.plot(traj.t, exact[0][:, i, axis], "--", lw=1.2, color="black",
+                ax_r.plot(smooth_t, exact[0][:, i, axis], "--", lw=1.2, color=EXACT_COLOUR, zorder=3,
                           label="exact" if first else "_nolegend_")
     ax_r.set_ylabel("position (m)")
     ax_r.set_title(f"{result.setup.name}: dt = {model.dt:g} s, "
@@ -122,12 +132,13 @@ def plot(result, path: str) -> None:
     if 1 < len(model.labels) <= MAX_LEGEND // 2:
         E, E_minus_W = energy_per_body(traj, model.forces)
         for i, label in enumerate(model.labels):
-            line, = ax_e.plot(traj.t, E[:, i], label=f"{label}: E")
-            ax_e.plot(traj.t, E_minus_W[:, i], ":", color=line.get_color(), label=f"{label}: E − W_nc")
+            ax_e.plot(traj.t, E[:, i], color=mass_colour(i), label=f"{label}: E")
+            ax_e.plot(traj.t, E_minus_W[:, i], ":", color=mass_colour(i), label=f"{label}: E − W_nc")
         ax_e.legend(loc="best", fontsize="small")
     elif traj.energy is not None:
-        for key, label in (("K", "K"), ("U", "U"), ("E", "E = K + U"), ("E_minus_W_nc", "E − W_nc")):
-            ax_e.plot(traj.t, traj.energy[key], label=label)
+        for key, label in ENERGY_LABELS.items():
+            ax_e.plot(traj.t, traj.energy[key], color=ENERGY_COLOURS[key], label=label,
+                      lw=2.4 if key == "E" else 1.5)
         ax_e.legend(loc="best", fontsize="small")
     ax_e.set_ylabel("energy (J)")
     ax_e.set_xlabel("t (s)")

@@ -60,3 +60,22 @@ def series(state: State, forces, work) -> dict:
     U = np.sum(potential(state, forces), axis=-1)
     W = np.sum(work, axis=-1)
     return {"K": K, "U": U, "E": K + U, "W_nc": W, "E_minus_W_nc": K + U - W}
+
+
+def rest_potential(state: State, forces, *, rtol: float = 1e-9) -> float | None:
+    """Σ U, J, if the masses start at rest at equilibrium, else None.
+
+    At rest: every p = 0. At equilibrium: the conservative forces (springs, gravity) cancel on
+    every mass, Σ F_c = 0. Energies measured from this U are the energy of the oscillation alone
+    (a row of springs driven from rest, as in `resonance`), not a large constant m g h offset.
+    """
+    if np.any(state.p != 0):
+        return None
+    v = velocity(state.p, state.m)
+    pulls = [force(state.t, state.r, v, state.m) for force in forces if force.conservative]
+    if not pulls:
+        return None
+    scale = max(float(np.max(np.abs(pull))) for pull in pulls)
+    if float(np.max(np.abs(np.sum(pulls, axis=0)))) > rtol * max(scale, 1e-300):
+        return None
+    return float(np.sum(potential(state, forces)))

@@ -318,20 +318,22 @@ class Simulation:
         """What one step costs on this computer, s: measured on a trial copy of this engine.
 
         The trial takes the same path as a real run (the compiled loop where it applies, or numpy)
-        for about TRIAL_SECONDS, so the estimate follows the real cost of one mass and of a big
-        batch alike. Measured once per engine.
+        for about TRIAL_SECONDS of processor time, so the estimate follows the real cost of one
+        mass and of a big batch alike. Measured once per engine.
         """
         if self._seconds_per_step is None:
             trial = Simulation(self.state, self.forces, dt=self.dt, integrator=self.methods,
                                compiled=self.compiled, growth_limit=math.inf)
             compiles = self.compiled and self.start.r.size <= MAX_COMPONENTS
-            steps, spent, batch = 0, 0.0, 1
+            # Batches big enough that the cost of a call is not what is measured, timed in this
+            # thread's CPU time, so a computer busy with other programs does not inflate it.
+            steps, spent, batch = 0, 0.0, CHUNK if compiles else 1
             try:
                 trial.advance(COMPILE_FROM_STEPS if compiles else 1)     # warm up (and compile)
                 while spent < TRIAL_SECONDS and steps < 1_000_000:
-                    begin = time.perf_counter()
+                    begin = time.thread_time()
                     trial.advance(batch)
-                    spent += time.perf_counter() - begin
+                    spent += time.thread_time() - begin
                     steps += batch
                     batch *= 2
             except (BlowUpError, ArithmeticError):

@@ -195,10 +195,7 @@ def judge(forces, m, methods, dt: float, v=None, *, ignore=()) -> Verdict:
     m = np.asarray(m, dtype=float)
     methods = tuple(methods)
     r = rates(forces, m, v)
-    growth = np.ones(len(m))
-    for name in set(methods):
-        rows = [i for i, method in enumerate(methods) if method == name]
-        growth[rows] = amplification(name, omega=r.omega[rows], rate=r.gamma[rows], dt=dt)
+    growth = _growth(r, methods, dt)
     growth[list(ignore)] = 0.0
     worst = int(np.argmax(growth))
     method = methods[worst] if methods else describe(methods)
@@ -211,6 +208,23 @@ def judge(forces, m, methods, dt: float, v=None, *, ignore=()) -> Verdict:
     return Verdict(False, float(growth[worst]), dt_max, method, cause,
                    _message(method, dt=dt, dt_max=dt_max, cause=cause, growth=float(growth[worst]),
                             omega=omega, damping=damping, drag=drag, speed=float(r.speed[worst])))
+
+
+def growing(forces, m, methods, dt: float, v=None) -> np.ndarray:
+    """Which masses' oscillations grow from step to step with their methods at this Δt, (N,) bool."""
+    r = rates(forces, np.asarray(m, dtype=float), v)
+    growth = _growth(r, tuple(methods), dt)
+    return np.array([_grows(g, dt * max(w, gamma)) for g, w, gamma in zip(growth, r.omega, r.gamma)],
+                    dtype=bool)
+
+
+def _growth(r: Rates, methods, dt: float) -> np.ndarray:
+    """ρ(M) of each mass with its own method."""
+    growth = np.ones(len(methods))
+    for name in set(methods):
+        rows = [i for i, method in enumerate(methods) if method == name]
+        growth[rows] = amplification(name, omega=r.omega[rows], rate=r.gamma[rows], dt=dt)
+    return growth
 
 
 def _grows(radius: float, size: float) -> bool:

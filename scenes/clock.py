@@ -34,6 +34,7 @@ import numpy as np
 
 from physics.energy import series
 from physics.simulate import BlowUpError, time_grid
+from physics.stability import growing, judge, rates
 from physics.state import State
 
 
@@ -162,17 +163,30 @@ class LiveRun:
 
     The engine owns the state, W_nc and the blow-up check; this adds the view's pieces: a sample
     for the graphs every ``sample_every`` seconds of simulation time, and :attr:`problem`, the
-    sentence that stopped the run. Masses the scene expects to run away are frozen by the engine
-    and named in :attr:`runaways` ({mass: (t, reason)}), while the others run on.
-    Reset is reassignment: :meth:`restart` puts back the model's exact initial state.
+    sentence that stopped the run. Reset is reassignment: :meth:`restart` puts back the model's
+    exact initial state.
+
+    Runaways: where masses are stepped by different integrators side by side (the `integrators`
+    scene), a mass whose method is unstable at this Δt (euler at every Δt) is expected to run away.
+    Once it is farther than ``runaway_reach`` metres from its anchor the engine freezes it there
+    (at rest) and names it in :attr:`runaways` as {mass index: (t in s, reason sentence)}, while
+    the other masses run on; the whole run stops (:attr:`problem`) only if a mass not expected to
+    run away blows up.
     """
 
     def __init__(self, model, *, integrator: str, sample_every: float = 0.05,
                  growth_limit: float = 1e3):
         self.model = model
-        self.engine = model.simulation(integrator, growth_limit=growth_limit)
-        self.integrator = self.engine.integrator
         self.sample_every = float(sample_every)
+        r0, v0 = model.state.r, model.state.v
+        size = float(np.max(np.linalg.norm(r0 - model.anchors, axis=-1)))
+        omega = float(np.max(rates(model.forces, model.state.m).omega))
+        speed = float(np.max(np.linalg.norm(v0, axis=-1)))
+        self.runaway_reach = 3.0 * (size + (speed / omega if omega else speed))
+        self._may_run_away = expected_runaways(model, model.methods(integrator))
+        self.engine = model.simulation(integrator, growth_limit=growth_limit,
+                                       may_run_away=self._may_run_away)
+        self.integrator = self.engine.integrator
         self.restart()
 
     @property
@@ -207,11 +221,40 @@ class LiveRun:
         except BlowUpError as error:
             self.problem = str(error)
             return []
+        self._freeze_runaways()
         energy = series(State(t=samples.t, r=samples.r, p=samples.p, m=samples.m),
                         self.model.forces, samples.work)
         return [Sample(t=float(t), r=samples.r[n], p=samples.p[n],
                        energy={key: float(values[n]) for key, values in energy.items()})
                 for n, t in enumerate(samples.t)]
+
+
+    def _freeze_runaways(self) -> None:
+        """Have the engine freeze, at rest where they are, expected runaways that went too far."""
+        r, engine = self.engine.state.r, self.engine
+        for i in self._may_run_away:
+            if i in engine.runaways:
+                continue
+            finite = bool(np.all(np.isfinite(r[i])))
+            if finite and np.linalg.norm(r[i] - self.model.anchors[i]) <= self.runaway_reach:
+                continue
+            name = engine.methods[i]
+            verdict = judge(self.model.forces, self.model.state.m, engine.methods, self.model.dt,
+                            ignore=[j for j in range(len(r)) if j != i])
+            engine.freeze(i, f"{name} ran away at t = {engine.t:.3g} s (its swing grew past "
+                             f"{self.runaway_reach:.2g} m): {verdict.message}")
+
+
+def expected_runaways(model, methods=None) -> list[int]:
+    """The masses a scene expects may run away: those it names, and those stepped side by side with
+    their own integrator by one that is unstable at this Δt (euler at every Δt; the others beyond
+    their limit), judged by physics.stability."""
+    expected = set(model.may_run_away)
+    methods = model.methods() if methods is None else methods
+    if model.integrators:
+        grows = growing(model.forces, model.state.m, methods, model.dt)
+        expected |= {int(i) for i in np.flatnonzero(grows)}
+    return sorted(expected)
 
 
 class Trace:

@@ -53,5 +53,6 @@ class Model:
 
     def simulation(self, integrator: Optional[str] = None, **options) -> Simulation:
         """The engine for this model, ready at its initial state (physics/simulate.py)."""
+        may_run_away = set(self.may_run_away) | set(options.pop("may_run_away", ()))
         return Simulation(self.state, self.forces, dt=self.dt, integrator=self.methods(integrator),
-                          may_run_away=self.may_run_away, **options)
+                          may_run_away=sorted(may_run_away), **options)

@@ -61,13 +61,17 @@ from urllib.parse import quote
 
 import numpy as np
 
-from headless import CSV_HEADER, ENERGY_KEYS
+from headless import CSV_HEADER, ENERGY_KEYS, clean, clean_time
+from physics.energy import kinetic, potential, rest_potential
 from physics.integrators import INTEGRATORS
-from physics.state import velocity
+from physics.state import State, velocity
 
 from . import catalog
-from .clock import LiveRun, RealTimeClock, Sample, StepBudget, Trace, window
+from .axes import AxisFit, nice_range
+from .clock import LiveRun, RealTimeClock, Sample, StepBudget, Trace, expected_runaways, window
 from .constants import format_value
+from .palette import (ENERGY_COLOURS, ENERGY_LABELS, EXACT_COLOUR, EXACT_WIDTH, mass_colour, shade,
+                      simulation_width)
 
 FRAME_RATE = 50           # frames per second the loop aims for
 SAMPLE_EVERY = 0.05       # s of simulation time between graph points
@@ -80,15 +84,23 @@ DEFAULT_VIEW = {"support": "ceiling", "plot": "y", "trail": False, "exact": True
 
 CANVAS_SIZE = (900, 440)  # px
 GRAPH_SIZE = (580, 290)   # px
+NARROW_GRAPH_WIDTH = 440  # px: three graphs side by side fit a 1400-px window (a projector's 1440 × 900)
+GRAPH_CANVAS_HEIGHT = GRAPH_SIZE[1] + 26  # px: vpython adds room for the title; flot spaces ticks by this
 # Larger text than vpython's default, for a projector at the back of a classroom.
-PAGE_STYLE = "<style>body { font-size: 17px; } button, select { font-size: 17px; }</style>"
-MASS_COLOURS = [(1.0, 0.55, 0.1), (0.25, 0.65, 1.0), (0.3, 0.85, 0.35), (0.95, 0.35, 0.6),
-                (0.8, 0.75, 0.2), (0.65, 0.45, 0.95)]
-ENERGY_COLOURS = {"K": (0.85, 0.1, 0.1), "U": (0.1, 0.3, 0.9), "E": (0.0, 0.0, 0.0),
-                  "E_minus_W_nc": (0.1, 0.6, 0.1)}
-ENERGY_LABELS = {"K": "K", "U": "U", "E": "E = K + U", "E_minus_W_nc": "E − W_nc"}
+# A row of graphs that wraps leaves room under the x-axis titles for the next row's titles.
+PAGE_STYLE = ("<style>body { font-size: 17px; } button, select { font-size: 17px; }"
+              " .glowscript-graph { margin-bottom: 36px; }</style>")
 PRESET_PROMPT = "choose a preset"
 LIVE_EVERY = 0.5          # s of wall time between redraws of a scene graph's live dots
+# vpython 7.6.5's page sends a slider's value only when it differs from the last value it sent, and
+# before the first move there is none, so the first move of every slider was lost. This script tells
+# the page each new slider's starting value, by calling the slider's own change handler once with a
+# stand-in for a mouse event (its handlers ignore events without one), so the first move is sent.
+# It runs in the page from a wtext (jQuery runs scripts in the HTML it inserts); each slider is primed once.
+PRIME_SLIDERS = ("<script>$('.ui-slider').each(function () {"
+                 " if (this.dataset.primed) return; this.dataset.primed = '1';"
+                 " var change = $(this).slider('option', 'change');"
+                 " if (change) change({originalEvent: {}}); });</script>")
 
 
 def show(setup, *, integrator: str, port: int | None, open_browser: bool, preset: str | None = None) -> int:
@@ -204,11 +216,12 @@ class RecordedRun(LiveRun):
         return StateSample(t=shown.t, r=shown.r, energy=shown.energy, p=self.state.p)
 
 
-def csv_text(samples, *, m, labels) -> str:
+def csv_text(samples, *, m, labels, dt) -> str:
     """The samples as CSV, with the command line's columns (headless.CSV_HEADER).
 
     One row per sample and mass: t, r, v = p/m, p, then the system's K, U, E, W_nc in J; several
-    masses add a `body` column with each mass's label.
+    masses add a `body` column with each mass's label. Numbers as in --csv: t rounded to Δt's
+    decimals, the rest to 15 significant digits.
     """
     single = len(labels) == 1
     out = io.StringIO()
@@ -216,9 +229,10 @@ def csv_text(samples, *, m, labels) -> str:
     writer.writerow(CSV_HEADER + ([] if single else ["body"]))
     for sample in samples:
         v = velocity(sample.p, m)
-        energy = [sample.energy[key] for key in ENERGY_KEYS]
+        energy = [clean(sample.energy[key]) for key in ENERGY_KEYS]
         for i, label in enumerate(labels):
-            row = [sample.t, *sample.r[i].tolist(), *v[i].tolist(), *sample.p[i].tolist(), *energy]
+            row = [clean_time(sample.t, dt), *map(clean, sample.r[i]), *map(clean, v[i]), *map(clean, sample.p[i]),
+                   *energy]
             writer.writerow(row + ([] if single else [label]))
     return out.getvalue()
 
@@ -259,7 +273,8 @@ class SceneView:
         self.axes = ["xyz".index(axis) for axis in self.view["plot"]]
         self.live = RecordedRun(model, integrator=self.integrator, sample_every=SAMPLE_EVERY)
         self.recorded: deque = deque()
-        self.position_axis = None
+        self.position_fit = AxisFit(pixels=GRAPH_CANVAS_HEIGHT)
+        self.energy_fit = AxisFit(pixels=GRAPH_CANVAS_HEIGHT)
         self._build_scene(model)
         self._build_controls(preset)
         self._build_graphs(model)
@@ -341,13 +356,15 @@ class SceneView:
                              size=vp.vector(span_x, thickness, 2 * radius), color=vp.vector(0.6, 0.6, 0.65))
             low = np.minimum(low, [centre[0] - span_x / 2, low[1], low[2]])
             high = np.maximum(high, [centre[0] + span_x / 2, ceiling_y + thickness, high[2]])
+        self.support_box = (np.asarray(_array(support.pos) - 0.5 * _array(support.size)),
+                            np.asarray(_array(support.pos) + 0.5 * _array(support.size)))
         low, high = low - 0.3 * radius, high + 0.3 * radius
         self._frame_camera(low, high)
         self.masses, self.springs = [], []
         # A long row gets fewer turns per spring: each turn is many triangles for the browser.
         coils = max(4, min(self.view["coils"], round(4 * self.view["coils"] / len(anchors))))
         for i, (anchor, r) in enumerate(zip(anchors, model.state.r)):
-            colour = vp.vector(*MASS_COLOURS[i % len(MASS_COLOURS)])
+            colour = vp.vector(*mass_colour(i))
             self.springs.append(vp.helix(pos=_vec(vp, anchor), axis=_vec(vp, r - anchor),
                                          radius=0.45 * radius, thickness=0.12 * radius,
                                          coils=coils, color=vp.vector(0.85, 0.85, 0.9)))
@@ -355,6 +372,17 @@ class SceneView:
                              make_trail=bool(self.view["trail"]), retain=300)
             self.masses.append(mass)
         self.shapes = [support, *self.springs, *self.masses]
+
+    def _reframe(self, model) -> None:
+        """Frame the new motion and the support once, after a new constant: in or out, as it needs.
+
+        Without this the view would only zoom out after the mass (a heavier mass hangs lower), and
+        the masses would shrink with every change.
+        """
+        low, high = motion_box(model)
+        low = np.minimum(low - 1.3 * self.radius, self.support_box[0])
+        high = np.maximum(high + 1.3 * self.radius, self.support_box[1])
+        self._frame_camera(low, high)
 
     def _frame_camera(self, low, high) -> None:
         scene = self.vp.scene
@@ -416,6 +444,8 @@ class SceneView:
             self.sliders[name] = vp.slider(min=low, max=high, step=step, value=self.setup.values[name],
                                            length=320, bind=lambda s, name=name: put(("set", name, s.value)))
             self.slider_texts[name] = vp.wtext(text="")
+        if self.sliders:
+            vp.wtext(text="").text = PRIME_SLIDERS  # set, not made with it: the setter runs scripts
         scene.append_to_caption("\n\n")
         self.constants_text = vp.wtext(text="")
         scene.append_to_caption("\n<i>Moving a slider, choosing another integrator or a preset restarts "
@@ -426,8 +456,10 @@ class SceneView:
 
     def _build_graphs(self, model) -> None:
         vp = self.vp
+        has_own = hasattr(self.setup.module, "view_graph")
+        self.graph_size = (NARROW_GRAPH_WIDTH if has_own else GRAPH_SIZE[0], GRAPH_SIZE[1])
         self._build_scene_graph()
-        width, height = GRAPH_SIZE
+        width, height = self.graph_size
         names = ", ".join("xyz"[axis] for axis in self.axes)
         legend = model.state.count <= LEGEND_MASSES  # a long row's legend would hide the graph
         title = "Position" if legend else f"Position of each of the {model.state.count} masses"
@@ -440,23 +472,40 @@ class SceneView:
             for axis in self.axes:
                 name = "xyz"[axis] + (f" {label}" if many or len(self.axes) > 1 else " (simulation)")
                 name = name if legend else ""
-                colour = vp.vector(*_shade(MASS_COLOURS[i % len(MASS_COLOURS)], axis, self.axes))
-                self._curve(self.position_graph, name, colour, ("r", i, axis), width=3)
+                colour = vp.vector(*shade(mass_colour(i), self.axes.index(axis)))
+                self._curve(self.position_graph, name, colour, ("r", i, axis),
+                            width=simulation_width(i, model.state.count, crowded=not legend))
         self.exact_curves = bool(self.view["exact"]) and model.exact is not None
         self.show_exact = self.exact_curves
-        if self.show_exact:
+        if self.show_exact:  # made last, so drawn on top: thin and dark inside the thick simulated curves
             for i, label in enumerate(model.labels):
                 for axis in self.axes:
                     # one legend entry for all the exact curves: they share a colour
                     name = f"{'xyz'[axis]} exact" if i == 0 and legend else ""
-                    self._curve(self.position_graph, name, vp.vector(0.1, 0.1, 0.1), ("exact", i, axis), width=1)
-        self.energy_graph = vp.graph(title="Energy", xtitle="t (s)", ytitle="energy (J)",
+                    self._curve(self.position_graph, name, vp.vector(*EXACT_COLOUR), ("exact", i, axis),
+                                width=EXACT_WIDTH)
+        # What the energy graph shows, so that it tells the story (what would fill it otherwise):
+        # one method per mass: each mass's own E = K + U (summed, euler's runaway would swamp it);
+        # a system that starts at rest at equilibrium: energies measured from there (else a large
+        # constant m g h would flatten every curve).
+        self.per_mass_energy = bool(model.integrators)
+        self.energy_offset = 0.0 if self.per_mass_energy else (rest_potential(model.state, model.forces) or 0.0)
+        title = ("Energy of each mass, E = K + U" if self.per_mass_energy else
+                 "Energy, measured from rest at equilibrium" if self.energy_offset else "Energy")
+        self.energy_graph = vp.graph(title=title, xtitle="t (s)", ytitle="energy (J)",
                                      width=width, height=height, align="left", fast=True,
                                      xmin=0, xmax=self.span)
-        for key, colour in ENERGY_COLOURS.items():
-            # E − W_nc comes last and thinner, so it shows on top of E when no work is done
-            self._curve(self.energy_graph, ENERGY_LABELS[key], vp.vector(*colour), ("energy", key),
-                        width=4 if key == "E" else 2)
+        if self.per_mass_energy:
+            for i, label in enumerate(model.labels):
+                # half the position curves' widths: an energy that wobbles fast would fill a band
+                self._curve(self.energy_graph, f"E {label}", vp.vector(*mass_colour(i)), ("mass_energy", i),
+                            width=simulation_width(i, model.state.count) / 2)
+        else:
+            for key, colour in ENERGY_COLOURS.items():
+                # E − W_nc comes last and thinner, so it shows on top of E when no work is done
+                label = ENERGY_LABELS[key] + (" − U_rest" if self.energy_offset and key != "K" else "")
+                self._curve(self.energy_graph, label, vp.vector(*colour), ("energy", key),
+                            width=4 if key == "E" else 2)
         self.graphs.extend([self.position_graph, self.energy_graph])
 
     def _build_scene_graph(self) -> None:
@@ -471,7 +520,7 @@ class SceneView:
         if make is None:
             return
         spec = make(self.setup)
-        width, height = GRAPH_SIZE
+        width, height = self.graph_size
         self.scene_graph = vp.graph(title=spec["title"], xtitle=spec["xtitle"], ytitle=spec["ytitle"],
                                     width=width, height=height, align="left", fast=True)
         self.graphs.append(self.scene_graph)
@@ -489,9 +538,13 @@ class SceneView:
     def _fill_scene_graph(self, spec) -> None:
         """Put a view_graph spec's points and labels into the scene graph's curves and dots."""
         graph = self.scene_graph
-        for key in ("xmin", "xmax", "ymin", "ymax"):
-            if key in spec:
-                setattr(graph, key, spec[key])
+        for axis, pixels in (("x", self.graph_size[0]), ("y", GRAPH_CANVAS_HEIGHT)):
+            low, high = spec.get(f"{axis}min"), spec.get(f"{axis}max")
+            if low is not None and high is not None:  # widened to round ticks
+                low, high = nice_range(low, high, pixels=pixels)
+            for key, value in ((f"{axis}min", low), (f"{axis}max", high)):
+                if value is not None:
+                    setattr(graph, key, value)
         for series, (label, xs, ys, _) in zip(self.scene_series, spec.get("lines", []) + spec.get("dots", [])):
             _replace_points(series, [[float(x), float(y)] for x, y in zip(xs, ys)])
             if series.label != label:
@@ -599,10 +652,13 @@ class SceneView:
             self._fill_scene_graph(setup.module.view_graph(setup))
         self.live = RecordedRun(model, integrator=integrator, sample_every=SAMPLE_EVERY)
         self.show_exact = self.exact_curves and model.exact is not None
+        self._reframe(model)
         self._restart(model)
         self.clock.restart(now=time.perf_counter())
 
     def _restart(self, model) -> None:
+        self.may_run_away = expected_runaways(model)
+        self.matter = [i for i in range(model.state.count) if i not in self.may_run_away]
         self._plot(self._clear_graphs(self.live.restart()), redraw=True)
         self.clock.dt = model.dt
         self.decimals = time_decimals(model.dt)
@@ -614,9 +670,11 @@ class SceneView:
         self._draw()
 
     def _clear_graphs(self, samples):
-        if getattr(self, "position_axis", None) is not None:  # back to autoscale until refitted
-            self.position_graph.ymin = self.position_graph.ymax = None
-        self.exact_range, self.position_axis = (math.inf, -math.inf), None
+        self.position_fit.clear()
+        self.energy_fit.clear()
+        for label in getattr(self, "runaway_labels", {}).values():
+            label.visible = False
+        self.runaway_labels = {}
         for curve, trace, _ in self.curves:
             trace.clear()
         self.recorded.clear()
@@ -636,6 +694,7 @@ class SceneView:
         if exact is not None:  # past the anchor the closed form no longer describes the mass
             keep = t <= self._exact_valid_until(float(t[-1]))
             exact = exact[keep] if not keep.all() else exact
+        energies = self._energies(samples)
         for curve, trace, what in self.curves:
             if what[0] == "r":
                 values = r[:, what[1], what[2]]
@@ -645,20 +704,41 @@ class SceneView:
                 else:
                     values = exact[:, what[1], what[2]]
             else:
-                values = [s.energy[what[1]] for s in samples]
+                values = energies[what[1]]
             points = [[float(a), float(b)] for a, b in zip(t, values)]  # zip stops where exact does
+            if what[0] in ("r", "mass_energy") and what[1] in self.live.runaways:
+                frozen = self.live.runaways[what[1]][0]  # the curve ends where the mass ran away
+                points = [point for point in points if point[0] <= frozen]
             if trace.add(points) or redraw:
                 _replace_points(curve, list(trace.points))
             elif points:
                 curve.plot(points)
         if exact is not None and len(exact):
-            self._fit_position_axis(exact[..., self.axes])
+            self._fit(self.position_graph, self.position_fit, exact[..., self.axes].ravel())
+        elif len(t):
+            self._fit(self.position_graph, self.position_fit, r[:, self.matter][..., self.axes].ravel())
+        self._fit(self.energy_graph, self.energy_fit,
+                  [value for key, values in energies.items() if key not in self.may_run_away for value in values])
         if len(t):
             start, end = window(float(t[-1]), span=self.span)
             if start != self.position_graph.xmin:
                 for graph in (self.position_graph, self.energy_graph):
                     graph.xmin, graph.xmax = start, end
         self._plot_live(redraw=redraw)
+
+    def _energies(self, samples) -> dict:
+        """What the energy graph plots, per curve key, one value per sample, J.
+
+        K, U, E, E − W_nc of the system (U, E and E − W_nc less energy_offset), or, with one
+        integrator per mass, each mass's own E = K + U (key: the mass's index).
+        """
+        if not self.per_mass_energy:
+            return {key: [s.energy[key] - (0.0 if key == "K" else self.energy_offset) for s in samples]
+                    for key in ENERGY_COLOURS}
+        forces, m = self.live.model.forces, self.live.state.m
+        per_mass = [kinetic(State(t=s.t, r=s.r, p=s.p, m=m)) + potential(State(t=s.t, r=s.r, p=s.p, m=m), forces)
+                    for s in samples]
+        return {i: [float(E[i]) for E in per_mass] for i in range(len(m))}
 
     def _plot_live(self, *, redraw: bool) -> None:
         """Move the scene graph's live dots to the state now, at most every LIVE_EVERY seconds."""
@@ -685,7 +765,7 @@ class SceneView:
         if not samples:
             self.download_text.text = "<i>nothing graphed yet</i>"
             return
-        text = csv_text(samples, m=self.live.state.m, labels=self.live.model.labels)
+        text = csv_text(samples, m=self.live.state.m, labels=self.live.model.labels, dt=self.live.model.dt)
         self.downloads += 1
         link = f"csv-download-{self.downloads}"
         name = f"{self.setup.name}.csv"
@@ -713,34 +793,32 @@ class SceneView:
             f'{name}</a> (a VPython program to hand out, {text.count(chr(10))} lines)'
             f'<script>document.getElementById("{link}").click()</script>')
 
-    def _fit_position_axis(self, values) -> None:
-        """Scale the position axis to the exact motion so far (padded, rounded outward).
+    @staticmethod
+    def _fit(graph, fit: AxisFit, values) -> None:
+        """Widen a graph's y axis, to round ticks, when the values leave it (scenes/axes.py).
 
-        A numerical curve that strays far from the exact one runs off the graph, rather than
-        squashing every other curve flat, as euler's growing swing would.
+        The position axis follows the exact motion where there is one: a numerical curve that
+        strays far from it runs off the graph, rather than squashing every other curve flat, as
+        euler's growing swing would.
         """
-        low = min(self.exact_range[0], float(np.min(values)))
-        high = max(self.exact_range[1], float(np.max(values)))
-        self.exact_range = (low, high)
-        pad = 0.25 * (high - low) + 1e-3
-        grid = 10 ** math.floor(math.log10(high - low + 2 * pad)) / 2
-        ymin, ymax = math.floor((low - pad) / grid) * grid, math.ceil((high + pad) / grid) * grid
-        if (ymin, ymax) != self.position_axis:
-            self.position_axis = (ymin, ymax)
-            self.position_graph.ymin, self.position_graph.ymax = ymin, ymax
+        ends = fit.update(values)
+        if ends is not None:
+            graph.ymin, graph.ymax = ends
 
     def _draw(self) -> None:
         """Move the masses and springs to the state now and update the caption: once per frame."""
         vp, state, anchors = self.vp, self.live.state, self.live.model.anchors
-        for mass, spring, anchor, r in zip(self.masses, self.springs, anchors, state.r):
+        for i, (mass, spring, anchor, r) in enumerate(zip(self.masses, self.springs, anchors, state.r)):
+            if i in self.live.runaways:  # frozen: shown, and labelled, where it leaves the picture
+                r = self._runaway_label(i, self._inside_frame(anchor, r))
             if np.all(np.isfinite(r)):
                 mass.pos = _vec(vp, r)
                 spring.axis = _vec(vp, r - anchor)  # the helix runs from the anchor to the mass
-        self._keep_in_view(state.r)
+        self._keep_in_view(state.r[self.matter])
         self.time_text.text = f"<b style='font-size:150%'>t = {state.t:.{self.decimals}f} s</b>"
         self.run_button.text = "Pause" if self.running else "Run"
         self.error_text.text = self._error_readout()
-        status = self.live.problem or ""
+        status = self.live.problem or "\n".join(_wrap(reason) for _, reason in self.live.runaways.values())
         if self.clock.dropped > 0.01 and not status:
             status = (f"Running slower than real time (Δt = {self.live.model.dt:g} s is small for "
                       f"this computer at this speed).")
@@ -761,18 +839,44 @@ class SceneView:
             return (f"no exact value after t = {valid_until:.3g} s: the closed form "
                     f"stops holding {model.exact_limit}")
         exact = model.exact(np.array([state.t]))[0][0]
-        errors = state.r[:, self.axes] - exact[:, self.axes]
+        errors = state.r[self.matter][:, self.axes] - exact[self.matter][:, self.axes]
         worst = float(np.max(np.abs(errors)))
         if errors.size == 1:
             name = "xyz"[self.axes[0]]
             return f"error {name} − {name}<sub>exact</sub> = {float(errors.flat[0]):+.3g} m"
-        return f"largest |error| against the exact solutions = {worst:.3g} m"
+        others = (f" ({', '.join(model.labels[i] for i in self.may_run_away)} left out)"
+                  if self.may_run_away else "")
+        return f"largest |error| against the exact solutions = {worst:.3g} m{others}"
+
+    def _inside_frame(self, anchor, r):
+        """The point where the line from the anchor to r leaves the picture (r itself if inside), m."""
+        width, height = CANVAS_SIZE
+        half = np.array([self.range * width / height, self.range, math.inf]) - 1.5 * self.radius
+        d = r - anchor
+        scale = 1.0
+        for axis in (0, 1):
+            if abs(d[axis]) > 1e-12:
+                edge = self.centre[axis] + math.copysign(half[axis], d[axis])
+                scale = min(scale, max(0.0, (edge - anchor[axis]) / d[axis]))
+        return anchor + scale * d if np.all(np.isfinite(d)) else anchor
+
+    def _runaway_label(self, i: int, where):
+        """Label mass i, frozen after running away, with its method and time; returns where it is shown."""
+        if i not in self.runaway_labels:
+            t, _ = self.live.runaways[i]
+            inward = 60 if where[0] < self.centre[0] else -60  # px: the text stays inside the picture
+            label = self.vp.label(pos=_vec(self.vp, where), text=f"{self.live.model.labels[i]} ran away\nat t = {t:.2f} s",
+                                  xoffset=inward, yoffset=30, height=15, color=self.vp.vector(1, 1, 1),
+                                  box=False, line=False)
+            self.runaway_labels[i] = label
+            self.shapes.append(label)
+        return where
 
     def _keep_in_view(self, r) -> None:
-        """Zoom out (never in) if a mass leaves the framed region, up to twice the first view.
+        """Zoom out (never in) if a mass that matters leaves the framed region, up to max_range.
 
-        A mass that runs away further (euler blowing up) leaves the picture instead of shrinking
-        every other mass to a dot.
+        A mass the scene expects may run away (euler) is not followed: it leaves the picture, is
+        frozen and labelled, instead of shrinking every other mass to a dot.
         """
         finite = r[np.all(np.isfinite(r), axis=1)]
         if not len(finite):
@@ -793,14 +897,19 @@ def _replace_points(series, points) -> None:
         series.plot(points)
 
 
+def _wrap(text: str, width: int = 110) -> str:
+    """Line breaks in a long sentence: the caption keeps line breaks but does not wrap."""
+    import textwrap
+
+    return "\n".join(textwrap.wrap(text, width))
+
+
+def _array(v) -> np.ndarray:
+    return np.array([v.x, v.y, v.z])
+
+
 def _vec(vp, a):
     return vp.vector(float(a[0]), float(a[1]), float(a[2]))
-
-
-def _shade(colour, axis, axes):
-    """The mass's colour, darker for the second and third plotted coordinate."""
-    factor = 1.0 - 0.3 * axes.index(axis)
-    return tuple(c * factor for c in colour)
 
 
 def _summary(module) -> str:

@@ -367,7 +367,7 @@ def test_plot_without_matplotlib_says_how_to_install_it(tmp_path):
             "runpy.run_path('main.py', run_name='__main__')\n")
     done = cli(code=code)
     assert done.returncode == 2
-    assert done.stderr.strip() == "error: --plot needs matplotlib: pip install matplotlib"
+    assert done.stderr.strip() == f"error: --plot needs matplotlib: {sys.executable} -m pip install matplotlib"
     assert not path.exists()
 
 
@@ -591,3 +591,75 @@ def test_no_exact_value_once_the_mass_has_passed_its_anchor():
     early = cli_json("driven", "--scenario", "1", "--set", "L0=1", "--until", "40")
     assert early["exact"]["r"][0] == pytest.approx(1.0 + 40 * math.sin(200) / 40, abs=1e-9)
     assert "exact_note" not in early
+
+
+# ---- clean numbers ----
+
+def significant_digits(text: str) -> int:
+    mantissa = text.lstrip("-").split("e")[0].replace(".", "").lstrip("0")
+    return len(mantissa.rstrip("0")) if "." in text else len(mantissa)
+
+
+def test_csv_prints_t_with_the_decimals_of_dt_and_15_significant_digits(tmp_path):
+    path = tmp_path / "v.csv"
+    done = cli("vertical", "--headless", "--csv", str(path), "--until", "15")
+    assert done.returncode == 0, done.stderr
+    with open(path, newline="") as handle:
+        rows = list(csv.reader(handle))
+    assert rows[0] == ["t", "x", "y", "z", "vx", "vy", "vz", "px", "py", "pz", "K", "U", "E", "W_nc"]
+    times = [row[0] for row in rows[1:]]
+    assert times[:4] == ["0.0", "0.1", "0.2", "0.3"] and times[-1] == "15.0"
+    assert times[146] == "14.6"                               # was 14.599999999999964
+    assert all(len(t.partition(".")[2]) <= 1 for t in times)  # Δt = 0.1 s: one decimal
+    assert rows[2][8] == "-7.8"                               # p_y after one step, by hand
+    assert all(significant_digits(field) <= 15 for row in rows[1:] for field in row)
+
+
+def test_json_reports_the_until_that_was_run_and_a_clean_t():
+    done = cli("driven", "--headless", "--scenario", "3", "--until", "10", "--json")
+    assert done.returncode == 0, done.stderr
+    answer = json.loads(done.stdout)
+    assert answer["t"] == 10.0 and '"t": 10.0,' in done.stdout
+    assert answer["constants"]["until"]["value"] == 10.0
+    numbers = re.findall(r"-?\d+\.\d+(?:e-?\d+)?", done.stdout)
+    assert numbers and all(significant_digits(n) <= 15 for n in numbers)
+
+
+def test_the_step_table_json_has_clean_times_and_momenta():
+    done = cli("vertical", "--steps", "3", "--headless", "--json")
+    assert done.returncode == 0, done.stderr
+    rows = json.loads(done.stdout)["step_table"]
+    assert [row["t"] for row in rows] == [0.1, 0.2, 0.3]
+    assert rows[0]["p_f"] == [0.0, -7.8, 0.0]
+
+
+def test_every_readme_example_does_what_its_comment_says(tmp_path):
+    """The README's `--csv` example writes one row per step for 20 s (it once stopped at 0.2 s)."""
+    readme = (ROOT / "README.md").read_text(encoding="utf-8")
+    line = next(line for line in readme.splitlines() if "--csv damped.csv" in line)
+    args = line.split("#")[0].split()[2:]                     # after `python main.py`
+    assert "--until" in args
+    args[args.index("damped.csv")] = str(tmp_path / "damped.csv")
+    done = cli(*args)
+    assert done.returncode == 0, done.stderr
+    rows = (tmp_path / "damped.csv").read_text().splitlines()
+    assert len(rows) - 1 == 201 and "201 rows" in line and rows[-1].startswith("20.0,")
+
+
+def test_the_plot_draws_the_exact_solution_smooth_even_at_a_coarse_dt(tmp_path, monkeypatch):
+    """vertical at Δt = 0.1 s to 0.2 s has 3 step times; the exact curve still gets 2,000 points."""
+    pytest.importorskip("matplotlib")
+    import headless
+    import plotting
+    from scenes import catalog
+
+    drawn = []
+    import matplotlib.axes
+    original = matplotlib.axes.Axes.plot
+    monkeypatch.setattr(matplotlib.axes.Axes, "plot",
+                        lambda self, *a, **k: drawn.append((a, k)) or original(self, *a, **k))
+    result = headless.simulate(catalog.configure("vertical"), progress=None)
+    assert len(result.trajectory.t) == 3
+    plotting.plot(result, str(tmp_path / "v.png"))
+    exact = [a for a, k in drawn if k.get("label") == "exact"]
+    assert len(exact) == 1 and len(exact[0][0]) >= 2000

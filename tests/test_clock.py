@@ -14,7 +14,7 @@ from hypothesis import given, settings, strategies as st
 
 from physics.simulate import run
 from scenes import catalog
-from scenes.clock import LiveRun, RealTimeClock, StepBudget, Trace, window
+from scenes.clock import LiveRun, RealTimeClock, StepBudget, Trace, expected_runaways, window
 
 
 def run_frames(clock, frame_times, *, speed=1.0, running=lambda i: True, quiet=lambda i: 0.0,
@@ -251,6 +251,30 @@ def test_a_blow_up_stops_the_run_with_advice():
     assert runner.problem and "euler" in runner.problem
     t = runner.state.t
     assert runner.advance(10) == [] and runner.state.t == t
+
+
+def test_in_integrators_euler_runs_away_alone_and_the_others_run_on():
+    """euler's mass is frozen where it ran away, with the time and the reason; the comparison goes on."""
+    model, runner = live("integrators")
+    assert expected_runaways(model) == [0]            # euler, unstable at every Δt
+    for _ in range(500):                               # 30 s
+        runner.advance(1)
+    assert runner.problem is None and runner.state.t == pytest.approx(30.0)
+    assert list(runner.runaways) == [0]
+    t, reason = runner.runaways[0]
+    assert 1.0 < t < 15.0 and "euler" in reason and "dt = 0.06 s" in reason
+    frozen = runner.state.r[0].copy()
+    assert np.linalg.norm(frozen - model.anchors[0]) <= runner.runaway_reach * 1.5
+    runner.advance(20)
+    np.testing.assert_array_equal(runner.state.r[0], frozen)
+    assert np.all(np.abs(runner.state.r[1:, 0] - model.anchors[1:, 0] - 1.0) < 0.2)  # still swinging near L0
+    runner.restart()
+    assert runner.runaways == {}
+
+
+def test_nothing_is_expected_to_run_away_with_one_stable_integrator():
+    model, runner = live("vertical")
+    assert expected_runaways(model) == [] and runner.runaways == {}
 
 
 def test_trace_keeps_a_bounded_window_over_a_long_run():

@@ -147,3 +147,15 @@ def test_euler_gains_energy_at_turning_points_even_with_damping_and_tiny_dt(osci
     dE = energy_steps(model, "euler", 0.001, oscillation_energy, Y_EQUILIBRIUM, until=2.0)
     t = 0.001 * np.arange(1, len(dE) + 1)
     assert np.any(dE[(t > 1.4) & (t < 1.7)] > 0)
+
+
+def test_energy_is_measured_from_rest_only_for_a_start_at_rest_at_equilibrium():
+    """resonance's row starts at rest at equilibrium: its U there is the rest energy; the Simple
+    Example starts stretched, so it has none (its energies are shown as they are)."""
+    from physics.energy import rest_potential
+
+    resonance = catalog.configure("resonance").build()
+    assert rest_potential(resonance.state, resonance.forces) == pytest.approx(
+        float(np.sum(potential(resonance.state, resonance.forces))))
+    vertical = catalog.configure("vertical").build()
+    assert rest_potential(vertical.state, vertical.forces) is None

@@ -1,0 +1,101 @@
+"""Graph axes with round ticks (steps of 1, 2 or 5 × 10ⁿ) that a class can read from the back row.
+
+vpython's graphs (flot, in "fast" mode) choose their own tick spacing from an axis's span and its
+length in pixels, and one of the spacings they may choose is 2.5 × 10ⁿ, which they then print
+rounded (`-1.3, -1.5, -1.8`). So the view sets each axis's ends itself, to whole steps of a round
+spacing, widened by whole steps until flot's own rule picks a round spacing too.
+
+Nothing here imports vpython: tests/test_axes.py checks the rule on many ranges.
+"""
+from __future__ import annotations
+
+import math
+
+ROUND = (1.0, 2.0, 5.0)
+
+
+def flot_tick_step(span: float, pixels: float) -> float:
+    """The tick spacing flot picks for an axis `span` long drawn over `pixels` (its own rule).
+
+    It aims at 0.3 √pixels ticks: delta = span / (0.3 √pixels), then rounds delta to 1, 2, 2.5, 5
+    or 10 × 10ⁿ (2.5 where delta/10ⁿ lies between 2.25 and 3).
+    """
+    delta = span / (0.3 * math.sqrt(pixels))
+    decimals = -math.floor(math.log10(delta))
+    magnitude = 10.0 ** -decimals
+    norm = delta / magnitude
+    if norm < 1.5:
+        size = 1.0
+    elif norm < 3:
+        size = 2.5 if norm > 2.25 else 2.0
+    elif norm < 7.5:
+        size = 5.0
+    else:
+        size = 10.0
+    return size * magnitude
+
+
+def is_round(step: float) -> bool:
+    """True for 1, 2 or 5 × 10ⁿ."""
+    mantissa = step / 10.0 ** math.floor(math.log10(step) + 1e-9)
+    return any(abs(mantissa - r) < 1e-6 for r in ROUND + (10.0,))
+
+
+def nice_range(low: float, high: float, *, pixels: float) -> tuple[float, float]:
+    """Axis ends enclosing [low, high] whose ticks flot draws at a round spacing, 3 to 7 of them.
+
+    pixels is the axis's length on the page (the graph canvas's height for a y axis, its width
+    for an x axis).
+    """
+    if not (math.isfinite(low) and math.isfinite(high)):
+        return -1.0, 1.0
+    if high - low < 1e-12 * max(1.0, abs(low), abs(high)):
+        half = 0.1 * max(abs(low), 1e-3)
+        low, high = low - half, high + half
+    step = 10.0 ** math.floor(math.log10((high - low) / 6))
+    for _ in range(12):
+        for factor in ROUND:
+            size = factor * step
+            bottom = math.floor(low / size + 1e-9) * size
+            steps = math.ceil((high - bottom) / size - 1e-9)
+            for extra in range(4):  # widen by whole steps until flot's own spacing is round
+                top = bottom + (steps + extra) * size
+                if steps + extra <= 8 and is_round(flot_tick_step(top - bottom, pixels)):
+                    return _clean(bottom), _clean(top)
+        step *= 10
+    return low, high
+
+
+def _clean(value: float) -> float:
+    """0.30000000000000004 → 0.3: an axis end is a whole number of round steps."""
+    return float(f"{value:.12g}") + 0.0
+
+
+class AxisFit:
+    """One graph axis fitted to the values seen since the last clear: it widens, never narrows.
+
+    `update` returns the new (low, high) when the axis must change, else None.
+    """
+
+    def __init__(self, *, pixels: float, pad: float = 0.1):
+        self.pixels, self.pad = pixels, pad
+        self.clear()
+
+    def clear(self) -> None:
+        self.seen = (math.inf, -math.inf)
+        self.ends: tuple[float, float] | None = None
+
+    def update(self, values) -> tuple[float, float] | None:
+        finite = [float(v) for v in values if math.isfinite(v)]
+        if not finite:
+            return None
+        low, high = min(self.seen[0], min(finite)), max(self.seen[1], max(finite))
+        self.seen = (low, high)
+        if self.ends is not None and self.ends[0] <= low and high <= self.ends[1]:
+            return None
+        margin = self.pad * (high - low)
+        ends = nice_range(low - margin, high + margin, pixels=self.pixels)
+        if ends == self.ends:
+            return None
+        self.ends = ends
+        return ends

@@ -1,0 +1,220 @@
+"""What the class sees, checked in headless Chromium with real mouse input and the page's own pixels.
+
+* The first move of a slider takes effect: a single click on the k track and a single drag of the
+  m handle, each the first move of that slider, change its label and restart the run from t = 0
+  (vpython 7.6.5's page dropped a slider's first value; scenes/view.py primes it).
+* In `integrators` euler's mass runs away alone: the page names it and the time, the other three
+  run on and stay large spheres; after a new k in `vertical` the mass is framed again, not shrunk.
+* At 1400 px the resonance page's three graphs share one row.
+* Every graph ticks its y axis at even steps of 1, 2 or 5 × 10ⁿ (read from the tick labels).
+* Where the simulation agrees with the exact solution (rk4, damped), both curves show: the thick
+  simulated curve in the mass's colour, the thin dark exact one inside it; the two balls of `drag`,
+  whose curves coincide at first, both show.
+
+Skipped, with the reason, where Chromium or Playwright is missing.
+"""
+from __future__ import annotations
+
+import math
+import re
+
+import pytest
+
+from browser_support import colours, pixels_like, wait_for
+from scenes.palette import mass_colour
+from scenes.view import slider_range
+from test_browser import (Program, browser, caption_lines, crop, graph_boxes, menu,  # noqa: F401 (a fixture)
+                          shown_time)
+
+pytestmark = pytest.mark.browser
+VIEWPORT = {"width": 1400, "height": 1000}
+
+
+def slider_value(page, name: str) -> float:
+    """The value a slider's label shows (`k = 85.3 N/m` after the slider)."""
+    pattern = re.compile(rf"^{re.escape(name)} = (-?[\d.e+-]+)\b")
+    for line in caption_lines(page):
+        found = pattern.match(line)
+        if found:
+            return float(found.group(1))
+    raise AssertionError(f"no label for slider {name!r} on the page")
+
+
+def open_scene(browser, scene: str, viewport=VIEWPORT):
+    program = Program(scene)
+    page = browser.new_page(viewport=viewport)
+    page.goto(program.url(), timeout=30_000)
+    return program, page
+
+
+def test_the_first_click_and_the_first_drag_of_a_slider_take_effect(browser):
+    program, page = open_scene(browser, "vertical")
+    try:
+        wait_for(lambda: shown_time(page) >= 2.0, timeout=60.0, what="t to reach 2 s")
+        sliders = page.locator(".ui-slider")            # vertical: m, then k
+        assert sliders.count() == 2
+        assert slider_value(page, "k") == 40.0 and slider_value(page, "m") == 10.0
+
+        # one click, three quarters along the k track: the handle jumps there and k follows
+        track = sliders.nth(1).bounding_box()
+        before = shown_time(page)
+        page.mouse.click(track["x"] + 0.75 * track["width"], track["y"] + track["height"] / 2)
+        low, high, _ = slider_range("k", 40.0)
+        wait_for(lambda: slider_value(page, "k") != 40.0, timeout=10.0, what="the k label to change")
+        assert slider_value(page, "k") == pytest.approx(low + 0.75 * (high - low), rel=0.03)
+        assert shown_time(page) < before   # the run started again from t = 0
+        constants = next(line for line in caption_lines(page) if line.startswith("Constants:"))
+        assert f"k = {slider_value(page, 'k'):g} N/m" in constants
+
+        # one drag of the m handle, from 10 kg towards the right end of its track
+        wait_for(lambda: shown_time(page) >= 1.0, timeout=60.0, what="t to reach 1 s again")
+        handle = page.locator(".ui-slider-handle").nth(0).bounding_box()
+        track = sliders.nth(0).bounding_box()
+        x, y = handle["x"] + handle["width"] / 2, handle["y"] + handle["height"] / 2
+        target = track["x"] + 0.6 * track["width"]
+        before = shown_time(page)
+        page.mouse.move(x, y)
+        page.mouse.down()
+        page.mouse.move(target, y, steps=12)
+        page.mouse.up()
+        low, high, _ = slider_range("m", 10.0)
+        wait_for(lambda: slider_value(page, "m") == pytest.approx(low + 0.6 * (high - low), rel=0.03),
+                 timeout=10.0, what="the m label to follow the drag")
+        assert shown_time(page) < before   # started again
+        assert "Traceback" not in "".join(program.errors)
+    finally:
+        page.close()
+        program.stop()
+
+
+def graph_image(page, index: int, path):
+    """The index-th graph of the page (its drawing canvas), cut from a screenshot saved at `path`."""
+    page.screenshot(path=str(path), full_page=True)
+    return crop(path, graph_boxes(page)[index])
+
+
+def dark_pixels(image) -> int:
+    """Near-black pixels in the left 40 % of a graph, inside its frame (the exact curve)."""
+    width, height = image.size
+    inside = image.crop((int(0.1 * width), int(0.08 * height), int(0.4 * width), int(0.88 * height)))
+    return sum(n for rgb, n in colours(inside).items() if max(rgb) < 90)
+
+
+def test_the_simulation_and_the_exact_curve_both_show_where_they_agree(browser, tmp_path):
+    """rk4 on the damped spring follows the exact solution to well under a pixel."""
+    program, page = open_scene(browser, "damped")
+    try:
+        menu(page, "rk4").select_option("rk4")
+        wait_for(lambda: shown_time(page) >= 6.0, timeout=60.0, what="t to reach 6 s")
+        image = graph_image(page, 0, tmp_path / "damped.png")
+        orange = pixels_like(image, tuple(round(255 * c) for c in mass_colour(0)), within=60)
+        exact = dark_pixels(image)
+        assert exact > 300, f"the exact curve hardly shows ({exact} dark pixels)"
+        assert orange > 2 * exact, f"the simulated curve hardly shows ({orange} orange, {exact} dark pixels)"
+    finally:
+        page.close()
+        program.stop()
+
+
+def test_the_two_balls_of_drag_both_show_while_their_curves_coincide(browser, tmp_path):
+    program, page = open_scene(browser, "drag")
+    try:
+        wait_for(lambda: shown_time(page) >= 6.0, timeout=60.0, what="t to reach 6 s")
+        image = graph_image(page, 0, tmp_path / "drag.png")
+        for i in (0, 1):
+            colour = tuple(round(255 * c) for c in mass_colour(i))
+            assert curve_pixels_like(image, colour) > 400, f"ball {i}'s curve does not show"
+    finally:
+        page.close()
+        program.stop()
+
+
+def curve_pixels_like(image, rgb) -> int:
+    return pixels_like(image.crop((0, 0, int(0.4 * image.width), image.height)), rgb, within=60)
+
+
+def tick_values(page) -> list[list[float]]:
+    """The y-axis tick labels of each graph on the page, as numbers, read from the page's text."""
+    graphs = page.locator(".glowscript-graph")
+    return [[float(text.replace("−", "-")) for text in graphs.nth(i).locator(".yAxis .tickLabel").all_inner_texts()]
+            for i in range(graphs.count())]
+
+
+@pytest.mark.parametrize("scene", ["regimes", "pendulum", "resonance", "integrators"])
+def test_every_graph_ticks_at_round_even_steps(browser, scene):
+    program, page = open_scene(browser, scene)
+    try:
+        wait_for(lambda: shown_time(page) >= 8.0, timeout=90.0, what="t to reach 8 s")
+        graphs = tick_values(page)
+        assert len(graphs) >= 2
+        for ticks in graphs:
+            assert len(ticks) >= 3, ticks
+            steps = [b - a for a, b in zip(ticks, ticks[1:])]
+            step = abs(steps[0])
+            assert all(abs(abs(s) - step) <= 1e-6 * step for s in steps), f"uneven ticks {ticks}"
+            mantissa = step / 10 ** math.floor(math.log10(step) + 1e-9)
+            assert min(abs(mantissa - r) for r in (1, 2, 5, 10)) < 1e-6, f"ticks {ticks} step by {step}"
+    finally:
+        page.close()
+        program.stop()
+
+
+def canvas_pixels_like(page, path, colour) -> int:
+    """Pixels of the 3-D canvas within reach of a mass's colour (its sphere, lit and shaded)."""
+    page.screenshot(path=str(path), full_page=True)
+    box = page.locator(".glowscript-canvas-wrapper canvas").first.bounding_box()
+    return pixels_like(crop(path, box), tuple(round(255 * c) for c in colour), within=90)
+
+
+def status_text(page) -> str:
+    return page.locator("body").inner_text()
+
+
+def test_in_integrators_euler_runs_away_alone_and_the_good_masses_stay_large(browser, tmp_path):
+    program, page = open_scene(browser, "integrators")
+    try:
+        wait_for(lambda: shown_time(page) >= 0.5, timeout=60.0, what="t to pass 0.5 s")
+        start = [canvas_pixels_like(page, tmp_path / "start.png", mass_colour(i)) for i in (1, 2, 3)]
+        wait_for(lambda: shown_time(page) >= 16.0, timeout=120.0, what="t to pass 16 s (euler ran away by ~5 s)")
+        text = status_text(page)
+        assert "Stopped" not in text
+        assert re.search(r"euler ran away at t = [\d.]+ s", text), "no sentence about euler's runaway"
+        later = [canvas_pixels_like(page, tmp_path / "later.png", mass_colour(i)) for i in (1, 2, 3)]
+        for i, (a, b) in enumerate(zip(start, later), start=1):   # euler-cromer, verlet, rk4
+            assert a > 200 and b > 0.8 * a, f"mass {i} shrank from {a} to {b} pixels"
+        # and the comparison is still going on: t advances, the graphs keep growing
+        later = shown_time(page)
+        wait_for(lambda: shown_time(page) > later + 1.0, timeout=60.0, what="t to advance after the runaway")
+    finally:
+        page.close()
+        program.stop()
+
+
+def test_after_a_new_k_the_mass_is_framed_again_not_shrunk(browser, tmp_path):
+    program, page = open_scene(browser, "vertical")
+    try:
+        wait_for(lambda: shown_time(page) >= 3.0, timeout=60.0, what="t to reach 3 s")
+        before = canvas_pixels_like(page, tmp_path / "before.png", mass_colour(0))
+        for position in (0.05, 0.95):   # a soft spring (the mass hangs low), then a stiff one
+            track = page.locator(".ui-slider").nth(1).bounding_box()
+            page.mouse.click(track["x"] + position * track["width"], track["y"] + track["height"] / 2)
+            wait_for(lambda: shown_time(page) < 1.0, timeout=10.0, what="the run to restart")
+            wait_for(lambda: shown_time(page) >= 3.0, timeout=60.0, what="t to reach 3 s")
+            after = canvas_pixels_like(page, tmp_path / f"after-{position}.png", mass_colour(0))
+            assert after > 0.5 * before, f"the mass shrank from {before} to {after} pixels"
+    finally:
+        page.close()
+        program.stop()
+
+
+def test_at_1400_px_the_resonance_graphs_share_one_row(browser):
+    program, page = open_scene(browser, "resonance")
+    try:
+        wait_for(lambda: shown_time(page) >= 1.0, timeout=90.0, what="t to reach 1 s")
+        tops = [round(box["y"]) for box in graph_boxes(page)]
+        assert len(tops) == 3 and len(set(tops)) == 1, f"graph tops at {tops}"
+        right = max(box["x"] + box["width"] for box in graph_boxes(page))
+        assert right <= VIEWPORT["width"]
+    finally:
+        page.close()
+        program.stop()
