@@ -4,9 +4,12 @@ Part 5 (a scene left running in headless Chromium for 10 minutes) is a separate 
 takes minutes of wall time and needs Chromium and Playwright: `python -m benchmarks.long_run`
 (docs/long_run.md). Figures and how to read them: docs/performance.md.
 
-Every figure is measured in this one run and compared with a reference measured in the same
-run (the page-style vpython-vector loop, a bare interpreter, scipy), so the ratios mean something
-even on a busy machine. The full run takes about 3 minutes on 2 cores; --quick about 30 s.
+Parts 1, 3 and 6 time the user's commands (`python main.py ...`) as whole processes; figures
+of the engine called in-process are labelled "internal API, no user path". Every figure is
+compared with a reference measured in the same run (the page's vpython-vector loop as a process,
+a bare interpreter, scipy), so the ratios mean something even on a busy machine. The full run
+takes about 5 minutes on 2 cores (a solve_ivp loop over 1,000 frequencies is a minute of it);
+--quick about a minute.
 """
 from __future__ import annotations
 
@@ -21,16 +24,18 @@ from . import accuracy, batches, resonance_sweep, single_mass, startup
 from .common import Settings
 
 BENCHMARKS = {
-    "single-mass": (single_mass, "part 1: one mass, 10⁶ steps, against the page-style vpython-vector loop"),
-    "batches": (batches, "part 2: N = 10³…10⁶ oscillators in one array, 1-D and 3-D"),
-    "resonance": (resonance_sweep, "part 3: 1,000 driving frequencies in one batch, against solve_ivp"),
+    "single-mass": (single_mass, "part 1: `main.py vertical` 10⁶ steps (--json, --csv) against the page's loop, "
+                                 "as processes"),
+    "batches": (batches, "part 2: N = 1…10⁶ oscillators in one array, 1-D and 3-D (internal API)"),
+    "resonance": (resonance_sweep, "part 3: `main.py resonance` with 1,000 frequencies against solve_ivp"),
     "accuracy": (accuracy, "part 4: error after 10 periods against CPU time, with a plot"),
     "startup": (startup, "part 6: wall time of `python main.py vertical --headless`"),
 }
 # Not in the full run: minutes of wall time in headless Chromium. Run it as its own command.
 SEPARATE = {
     "python -m benchmarks.long_run": "part 5: a scene in headless Chromium for 10 min (--minutes, --scene, "
-                                     "--set dt=0.001): t shown against wall time, memory; see --help",
+                                     "--set dt=0.0001, --source DIR): t shown against wall time, memory, "
+                                     "CPU per wall second; see --help",
 }
 
 
@@ -53,7 +58,7 @@ def parse_arguments(argv=None):
         prog="python -m benchmarks", description=__doc__.splitlines()[0],
         epilog="Part 5, the page left running in headless Chromium, is a separate command: "
                "python -m benchmarks.long_run --help. Figures: docs/performance.md, docs/long_run.md.")
-    parser.add_argument("--quick", action="store_true", help="fewer steps and repeats: about 30 s in all")
+    parser.add_argument("--quick", action="store_true", help="fewer steps and repeats: about a minute in all")
     parser.add_argument("--only", metavar="NAME", action="append", choices=list(BENCHMARKS),
                         help="run only this benchmark (repeatable): " + ", ".join(BENCHMARKS))
     parser.add_argument("--list", action="store_true", help="list the benchmarks and exit")

@@ -7,10 +7,10 @@ period T = 2π √(m/k) = π s. physics.exact.single_mass_motion gives r(t) exac
 
 Each of this project's integrators runs at Δt = T/n for several n (a method of order q gains q
 decades of accuracy per decade of cost), through physics.simulate.run (for one mass, the compiled
-float loop of physics/compiled.py) and, for comparison, as the numpy step in a bare loop. scipy's
-solve_ivp (RK45 and DOP853, adaptive steps) runs at several rtol on the same equations r' = p/m,
-p' = F_net, with the same physics force functions on the right-hand side, so it pays what the
-numpy step pays for one force evaluation.
+float loop of physics/compiled.py) and, for comparison, through the numpy tick
+(simulate.run(compiled=False)). scipy's solve_ivp (RK45 and DOP853, adaptive steps) runs at
+several rtol on the same equations r' = p/m, p' = F_net, with the same physics force functions
+on the right-hand side, so it pays what the numpy tick pays for one force evaluation.
 CPU time is time.process_time(), so waiting for the other core does not count.
 """
 from __future__ import annotations
@@ -57,24 +57,22 @@ def cpu_seconds(function, minimum: float = 0.05):
 
 
 def integrator_error(name: str, per_period: int):
-    """(error m, CPU s through simulate.run, CPU s of the numpy step in a bare loop)."""
+    """(error m, CPU s through simulate.run, CPU s of the same run through the numpy tick, compiled=False)."""
     state, forces, r_exact = _system()
-    step, dt = INTEGRATORS[name], period / per_period
+    dt = period / per_period
+
+    def project_run(compiled=True):
+        return run(state, forces, dt=dt, until=t_end, integrator=name, record_every=None,
+                   growth_limit=math.inf,              # euler grows 10⁷-fold at T/10: report it
+                   compiled=compiled).r[-1, 0]
 
     def numpy_steps():
-        s = state
-        for _ in range(10 * per_period):
-            s = step(s, forces, dt)
-        return s.r[0]
-
-    def project_run():
-        return run(state, forces, dt=dt, until=t_end, integrator=name, record_every=None,
-                   growth_limit=math.inf).r[-1, 0]     # euler grows 10⁷-fold at T/10: report it
+        return project_run(compiled=False)
 
     r, seconds = cpu_seconds(project_run)
     r_numpy, numpy_seconds = cpu_seconds(numpy_steps)
     if not np.allclose(r, r_numpy, rtol=1e-12, atol=1e-12):
-        raise RuntimeError(f"{name}: simulate.run and the numpy step disagree: {r} against {r_numpy}")
+        raise RuntimeError(f"{name}: simulate.run and its numpy tick disagree: {r} against {r_numpy}")
     return float(np.linalg.norm(r - r_exact)), seconds, numpy_seconds
 
 
@@ -130,7 +128,7 @@ def plot(rows, path: str = PLOT) -> str | None:
     axes.set_xlabel("CPU time for 10 periods (s)")
     axes.set_ylabel("position error |r − r_exact| at t = 10 T (m)")
     axes.set_title("Accuracy per cost: hanging mass, k = 40 N/m, m = 10 kg, T = π s\n"
-                   "solid: simulate.run (compiled float loop); dotted: the numpy step", fontsize=10)
+                   "solid: simulate.run (compiled float loop); dotted: simulate.run(compiled=False), the numpy tick", fontsize=10)
     axes.grid(True, which="both", alpha=0.3)
     axes.legend()
     figure.tight_layout()
@@ -154,7 +152,7 @@ def main(settings) -> dict:
     print(f"Part 4: accuracy per cost, hanging mass (k = {k:g} N/m, m = {m:g} kg), error at "
           f"t = 10 T = {t_end:.4f} s, CPU time by time.process_time()")
     rows = measure(settings)
-    print(table(["method", "setting", "error (m)", "CPU time", "force evaluations", "CPU, numpy step"],
+    print(table(["method", "setting", "error (m)", "CPU time", "force evaluations", "CPU, numpy tick"],
                 [[a, b, f"{e:.2e}", f"{s * 1e3:.2f} ms", f"{n:,}", "-" if u is None else f"{u * 1e3:.2f} ms"]
                  for a, b, e, s, n, u in rows]))
     for tolerance in (1e-3, 1e-6):

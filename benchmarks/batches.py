@@ -1,11 +1,11 @@
 """Part 2: many independent oscillators stepped together, one numpy array of N rows.
 
 Each row is the page's hanging mass with its own k, m and L0 (per-mass force parameters), all
-advanced by the same Euler-Cromer step through physics.simulate.run. The cost of a step is mostly
-fixed Python/numpy overhead at small N and memory traffic at large N, so oscillator-steps per
-second grow with N until the arrays stop fitting in cache; past 2¹⁷ numbers run() steps the batch
-a block of masses at a time so that they stay in cache. The reference is the page-style loop of
-part 1 (one mass, vpython's vector), measured in the same process.
+advanced by the same Euler-Cromer step through physics.simulate.run (the engine). The cost of a
+step is mostly fixed Python/numpy overhead at small N (where the engine runs its traced float loop)
+and memory traffic at large N, so oscillator-steps per second grow with N until the arrays stop
+fitting in cache. These are internal-API figures (no user command steps 10⁶ oscillators); the
+reference is the page-style loop of part 1 (one mass, vpython's vector), in the same process.
 
 1-D batches keep r with shape (N, 1): the forces then need 1-component anchors and directions
 (Spring(anchor=(0.0,)), Gravity(direction=(-1.0,))); with the default 3-component ones numpy
@@ -18,8 +18,7 @@ import resource
 import numpy as np
 
 from physics.forces import Gravity, Spring
-from physics.integrators import euler_cromer
-from physics.simulate import run
+from physics.simulate import Simulation, run
 from physics.state import make_state
 
 from .common import table, timed, verdict
@@ -45,8 +44,7 @@ def batch(N: int, dims: int, *, seed: int = 1):
 
 
 def step_many(state, forces, steps: int):
-    """The project's stepping: physics.simulate.run, keeping only the final state. It steps one
-    mass with the compiled float loop and a batch bigger than 2¹⁷ numbers a block at a time."""
+    """The project's stepping: physics.simulate.run, keeping only the final state."""
     return run(state, forces, dt=dt, until=state.t + steps * dt, record_every=None).final
 
 
@@ -67,7 +65,7 @@ def check_default_1d() -> str:
     """What happens with r of shape (N, 1) and the forces' default 3-component anchor/direction."""
     state = make_state(r=np.full((4, 1), -1.5), m=np.full(4, 10.0))
     try:
-        euler_cromer(state, (Spring(k=40.0, L0=1.0), Gravity(g=g)), dt)
+        Simulation(state, (Spring(k=40.0, L0=1.0), Gravity(g=g)), dt=dt, compiled=False).advance(1)
     except ValueError as error:
         return f"fails with ValueError ({error})"
     return "works"

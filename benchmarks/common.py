@@ -1,8 +1,14 @@
 """Small helpers shared by the benchmarks: timing, tables, and the run's settings."""
 from __future__ import annotations
 
+import os
+import resource
+import subprocess
+import sys
 import time
 from dataclasses import dataclass
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 
 
 @dataclass(frozen=True)
@@ -36,6 +42,29 @@ def best_of(repeats: int, function, *args, clock=time.process_time, **kwargs):
         if best is None or seconds < best[1]:
             best = (result, seconds)
     return best
+
+
+def _children_cpu() -> float:
+    usage = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return usage.ru_utime + usage.ru_stime
+
+
+def process_time(arguments, *, timeout: float = 300.0) -> tuple[float, float, str]:
+    """(wall s, CPU s, stdout) of one `python <arguments>` run from the project folder, as a user
+    runs it: start-up, imports and output included. Raises RuntimeError if it fails.
+
+    The CPU time (user + system of the child) hardly changes when other work shares the machine;
+    the wall time does. subprocess.run kills the child if it outlasts `timeout`.
+    """
+    cpu_before = _children_cpu()
+    start = time.perf_counter()
+    completed = subprocess.run([sys.executable, *arguments], cwd=ROOT, capture_output=True,
+                               text=True, timeout=timeout)
+    seconds = time.perf_counter() - start
+    if completed.returncode != 0:
+        raise RuntimeError(f"python {' '.join(arguments)} exited with {completed.returncode}: "
+                           f"{completed.stderr.strip().splitlines()[-1:]}")
+    return seconds, _children_cpu() - cpu_before, completed.stdout
 
 
 def table(headers, rows) -> str:

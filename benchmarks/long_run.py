@@ -1,6 +1,7 @@
 """Part 5: a scene left running in headless Chromium: does t keep real time, and does memory stay flat?
 
     python -m benchmarks.long_run [--minutes 10] [--scene vertical] [--set dt=0.0001] [--every 10]
+                                  [--source DIR]
 
 `python main.py SCENE --no-browser --port P` is started, its printed URL opened in headless
 Chromium (driven by Playwright, as in tests/test_browser.py), and Run pressed if the scene starts
@@ -20,7 +21,10 @@ least-squares rate of t shown against wall time: a clock that drifts or falls be
 rate, a page that shows a t late moves only single readings. From minute 1 to the end the Python
 process's resident memory (VmRSS in /proc/PID/status) and the page's JS heap (CDP
 Runtime.getHeapUsage, after a forced garbage collection) grow by at most 10 %. The page's DOM
-node count is shown too, since a graph that kept every point would show there first.
+node count is shown too, since a graph that kept every point would show there first. The Python
+process's CPU time over the readings, per second of wall time, is what keeping up costs (at
+dt = 0.0001 s the program steps 10,000 times per second); `--source DIR` runs another copy of
+the project (an older commit) for the same measurement.
 
 At the end the page's scripts are held in the debugger for `--freeze` seconds, as a browser freezes
 a background tab: t must not jump on by the whole pause when the page comes back.
@@ -96,13 +100,13 @@ def free_port() -> int:
 class Program:
     """`python main.py SCENE --no-browser --port P [--set ...]`, its output read on threads."""
 
-    def __init__(self, scene: str, settings: list[str]):
+    def __init__(self, scene: str, settings: list[str], source: Path = ROOT):
         self.port = free_port()
-        command = [sys.executable, str(ROOT / "main.py"), scene, "--no-browser", "--port", str(self.port)]
+        command = [sys.executable, str(source / "main.py"), scene, "--no-browser", "--port", str(self.port)]
         for setting in settings:
             command += ["--set", setting]
         self.command = command
-        self.process = subprocess.Popen(command, cwd=ROOT, stdout=subprocess.PIPE,
+        self.process = subprocess.Popen(command, cwd=source, stdout=subprocess.PIPE,
                                         stderr=subprocess.PIPE, text=True)
         self.lines: queue.Queue = queue.Queue()
         self.errors: list[str] = []
@@ -219,11 +223,11 @@ HEADER = (f"{'wall s':>8} {'t shown':>9} {'speed×wall':>10} {'rel. error':>10} 
 
 
 def measure(*, scene: str, settings: list[str], minutes: float, every: float, speed: float,
-            warm_up: float, freeze: float = 0.0, out=print) -> dict:
+            warm_up: float, freeze: float = 0.0, source: Path = ROOT, out=print) -> dict:
     """Run the scene for `minutes`, reading t and memory every `every` s; returns the figures."""
     from playwright.sync_api import sync_playwright
 
-    program = Program(scene, settings)
+    program = Program(scene, settings, source)
     readings: list[Reading] = []
     collected = {}
     try:
@@ -236,7 +240,7 @@ def measure(*, scene: str, settings: list[str], minutes: float, every: float, sp
                 time.sleep(warm_up)  # the page's first frames (fonts, shaders) are not the steady state
                 t0, seen0, _ = page.caption()
                 cpu0, cpu_wall0 = program.cpu_seconds(), time.monotonic()
-                start = time.monotonic()
+                cpu_first, start = cpu0, cpu_wall0
                 out(HEADER)
                 for k in range(1, int(60.0 * minutes / every + 1e-9) + 1):
                     time.sleep(max(0.0, start + k * every - time.monotonic()))
@@ -253,6 +257,7 @@ def measure(*, scene: str, settings: list[str], minutes: float, every: float, sp
                         f"{reading.rss:7.1f} {reading.heap:10.1f} {reading.nodes:9d} {reading.cpu:6.0f}")
                     if "first" not in collected and k * every >= min(MEMORY_FROM, 30.0 * minutes):
                         collected["first"] = (k * every, reading.rss, page.heap_mb(collect=True))
+                collected["cpu"] = (program.cpu_seconds() - cpu_first, time.monotonic() - start)
                 collected["last"] = (len(readings) * every, program.rss_mb(), page.heap_mb(collect=True))
                 if freeze:
                     collected["freeze"] = page.freeze(freeze)
@@ -307,11 +312,14 @@ def summarise(readings: list[Reading], collected: dict, *, speed: float, out=pri
         out(f"page frozen for {frozen:.0f} s (held in the debugger): t went from {before:.2f} s "
             f"to {after:.2f} s, {after - before:.2f} s on, {waited:.1f} s after it thawed "
             f"(made up in full it would be {speed * (frozen + waited):.0f} s)")
+    cpu_seconds, wall_seconds = collected["cpu"]
+    out(f"CPU time of the Python process (user + system, /proc/PID/stat) over the {wall_seconds:.0f} s of "
+        f"readings: {cpu_seconds:.1f} s = {cpu_seconds / wall_seconds:.3f} CPU s per wall s")
     status, seconds = collected.get("exit", (None, None))
     out("closing the page: " + (f"the program ended with status {status} after {seconds:.1f} s"
                                   if status is not None else "the program was still running after 5 s"))
     return {"worst_error": worst, "offset": offset, "rate": last.shown / (speed * last.wall), "slope": slope / speed,
-            "over_target": over, "rss_growth": rss_growth,
+            "over_target": over, "cpu_per_wall": cpu_seconds / wall_seconds, "rss_growth": rss_growth,
             "heap_growth": heap_growth, "readings": readings}
 
 
@@ -327,6 +335,9 @@ def parse_arguments(argv=None):
     parser.add_argument("--freeze", type=float, default=30.0,
                         help="at the end, freeze the page this long (a background tab) and check that "
                              "t does not jump on (default 30; 0 skips it)")
+    parser.add_argument("--source", type=Path, default=ROOT,
+                        help="the project folder whose main.py runs (default this one); to compare an "
+                             "older version: git archive COMMIT | tar -x -C DIR, then --source DIR")
     return parser.parse_args(argv)
 
 
@@ -345,10 +356,12 @@ def main(argv=None) -> int:
     print(f"machine: {machine()}")
     print(f"command: python -m benchmarks.long_run {' '.join(argv if argv is not None else sys.argv[1:])}".rstrip())
     print(f"load average at start: {' '.join(f'{x:.2f}' for x in os.getloadavg())}")
+    print(f"program: {arguments.source / 'main.py'}")
     print(f"scene {arguments.scene} {' '.join('--set ' + s for s in arguments.set)}, speed 1×, "
           f"{arguments.minutes:g} min, a reading every {arguments.every:g} s\n")
     measure(scene=arguments.scene, settings=arguments.set, minutes=arguments.minutes,
-            every=arguments.every, speed=1.0, warm_up=arguments.warm_up, freeze=arguments.freeze)
+            every=arguments.every, speed=1.0, warm_up=arguments.warm_up, freeze=arguments.freeze,
+            source=arguments.source.resolve())
     print(f"load average at the end: {' '.join(f'{x:.2f}' for x in os.getloadavg())}")
     return 0
 

@@ -7,11 +7,19 @@ the compiled vector module (cyvector, Cython) straight from its file. If the ext
 loaded, we load the pure-Python vpython/vector.py by path instead. Either way no canvas exists.
 
     vector, mag, norm, kind = load_vector()   # kind: "cyvector" or "vector.py"
+
+It also holds the reference every speed figure is set against: the page's own program (its
+Simple Example, scenes/vertical.py), written the way a classroom program is, stepped at a fine
+Δt. Run as a process it is what a student's program costs, start-up included:
+
+    python -m benchmarks.page_vector --steps 1000000     # prints {"steps", "r", "kind"} as JSON
 """
 from __future__ import annotations
 
+import argparse
 import importlib.machinery
 import importlib.util
+import json
 import os
 import sys
 import threading
@@ -63,3 +71,43 @@ def load_vector():
         raise RuntimeError("loading vpython's vector imported vpython itself (a canvas and server would start)")
     _LOADED = (module.vector, module.mag, module.norm, kind)
     return _LOADED
+
+
+# The page's Simple Example (scenes/vertical.py), stepped finely: 10⁶ steps reach t = 100 s.
+k = 40.0                # N/m
+m = 10.0                # kg
+L0 = 1.0                # m
+g = 9.8                 # m/s², along −y
+r0 = (0.0, -1.5, 0.0)   # m, from rest
+anchor = (0.0, 0.0, 0.0)
+dt = 1e-4               # s
+
+
+def page_style_loop(steps: int):
+    """The classroom program, with vpython's vector (no canvas is created): its final position."""
+    vector, mag, norm, _ = load_vector()
+    pos = vector(*r0)
+    p = vector(0, 0, 0)
+    top = vector(*anchor)
+    g_vec = vector(0, -g, 0)
+    t = 0
+    for _ in range(steps):
+        L = pos - top
+        F = -k * (mag(L) - L0) * norm(L) + m * g_vec
+        p = p + F * dt
+        pos = pos + p / m * dt
+        t = t + dt
+    return (pos.x, pos.y, pos.z)
+
+
+def main(argv=None) -> int:
+    parser = argparse.ArgumentParser(prog="python -m benchmarks.page_vector",
+                                     description="The page's loop with vpython's vector, as a process.")
+    parser.add_argument("--steps", type=int, default=1_000_000, help="Euler-Cromer steps of dt = 1e-4 s")
+    steps = parser.parse_args(argv).steps
+    print(json.dumps({"steps": steps, "r": page_style_loop(steps), "kind": load_vector()[3]}))
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -8,38 +8,20 @@ canvas would start a server).
 from __future__ import annotations
 
 import os
-import resource
 import statistics
 import subprocess
 import sys
-import time
 
-from .common import verdict
+from .common import ROOT, process_time, verdict
 
-ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 HEADLESS = ["main.py", "vertical", "--headless"]
 TIMEOUT = 60.0   # s for one child process
 
 
-def _children_cpu() -> float:
-    usage = resource.getrusage(resource.RUSAGE_CHILDREN)
-    return usage.ru_utime + usage.ru_stime
-
-
 def wall_time(arguments) -> tuple[float, float]:
-    """(wall s, CPU s) of one `python <arguments>` run from the project folder; raises if it fails.
-
-    The CPU time (user + system of the child) hardly changes when other work shares the machine.
-    """
-    cpu_before = _children_cpu()
-    start = time.perf_counter()
-    completed = subprocess.run([sys.executable, *arguments], cwd=ROOT, capture_output=True,
-                               text=True, timeout=TIMEOUT)   # run() kills the child on timeout
-    seconds = time.perf_counter() - start
-    if completed.returncode != 0:
-        raise RuntimeError(f"python {' '.join(arguments)} exited with {completed.returncode}: "
-                           f"{completed.stderr.strip().splitlines()[-1:]}")
-    return seconds, _children_cpu() - cpu_before
+    """(wall s, CPU s) of one `python <arguments>` run from the project folder; raises if it fails."""
+    seconds, cpu, _ = process_time(arguments, timeout=TIMEOUT)
+    return seconds, cpu
 
 
 def imported_modules(arguments) -> list[tuple[str, float]]:
