@@ -504,6 +504,7 @@ def _guarded_protocol(vpython_protocol, state: _State):
             if state.closing is not None:  # the page came back (a reload) before the program ended
                 state.closing.cancel()
                 state.closing = None
+            state.fetched_while_open = -math.inf  # any reload it marked has now connected
             self.opened = state.connected = True
             state.pages.add(self)
             _last_contact = time.monotonic()
