@@ -79,6 +79,7 @@ _page_loads = 0  # how many times a page has connected: a reload connects again
 _page_built = 1  # the page load the scene has been built on (the first page gets it as it is made)
 CLOSE_GRACE = 0.5  # s: after the page closes, the program ends this long after, unless it comes back
 RELOAD_WAIT = 20.0  # s: how long a reload (the page fetched again as it closed) may take to connect
+RELOAD_FETCH = 5.0  # s: a page fetched this long before the open page closed counts as its reload
 REPORT_EVERY = 5.0  # s: refused connections are summed up on stderr at most this often
 
 
@@ -265,8 +266,11 @@ class _Refusals:
     """Refused connections and ignored messages, summed up on stderr at most every REPORT_EVERY s.
 
     A hostile page can knock thousands of times a second; the teacher's terminal gets one line
-    every few seconds saying how many, and why, instead of one line each.
+    every few seconds saying how many, and why, instead of one line each. The first line waits
+    GATHER s, so that one burst is one line.
     """
+
+    GATHER = 1.0  # s
 
     def __init__(self, stream=None, every: float = REPORT_EVERY):
         self.stream, self.every = stream, every
@@ -278,15 +282,12 @@ class _Refusals:
     def add(self, reason: str) -> None:
         with self.lock:
             self.counts[reason] = self.counts.get(reason, 0) + 1
-            wait = self.last_report + self.every - time.monotonic()
             if self.pending:
                 return
             self.pending = True
-        if wait <= 0:
-            self.report()
-        else:  # threading.Timer would not do: while vpython loads, threading.Thread is patched
-            _Thread(target=lambda: (time.sleep(wait), self.report()), name="refusal-report",
-                    daemon=True).start()
+            wait = max(self.GATHER, self.last_report + self.every - time.monotonic())
+        # threading.Timer would not do: while vpython loads, threading.Thread is patched.
+        _Thread(target=lambda: (time.sleep(wait), self.report()), name="refusal-report", daemon=True).start()
 
     def report(self) -> None:
         with self.lock:
@@ -382,6 +383,14 @@ def _http_server_class(state: _State):
             if state.open_browser:  # the page's first request queues until serve_forever
                 webbrowser.open(state.url)
 
+        def handle_error(self, request, client_address):
+            # socketserver prints a traceback for any error in a request. A browser that drops
+            # a connection mid-reply (a reload, a closed tab) is normal; anything else is one line.
+            problem = sys.exc_info()[1]
+            if not isinstance(problem, (ConnectionError, TimeoutError)):
+                print(f"note: a request to the page's server failed: {type(problem).__name__}: {problem}",
+                      file=sys.stderr, flush=True)
+
         def serve_forever(self, poll_interval=0.05):
             # vpython's quit path calls shutdown(), which waits for this loop to notice; with
             # the default 0.5 s poll that alone could take half a second.
@@ -467,6 +476,7 @@ def _guarded_protocol(vpython_protocol, state: _State):
 
     from autobahn.exception import Disconnected
     from autobahn.websocket.types import ConnectionDeny
+    from vpython.vpython import baseObj
 
     class GuardedWSserver(vpython_protocol):
         opened = False
@@ -481,6 +491,7 @@ def _guarded_protocol(vpython_protocol, state: _State):
             # (TAB_SCRIPT asks /status), and closing it does not end the program.
             if state.pages:
                 state.refusals.add("from a second tab of the page")
+                state.fetched_while_open = -math.inf  # that fetch was this tab's, not a reload's
                 raise ConnectionDeny(409, "the page is already open in another tab")
             return super().onConnect(request)
 
@@ -493,6 +504,7 @@ def _guarded_protocol(vpython_protocol, state: _State):
             if state.closing is not None:  # the page came back (a reload) before the program ended
                 state.closing.cancel()
                 state.closing = None
+            state.fetched_while_open = -math.inf  # any reload it marked has now connected
             self.opened = state.connected = True
             state.pages.add(self)
             _last_contact = time.monotonic()
@@ -513,6 +525,10 @@ def _guarded_protocol(vpython_protocol, state: _State):
                 pass
             except Exception:  # not something the page sends: ignored, and counted
                 state.refusals.add("message the page could not have sent, ignored")
+            finally:
+                # vpython clears this while it copies its updates and sets it once they are sent;
+                # left clear (the page closed mid-reply), every new vpython object would wait forever.
+                baseObj.sent = True
 
         def onClose(self, wasClean, code, reason):
             # vpython's onClose sends SIGINT to the process; autobahn calls it for every lost
@@ -528,10 +544,10 @@ def _guarded_protocol(vpython_protocol, state: _State):
             def end_unless_back():
                 if state.pages:
                     return
-                # A reload fetches the page again just before the old one closes (or, in some
-                # browsers, just after); its scripts may take seconds to load before it
-                # connects, so wait for it (within reason).
-                reloading = state.fetched_while_open > closed - CLOSE_GRACE or state.fetched > closed
+                # A reload fetches the page again before the old one closes (a busy browser may
+                # take a second between the two; some browsers close first); its scripts may
+                # take seconds to load before it connects, so wait for it (within reason).
+                reloading = state.fetched_while_open > closed - RELOAD_FETCH or state.fetched > closed
                 if reloading and time.monotonic() - closed < RELOAD_WAIT:
                     state.closing = loop.call_later(0.1, end_unless_back)
                     return

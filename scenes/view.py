@@ -298,6 +298,7 @@ class SceneView:
 
         loads = self._page_loads()
         baseObj.initialize()
+        baseObj.sent = True
         for kept in (baseObj.attach_arrows, baseObj.attach_trails, baseObj.follow_objects):
             kept.clear()
         self.shapes, self.graphs = [], []  # on the old page only: nothing to take down

@@ -451,3 +451,132 @@ def test_real_browser_connects_and_closing_the_page_ends_the_program(run_driver)
             assert elapsed < 2, f"took {elapsed:.2f} s to exit after the page closed"
         finally:
             browser.close()
+
+
+# ------------------------------------------------------- hostile clients and the page's lifecycle
+
+def get_with_host(port: int, host: str | None, path: str = "/") -> tuple[int, bytes]:
+    """GET with exactly this Host header (None: none at all), as a DNS-rebinding page would send."""
+    with socket.create_connection(("127.0.0.1", port), timeout=5) as sock:
+        header = f"Host: {host}\r\n" if host is not None else ""
+        sock.sendall(f"GET {path} HTTP/1.0\r\n{header}\r\n".encode("latin-1"))
+        data = b""
+        while chunk := sock.recv(65536):
+            data += chunk
+    head, _, body = data.partition(b"\r\n\r\n")
+    return int(head.split()[1]), body
+
+
+def ws_frame(payload: bytes, opcode: int = 1) -> bytes:
+    """One masked websocket frame, as a client must send it."""
+    mask = os.urandom(4)
+    n = len(payload)
+    length = bytes([0x80 | n]) if n < 126 else bytes([0x80 | 126]) + n.to_bytes(2, "big")
+    return bytes([0x80 | opcode]) + length + mask + bytes(b ^ mask[i % 4] for i, b in enumerate(payload))
+
+
+def refusal_lines(driver: Driver) -> list[str]:
+    return [line for line in driver.drain("err") if line.startswith("note: refused")]
+
+
+def test_only_requests_for_this_programs_host_and_port_are_answered(run_driver):
+    driver = run_driver()
+    port = driver.http_port()
+    wait_for_listeners(driver.proc.pid, 2)
+    for host in [f"127.0.0.1:{port}", f"localhost:{port}"]:
+        assert get_with_host(port, host)[0] == 200, host
+    for host in [f"evil.example:{port}", "evil.example", f"127.0.0.1:{port + 1}", "127.0.0.1",
+                 f"localhost.:{port}", f"127.0.0.1:{port}.evil.example", "", None]:
+        status, body = get_with_host(port, host)
+        assert status == 421 and b"glow" not in body, host
+    assert get_with_host(port, f"evil.example:{port}", "/glow.min.js")[0] == 421
+    assert driver.proc.poll() is None
+
+
+def test_garbage_on_the_websocket_gives_at_most_one_line_and_no_traceback(run_driver):
+    driver = run_driver()
+    http_port = driver.http_port()
+    wait_for_listeners(driver.proc.pid, 2)
+    sock, status_line = ws_handshake(websocket_port(http_port), f"http://127.0.0.1:{http_port}")
+    try:
+        assert b" 101 " in status_line
+        driver.expect(r"^CONNECTED ", timeout=5)
+        for payload in [b"not json", b"[1,2", b'[{"event":"zzz"}]', b"{}", b"[null]", b"9" * 100]:
+            sock.sendall(ws_frame(payload))
+        time.sleep(2.5)  # longer than the gathering of one report
+        assert driver.proc.poll() is None
+        lines = refusal_lines(driver)
+        assert len(lines) <= 1 and all("could not have sent" in line for line in lines), lines
+        assert not any("Traceback" in line or "Error" in line for line in driver.drain("err"))
+    finally:
+        sock.close()
+    assert_clean_exit(driver, timeout=5)
+
+
+def test_refused_connections_are_counted_and_reported_at_most_every_few_seconds(run_driver):
+    driver = run_driver()
+    http_port = driver.http_port()
+    wait_for_listeners(driver.proc.pid, 2)
+    ws_port = websocket_port(http_port)
+    for n in range(60):
+        sock, status_line = ws_handshake(ws_port, "http://evil.example")
+        sock.close()
+        assert b" 403 " in status_line
+    for n in range(20):
+        assert get_with_host(http_port, "rebind.example")[0] == 421
+    from scenes.loopback_server import REPORT_EVERY
+
+    time.sleep(REPORT_EVERY + 1.5)
+    lines = refusal_lines(driver)
+    assert 1 <= len(lines) <= 2, lines  # 80 refusals in a second or two: one line, or two 5 s apart
+    count = lambda pattern: sum(int(n) for line in lines for n in re.findall(pattern, line))
+    assert count(r"refused (\d+) connections") == 80
+    assert count(r"(\d+) from another web page") == 60 and count(r"(\d+) with a Host header") == 20
+    assert driver.proc.poll() is None
+
+
+def test_a_second_tab_is_refused_and_closing_it_does_not_end_the_program(run_driver):
+    driver = run_driver()
+    http_port = driver.http_port()
+    wait_for_listeners(driver.proc.pid, 2)
+    ws_port = websocket_port(http_port)
+    page, status_line = ws_handshake(ws_port, f"http://127.0.0.1:{http_port}")
+    try:
+        assert b" 101 " in status_line
+        driver.expect(r"^CONNECTED ", timeout=5)
+        assert raw_get(http_port, "/status") == (200, b"busy")
+        second, second_status = ws_handshake(ws_port, f"http://127.0.0.1:{http_port}")
+        second.close()
+        assert b" 409 " in second_status
+        time.sleep(1.5)  # past the grace after a close
+        assert driver.proc.poll() is None
+        page.sendall(ws_frame(b"trigger"))  # the first tab still gets its updates
+        page.settimeout(5)
+        assert page.recv(2)[0] & 0x0F == 1  # a text frame back
+    finally:
+        closed_at = time.monotonic()
+        page.close()
+    assert assert_clean_exit(driver, timeout=5, since=closed_at) < 2
+
+
+def test_a_reload_reconnects_and_the_program_keeps_running(run_driver):
+    driver = run_driver()
+    http_port = driver.http_port()
+    wait_for_listeners(driver.proc.pid, 2)
+    ws_port = websocket_port(http_port)
+    origin = f"http://127.0.0.1:{http_port}"
+    page, status_line = ws_handshake(ws_port, origin)
+    assert b" 101 " in status_line
+    driver.expect(r"^CONNECTED ", timeout=5)
+    # A reload: the browser fetches the page again, then the old page's websocket closes, and
+    # the new page connects once its scripts have loaded (seconds, on a slow machine).
+    assert raw_get(http_port, "/")[0] == 200
+    page.close()
+    time.sleep(3.0)
+    assert driver.proc.poll() is None
+    page, status_line = ws_handshake(ws_port, origin)
+    assert b" 101 " in status_line
+    assert raw_get(http_port, "/status") == (200, b"busy")
+    closed_at = time.monotonic()
+    page.close()
+    assert assert_clean_exit(driver, timeout=5, since=closed_at) < 2

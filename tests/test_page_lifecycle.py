@@ -1,0 +1,174 @@
+"""The page's lifecycle in a real browser: reload, a second tab, and a page from another host name.
+
+`python main.py vertical --no-browser --port P` is started and its page opened in headless
+Chromium (Playwright):
+
+- reloading the tab (F5) shows the scene again, running from t = 0, and the program keeps
+  running; closing the reloaded tab then ends it within 2 s;
+- a second tab shows "already open in another tab", and closing it leaves the first tab running;
+- a page reached through another host name that resolves to 127.0.0.1 (what a DNS-rebinding
+  attack does) gets status 421 and no scene.
+
+Screenshots go to /tmp, not docs/: the reloaded page and the second tab are looked at, not kept.
+"""
+from __future__ import annotations
+
+import os
+import queue
+import re
+import socket
+import subprocess
+import sys
+import tempfile
+import threading
+import time
+from pathlib import Path
+
+import pytest
+
+from browser_support import CHROMIUM, CHROMIUM_ARGS, TIME, colours, free_port, wait_for
+
+ROOT = Path(__file__).resolve().parent.parent
+
+pytestmark = pytest.mark.browser
+if not os.path.exists(CHROMIUM):
+    pytest.skip(f"Chromium is not installed at {CHROMIUM} (apt-get install chromium)",
+                allow_module_level=True)
+sync_api = pytest.importorskip("playwright.sync_api",
+                               reason="Playwright for Python is not installed (pip install playwright)")
+Image = pytest.importorskip("PIL.Image", reason="Pillow is needed to inspect screenshots")
+
+REBOUND = "rebind.test"  # a host name the browser is told resolves to 127.0.0.1
+
+
+@pytest.fixture(scope="module")
+def browser():
+    with sync_api.sync_playwright() as playwright:
+        chromium = playwright.chromium.launch(
+            executable_path=CHROMIUM, args=CHROMIUM_ARGS + [f"--host-resolver-rules=MAP {REBOUND} 127.0.0.1"])
+        try:
+            yield chromium
+        finally:
+            chromium.close()
+
+
+@pytest.fixture
+def program():
+    port = free_port()
+    process = subprocess.Popen([sys.executable, str(ROOT / "main.py"), "vertical", "--no-browser", "--port", str(port)],
+                               cwd=ROOT, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    errors: list[str] = []
+    lines: queue.Queue = queue.Queue()
+    threading.Thread(target=lambda: [lines.put(line) for line in process.stdout], daemon=True).start()
+    threading.Thread(target=lambda: [errors.append(line) for line in process.stderr], daemon=True).start()
+    process.errors = errors
+    process.url = f"http://127.0.0.1:{port}/"
+    process.port = port
+    try:
+        wait_for(lambda: "http://127.0.0.1" in lines.get(timeout=30), timeout=30, what="the URL")
+        wait_for(lambda: _listening(port), timeout=30, what="the server")
+        yield process
+    finally:
+        if process.poll() is None:
+            process.kill()
+        process.wait(timeout=10)
+
+
+def _listening(port: int) -> bool:
+    try:
+        socket.create_connection(("127.0.0.1", port), timeout=1).close()
+        return True
+    except OSError:
+        return False
+
+
+def shown_time(page) -> float:
+    text = page.locator("b").filter(has_text=TIME).first.inner_text(timeout=60_000)
+    return float(TIME.match(text).group(1))
+
+
+def running_past(page, t: float, timeout: float = 60) -> float:
+    return wait_for(lambda: (lambda now: now if now > t else None)(shown_time(page)), timeout=timeout,
+                    what=f"t to pass {t} s")
+
+
+def screenshot(page, path: Path) -> None:
+    """page.screenshot, tried again: a busy headless Chromium now and then cannot capture one."""
+    for attempt in range(3):
+        try:
+            page.screenshot(path=str(path))
+            return
+        except sync_api.Error:
+            if attempt == 2:
+                raise
+            time.sleep(1)
+
+
+def canvas_not_blank(page, name: str) -> None:
+    path = Path(tempfile.gettempdir()) / f"lifecycle-{name}.png"
+    box = page.locator("canvas").first.bounding_box()
+    screenshot(page, path)
+    image = Image.open(path).convert("RGB").crop((round(box["x"]), round(box["y"]),
+                                                  round(box["x"] + box["width"]), round(box["y"] + box["height"])))
+    counts = colours(image)
+    background = max(counts, key=counts.get)
+    others = sum(n for rgb, n in counts.items() if sum(abs(a - b) for a, b in zip(rgb, background)) > 60)
+    assert others > 0.003 * counts.total(), f"the canvas looks blank ({path})"
+
+
+def exit_seconds_after(close, process) -> float:
+    closed_at = time.monotonic()
+    close()
+    process.wait(timeout=10)
+    return time.monotonic() - closed_at
+
+
+def test_a_reload_shows_the_scene_again_and_the_program_keeps_running(browser, program):
+    page = browser.new_page()
+    page.goto(program.url)
+    running_past(page, 5.0)
+    canvas_not_blank(page, "before-reload")
+    page.reload()
+    after = running_past(page, 0.3)
+    assert program.poll() is None
+    assert after < 5.0  # built again on the new page, from t = 0
+    running_past(page, after + 0.5)  # and it keeps running
+    canvas_not_blank(page, "after-reload")
+    assert page.locator("canvas").count() >= 3  # the 3-D view and the two graphs
+    assert "Traceback" not in "".join(program.errors)
+    assert exit_seconds_after(page.close, program) < 2
+    assert program.returncode == 0
+
+
+def test_a_second_tab_says_so_and_closing_it_leaves_the_first_running(browser, program):
+    first = browser.new_page()
+    first.goto(program.url)
+    running_past(first, 0.5)
+    second = browser.new_page()
+    second.goto(program.url)
+    message = second.locator("#tab-message")
+    message.wait_for(timeout=60_000)
+    assert "already open in another tab" in message.inner_text()
+    screenshot(second, Path(tempfile.gettempdir()) / "lifecycle-second-tab.png")
+    second.close()
+    time.sleep(2.5)  # longer than the program takes to end after its last tab closes
+    assert program.poll() is None
+    now = shown_time(first)
+    running_past(first, now + 0.5)  # the first tab still runs
+    assert "Traceback" not in "".join(program.errors)
+    assert exit_seconds_after(first.close, program) < 2
+
+
+def test_a_page_reached_through_another_host_name_is_refused(browser, program):
+    page = browser.new_page()
+    response = page.goto(f"http://{REBOUND}:{program.port}/")
+    assert response.status == 421
+    assert "glowscript" not in page.content() and page.locator("canvas").count() == 0
+    assert page.goto(f"http://{REBOUND}:{program.port}/glow.min.js").status == 421
+    page.close()
+    own = browser.new_page()
+    own.goto(program.url)  # the program's own address still works, and only its page connected
+    running_past(own, 0.3)
+    own.close()
+    program.wait(timeout=10)
+    assert "Traceback" not in "".join(program.errors)
