@@ -90,6 +90,7 @@ PAGE_STYLE = ("<style>body { font-size: 17px; } button, select { font-size: 17px
               " .glowscript-graph { margin-bottom: 36px; }</style>")
 PRESET_PROMPT = "choose a preset"
 LIVE_EVERY = 0.5          # s of wall time between redraws of a scene graph's live dots
+TRAIL_POINTS = 300        # points kept in a trail: the last 15 s at one point per SAMPLE_EVERY
 # vpython 7.6.5's page sends a slider's value only when it differs from the last value it sent, and
 # before the first move there is none, so the first move of every slider was lost. This script tells
 # the page each new slider's starting value, by calling the slider's own change handler once with a
@@ -340,10 +341,14 @@ class SceneView:
             self.springs.append(vp.helix(pos=_vec(vp, anchor), axis=_vec(vp, r - anchor),
                                          radius=0.45 * radius, thickness=0.12 * radius,
                                          coils=coils, color=vp.vector(0.85, 0.85, 0.9)))
-            mass = vp.sphere(pos=_vec(vp, r), radius=radius, color=colour,
-                             make_trail=bool(self.view["trail"]), retain=300)
+            mass = vp.sphere(pos=_vec(vp, r), radius=radius, color=colour)
             self.masses.append(mass)
-        self.shapes = [support, *self.springs, *self.masses]
+        # The trail is drawn from the graph samples (every 0.05 s of simulation time), not by
+        # vpython's make_trail, which adds a point only when the page draws a frame: on a busy
+        # computer that is a few times a second, and the trail came out as jagged straight segments.
+        self.trails = [vp.curve(color=vp.vector(*mass_colour(i)), radius=0.06 * radius, retain=TRAIL_POINTS)
+                       for i in range(len(anchors))] if self.view["trail"] else []
+        self.shapes = [support, *self.springs, *self.masses, *self.trails]
 
     def _reframe(self, model) -> None:
         """Frame the new motion and the support once, after a new constant: in or out, as it needs.
@@ -641,6 +646,8 @@ class SceneView:
         for label in getattr(self, "runaway_labels", {}).values():
             label.visible = False
         self.runaway_labels = {}
+        for trail in self.trails:
+            trail.clear()
         for curve, trace, _ in self.curves:
             trace.clear()
         self.recorded.clear()
@@ -661,6 +668,10 @@ class SceneView:
             keep = t <= self._exact_valid_until(float(t[-1]))
             exact = exact[keep] if not keep.all() else exact
         energies = self._energies(samples)
+        for i, trail in enumerate(self.trails):
+            points = [_vec(self.vp, where) for where in r[:, i] if np.all(np.isfinite(where))]
+            if points and i not in self.live.runaways:
+                trail.append(points)
         for curve, trace, what in self.curves:
             if what[0] == "r":
                 values = r[:, what[1], what[2]]
