@@ -4,7 +4,7 @@ This is the one shared view. A scene file names what to draw in its VIEW dict:
 
     support   "ceiling" (a box above the anchors) or "wall" (a box beside them)
     plot      the coordinate that moves: "x", "y", "z", or "xyz" for all three
-    trail     True leaves a fading trail behind each mass (default False)
+    trail     True draws each mass's path over the last 15 s (default False)
     exact     False hides the exact-solution curve even where a closed form exists (default True)
     sliders   names of the constants that get a slider (default: m and k, and b, F0 and omega
               where the scene switches them on)
@@ -31,6 +31,13 @@ How the page behaves, for the teacher:
   rebuilt so that every slider shows the new value (a slider's range cannot change in vpython).
 * The scene menu switches to another scene in place, with its default constants: the 3-D objects
   of the old scene are hidden, its graphs and controls removed, and the new scene's built.
+* The graphs: the simulation thick in each mass's colour, the exact solution thin and dark on
+  top (scenes/palette.py, shared with --plot); every y axis ticks at round steps (scenes/axes.py).
+  The energy graph shows K, U, E and E − W_nc, measured from rest at equilibrium where the run
+  starts there (resonance), or each mass's own E where masses use different integrators.
+* A mass the scene expects may run away (euler in `integrators`, LiveRun.runaways) is shown
+  frozen where it leaves the picture, labelled with its method and time; the others run on, and
+  the camera stays on them. A new constant frames the new motion again.
 * Download CSV saves the graphed samples (the last `window` seconds, one row per 0.05 s and mass)
   with the same columns as the command line's --csv: t, x, y, z, vx, vy, vz, px, py, pz, K, U, E,
   W_nc (and body for several masses). The file is made here and handed to the browser as a

@@ -9,7 +9,7 @@ to SCENE.png in a folder in /tmp, or in docs/screenshots/ with UPDATE_SCREENSHOT
 One more page goes through the menus: a preset (Moon gravity) changes the constant in the caption,
 moves its slider and restarts at t = 0; the scene menu switches to another scene in place; and
 Download CSV gives a file with the command line's columns whose rows obey v = p/m and E = K + U
-(docs/screenshots/menus.png).
+(menus.png, beside the others).
 
 Skipped, with the reason, where Chromium or Playwright is missing (.ci/run installs both).
 """
