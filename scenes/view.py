@@ -867,7 +867,7 @@ def _wrap(text: str, width: int = 110) -> str:
     """Line breaks in a long sentence: the caption keeps line breaks but does not wrap."""
     import textwrap
 
-    return "\n".join(textwrap.wrap(text, width))
+    return "\n".join(textwrap.wrap(text, width, break_on_hyphens=False))
 
 
 def _array(v) -> np.ndarray:
