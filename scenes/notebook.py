@@ -50,6 +50,14 @@ from .constants import ConstantError
 _live = None  # the scene running in this kernel: (task, view)
 
 
+class PageGone(RuntimeError):
+    """The notebook page vpython was connected to has gone: shown as its one-line message."""
+
+    def _render_traceback_(self) -> list[str]:
+        """IPython shows these lines instead of a traceback: the message is all the student needs."""
+        return [f"{type(self).__name__}: {self}"]
+
+
 class NotebookLink:
     """vpython's connection to the notebook page, from the kernel's side: what the page sent, and when."""
 
@@ -149,8 +157,8 @@ def _require_notebook() -> None:
 def _require_live_page() -> None:
     connection = sys.modules.get("vpython.with_notebook")
     if connection is not None and not connection.t.is_alive():  # t: its websocket server's thread
-        raise RuntimeError("the notebook page vpython was connected to has gone (reloaded or "
-                           "reopened): restart the kernel (Kernel > Restart Kernel), then run the cells again")
+        raise PageGone("the notebook page vpython was connected to has gone (reloaded or "
+                       "reopened): restart the kernel (Kernel > Restart Kernel), then run the cells again")
 
 
 def _vpython_for_this_cell():

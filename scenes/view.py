@@ -4,7 +4,7 @@ This is the one shared view. A scene file names what to draw in its VIEW dict:
 
     support   "ceiling" (a box above the anchors) or "wall" (a box beside them)
     plot      the coordinate that moves: "x", "y", "z", or "xyz" for all three
-    trail     True leaves a fading trail behind each mass (default False)
+    trail     True draws each mass's path over the last 15 s (default False)
     exact     False hides the exact-solution curve even where a closed form exists (default True)
     sliders   names of the constants that get a slider (default: m and k, and b, F0 and omega
               where the scene switches them on)
@@ -31,6 +31,13 @@ How the page behaves, for the teacher:
   rebuilt so that every slider shows the new value (a slider's range cannot change in vpython).
 * The scene menu switches to another scene in place, with its default constants: the 3-D objects
   of the old scene are hidden, its graphs and controls removed, and the new scene's built.
+* The graphs: the simulation thick in each mass's colour, the exact solution thin and dark on
+  top (scenes/palette.py, shared with --plot); every y axis ticks at round steps (scenes/axes.py).
+  The energy graph shows K, U, E and E − W_nc, measured from rest at equilibrium where the run
+  starts there (resonance), or each mass's own E where masses use different integrators.
+* A mass the scene expects may run away (euler in `integrators`, LiveRun.runaways) is shown
+  frozen where it leaves the picture, labelled with its method and time; the others run on, and
+  the camera stays on them. A new constant frames the new motion again.
 * Download CSV saves the graphed samples (the last `window` seconds, one row per 0.05 s and mass)
   with the same columns as the command line's --csv: t, x, y, z, vx, vy, vz, px, py, pz, K, U, E,
   W_nc (and body for several masses). The file is made here and handed to the browser as a
@@ -92,6 +99,7 @@ PAGE_STYLE = ("<style>body { font-size: 17px; } button, select { font-size: 17px
               " .glowscript-graph { margin-bottom: 36px; }</style>")
 PRESET_PROMPT = "choose a preset"
 LIVE_EVERY = 0.5          # s of wall time between redraws of a scene graph's live dots
+TRAIL_POINTS = 300        # points kept in a trail: the last 15 s at one point per SAMPLE_EVERY
 # vpython 7.6.5's page sends a slider's value only when it differs from the last value it sent, and
 # before the first move there is none, so the first move of every slider was lost. This script tells
 # the page each new slider's starting value, by calling the slider's own change handler once with a
@@ -369,10 +377,14 @@ class SceneView:
             self.springs.append(vp.helix(pos=_vec(vp, anchor), axis=_vec(vp, r - anchor),
                                          radius=0.45 * radius, thickness=0.12 * radius,
                                          coils=coils, color=vp.vector(0.85, 0.85, 0.9)))
-            mass = vp.sphere(pos=_vec(vp, r), radius=radius, color=colour,
-                             make_trail=bool(self.view["trail"]), retain=300)
+            mass = vp.sphere(pos=_vec(vp, r), radius=radius, color=colour)
             self.masses.append(mass)
-        self.shapes = [support, *self.springs, *self.masses]
+        # The trail is drawn from the graph samples (every 0.05 s of simulation time), not by
+        # vpython's make_trail, which adds a point only when the page draws a frame: on a busy
+        # computer that is a few times a second, and the trail came out as jagged straight segments.
+        self.trails = [vp.curve(color=vp.vector(*mass_colour(i)), radius=0.06 * radius, retain=TRAIL_POINTS)
+                       for i in range(len(anchors))] if self.view["trail"] else []
+        self.shapes = [support, *self.springs, *self.masses, *self.trails]
 
     def _reframe(self, model) -> None:
         """Frame the new motion and the support once, after a new constant: in or out, as it needs.
@@ -676,6 +688,8 @@ class SceneView:
         for label in getattr(self, "runaway_labels", {}).values():
             label.visible = False
         self.runaway_labels = {}
+        for trail in self.trails:
+            trail.clear()
         for curve, trace, _ in self.curves:
             trace.clear()
         self.recorded.clear()
@@ -696,6 +710,10 @@ class SceneView:
             keep = t <= self._exact_valid_until(float(t[-1]))
             exact = exact[keep] if not keep.all() else exact
         energies = self._energies(samples)
+        for i, trail in enumerate(self.trails):
+            points = [_vec(self.vp, where) for where in r[:, i] if np.all(np.isfinite(where))]
+            if points and i not in self.live.runaways:
+                trail.append(points)
         for curve, trace, what in self.curves:
             if what[0] == "r":
                 values = r[:, what[1], what[2]]
@@ -902,7 +920,7 @@ def _wrap(text: str, width: int = 110) -> str:
     """Line breaks in a long sentence: the caption keeps line breaks but does not wrap."""
     import textwrap
 
-    return "\n".join(textwrap.wrap(text, width))
+    return "\n".join(textwrap.wrap(text, width, break_on_hyphens=False))
 
 
 def _array(v) -> np.ndarray:

@@ -5,10 +5,13 @@ notebook) both drive Debian's Chromium through Playwright and judge screenshots 
 """
 from __future__ import annotations
 
+import os
 import re
 import socket
+import tempfile
 import time
 from collections import Counter
+from pathlib import Path
 
 import pytest
 
@@ -18,6 +21,18 @@ CHROMIUM_ARGS = ["--no-sandbox", "--use-gl=angle", "--use-angle=swiftshader",
                  "--enable-unsafe-swiftshader", "--disable-background-networking",
                  "--disable-component-update", "--disable-sync", "--no-first-run"]
 TIME = re.compile(r"^\s*t = (-?\d+\.\d+) s\s*$")   # the caption's `t = 12.34 s`
+
+
+def screenshot_folder() -> Path:
+    """Where the browser tests save their screenshots: a folder in /tmp, or, with
+    UPDATE_SCREENSHOTS=1, the tracked docs/screenshots/ (regenerated only on request, so a test run
+    leaves `git status` clean)."""
+    if os.environ.get("UPDATE_SCREENSHOTS") == "1":
+        folder = Path(__file__).resolve().parent.parent / "docs" / "screenshots"
+    else:
+        folder = Path(tempfile.gettempdir()) / "spring-mass-screenshots"
+    folder.mkdir(parents=True, exist_ok=True)
+    return folder
 
 
 def free_port() -> int:

@@ -57,3 +57,34 @@ def line_oscillators():
 @pytest.fixture(scope="session")
 def oscillation_energy():
     return _oscillation_energy
+
+
+# ---- using the project leaves the repository as it was ----
+
+def _git_status() -> str | None:
+    """`git status --porcelain` of the project, or None outside a git checkout."""
+    import subprocess
+    from pathlib import Path
+
+    try:
+        done = subprocess.run(["git", "status", "--porcelain", "--untracked-files=all"],
+                              cwd=Path(__file__).resolve().parent.parent, capture_output=True, text=True, timeout=30)
+    except (OSError, subprocess.SubprocessError):
+        return None
+    return done.stdout if done.returncode == 0 else None
+
+
+def pytest_sessionstart(session):
+    session.config._git_status_before = _git_status()
+
+
+def pytest_sessionfinish(session, exitstatus):
+    """Fail the run if the tests changed, added or removed a file the repository tracks or sees
+    (screenshots, notebook outputs, scratch files belong in /tmp)."""
+    before = getattr(session.config, "_git_status_before", None)
+    after = _git_status()
+    if before is not None and after is not None and after != before:
+        changed = sorted(set(after.splitlines()) ^ set(before.splitlines()))
+        print("\nerror: the test run changed the repository (git status --porcelain):\n  "
+              + "\n  ".join(changed), flush=True)
+        session.exitstatus = 1

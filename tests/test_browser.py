@@ -4,12 +4,12 @@ For each scene whose VIEW the shared view can draw, `python main.py SCENE --no-b
 started, its printed URL opened, and the page checked: the 3-D canvas is not blank, the position
 graph has a curve, t advances, Pause stops it, Step advances it by one Δt, Reset returns it to 0,
 and closing the page ends the program with status 0 within 2 s. A screenshot of each scene is saved
-to docs/screenshots/SCENE.png. The resonance scene's own graph must show its three curves.
+to SCENE.png in a folder in /tmp, or in docs/screenshots/ with UPDATE_SCREENSHOTS=1. The resonance scene's own graph must show its three curves.
 
 One more page goes through the menus: a preset (Moon gravity) changes the constant in the caption,
 moves its slider and restarts at t = 0; the scene menu switches to another scene in place; and
 Download CSV gives a file with the command line's columns whose rows obey v = p/m and E = K + U
-(docs/screenshots/menus.png).
+(menus.png, beside the others).
 
 Skipped, with the reason, where Chromium or Playwright is missing (.ci/run installs both).
 """
@@ -29,12 +29,12 @@ from pathlib import Path
 import pytest
 
 from browser_support import (CHROMIUM, CHROMIUM_ARGS, TIME, colours, curve_pixels, free_port,
-                             pixels_like, wait_for)
+                             pixels_like, screenshot_folder, wait_for)
 from scenes import catalog
 from scenes.view import slider_range, time_decimals
 
 ROOT = Path(__file__).resolve().parent.parent
-SCREENSHOTS = ROOT / "docs" / "screenshots"
+SCREENSHOTS = screenshot_folder()   # docs/screenshots/ only with UPDATE_SCREENSHOTS=1
 
 pytestmark = pytest.mark.browser
 if not os.path.exists(CHROMIUM):
@@ -178,7 +178,6 @@ def test_scene_in_the_browser(browser, scene):
         paused = shown_time(page)
 
         # the 3-D canvas and the position graph are drawn (one screenshot: they are slow)
-        SCREENSHOTS.mkdir(parents=True, exist_ok=True)
         picture = SCREENSHOTS / f"{scene}.png"
         page.screenshot(path=str(picture), full_page=True)
         canvas = page.locator(".glowscript-canvas-wrapper canvas").first.bounding_box()

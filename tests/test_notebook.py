@@ -10,7 +10,7 @@ student would, with Ctrl+Enter, in this order:
 
 * `vertical` runs under its cell: its 3-D canvas shows the orange mass, the position graph has a
   curve, and t advances; Pause and Run, clicked in the page, reach the kernel (the screenshot
-  docs/screenshots/notebook.png is taken here);
+  notebook.png is taken here, into docs/screenshots/ only with UPDATE_SCREENSHOTS=1);
 * running the cell again starts the scene again from t = 0 in that cell;
 * the cells of `pendulum` and then `resonance` (with its own resonance graph) each stop the scene
   running before and run under their own cell;
@@ -35,12 +35,13 @@ from pathlib import Path
 import pytest
 
 from browser_support import (CHROMIUM, CHROMIUM_ARGS, TIME, colours, curve_pixels, free_port,
-                             pixels_like, wait_for)
+                             pixels_like, screenshot_folder, wait_for)
 from scenes import catalog
 
 ROOT = Path(__file__).resolve().parent.parent
 EXAMPLE = ROOT / "examples" / "scenes.ipynb"
-SCREENSHOT = ROOT / "docs" / "screenshots" / "notebook.png"
+SCREENSHOT = screenshot_folder() / "notebook.png"   # docs/screenshots/ only with UPDATE_SCREENSHOTS=1
+SERVER_CONFIG = ROOT / "examples" / "jupyter_server_config.py"   # the README's --config
 SHOW = re.compile(r'^show\("(\w+)"')
 
 
@@ -127,9 +128,7 @@ def jupyter(tmp_path_factory):
     command = [sys.executable, "-m", "notebook", "--no-browser", "--ip=127.0.0.1", f"--port={port}",
                "--ServerApp.port_retries=0", f"--IdentityProvider.token={token}",
                f"--ServerApp.root_dir={work}", "--LabApp.news_url=None",
-               "--LabApp.check_for_updates_class=jupyterlab.NeverCheckForUpdate"]
-    if hasattr(os, "geteuid") and os.geteuid() == 0:
-        command.append("--allow-root")
+               "--LabApp.check_for_updates_class=jupyterlab.NeverCheckForUpdate", f"--config={SERVER_CONFIG}"]
     log = open(work / "server.log", "w")
     server = subprocess.Popen(command, cwd=work, env=env, stdout=log, stderr=subprocess.STDOUT)
     base = f"http://127.0.0.1:{port}/"
@@ -341,3 +340,44 @@ def test_the_scene_menu_switches_scene_inside_the_cell(page):
     seen = look(cell, canvas=canvas(cell), position=graph(cell, 0))
     assert_mass_drawn(seen["canvas"], "damped, from the scene menu")
     assert curve_pixels(seen["position"]) > 50, "damped: the position graph shows no curve"
+
+
+def test_saving_the_example_notebook_after_a_lesson_keeps_it_as_committed():
+    """The README's notebook command loads examples/jupyter_server_config.py: its pre-save hook
+    drops what running the cells adds, so Jupyter's autosave leaves the tracked file unchanged."""
+    import nbformat
+    from traitlets.config import Config
+
+    settings = Config()
+    exec(SERVER_CONFIG.read_text(encoding="utf-8"), {"get_config": lambda: settings})
+    assert settings.ServerApp.allow_root is True       # works as root too
+    hook = settings.ContentsManager.pre_save_hook
+    committed = nbformat.reads(EXAMPLE.read_text(encoding="utf-8"), as_version=4)
+    used = nbformat.reads(EXAMPLE.read_text(encoding="utf-8"), as_version=4)
+    used.metadata["language_info"] = {"name": "python", "version": "3.11.2", "mimetype": "text/x-python"}
+    for number, cell in enumerate(c for c in used.cells if c.cell_type == "code"):
+        cell.execution_count = number + 1
+        cell.outputs = [nbformat.v4.new_output("stream", name="stdout", text="t = 1.00 s\n")]
+        cell.metadata["execution"] = {"iopub.status.busy": "2026-01-01T00:00:00Z"}
+    model = {"type": "notebook", "content": used}
+    hook(model=model, path="examples/scenes.ipynb", contents_manager=None)
+    # Jupyter writes nbformat.writes(...) and a newline: byte for byte the committed file
+    assert nbformat.writes(model["content"]) + "\n" == EXAMPLE.read_text(encoding="utf-8")
+    assert nbformat.writes(model["content"]) == nbformat.writes(committed)
+
+
+def test_after_the_page_has_gone_show_says_so_in_one_line_not_a_traceback():
+    """Reopening the notebook page ends vpython's websocket server for good; show() then says so,
+    and IPython prints only that line (PageGone._render_traceback_)."""
+    code = (
+        "import sys, threading, types\n"
+        "from IPython.core.interactiveshell import InteractiveShell\n"
+        "gone = threading.Thread(target=lambda: None); gone.start(); gone.join()\n"
+        "sys.modules['vpython.with_notebook'] = types.SimpleNamespace(t=gone)  # its server thread, ended\n"
+        "shell = InteractiveShell.instance()\n"
+        "shell.run_cell('from scenes.notebook import _require_live_page\\n_require_live_page()')\n")
+    done = subprocess.run([sys.executable, "-c", code], cwd=ROOT, capture_output=True, text=True, timeout=60)
+    shown = [line for line in (done.stdout + done.stderr).splitlines() if line.strip()]
+    assert len(shown) == 1, shown
+    assert shown[0].startswith("PageGone: the notebook page vpython was connected to has gone")
+    assert "restart the kernel" in shown[0] and "Traceback" not in shown[0]
