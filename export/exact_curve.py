@@ -55,7 +55,8 @@ def exact_lines(model, values, forces, *, axis: str, m: str):
     L0 = n("L0") if "L0" in values.items else "0"
     b = n("b") if LinearDamping in has else "0"
     before = [
-        "# the exact solution (physics/exact.py): x = displacement from equilibrium along the spring",
+        "# the exact solution (physics/exact.py): x = displacement from equilibrium along the spring"
+        + ("" if linear else " (good until the mass reaches its anchor)"),
         commented(f"u = {vector(np.eye(3)['xyz'.index(axis)])}", "û: the plotted axis (L0 = 0: each axis on its own)")
         if linear else commented(f"u = norm({n('r0')} - {n('anchor')})", "direction of the spring, û"),
         commented(f"s_eq = {L0} + {m}*{n('g')}*(-u.y)/{n('k')}" if Gravity in has else f"s_eq = {L0}",

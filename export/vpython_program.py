@@ -259,6 +259,9 @@ def program(setup, *, integrator: str | None = None, web: bool = False) -> str:
              "# Written by the spring-mass simulator (python main.py " + setup.name + " --vpython FILE.py)",
              "# with " + (f"each mass's own integrator ({', '.join(methods)})" if methods
                           else f"the {method} integrator") + ". Edit the constants and run it again."]
+    changed = _changed(setup)
+    if changed:
+        lines.append(f"# Changed from the scene's defaults: {changed}.")
     lines += IMPORTS
     lines += ["", "# ---- constants (unit: meaning) ----"]
     for name, (literal, unit, meaning, _) in values.items.items():
@@ -319,6 +322,15 @@ def program(setup, *, integrator: str | None = None, web: bool = False) -> str:
     if web:
         lines = [WEB_FIRST_LINE] + [line for line in lines[1:] if line not in IMPORTS]
     return "\n".join(lines) + "\n"
+
+
+def _changed(setup) -> str:
+    """The constants set differently from the scene file's defaults, as `k = 60 N/m, b = 2 kg/s`."""
+    from scenes.constants import format_value
+
+    return ", ".join(f"{name} = {format_value(setup.values[name], constant.unit)}"
+                     for name, constant in setup.constants.items()
+                     if setup.values.get(name) != constant.value)
 
 
 def _loop_condition(model) -> str:
