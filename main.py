@@ -34,11 +34,11 @@ if __name__ == "__main__":  # run() takes over once everything is loaded
     signal.signal(signal.SIGINT, _stop_while_loading)
     signal.signal(signal.SIGTERM, _stop_while_loading)
 
-import headless  # noqa: E402 (after the handlers above, so loading can be interrupted cleanly)
+from reports import headless
 from physics.integrators import DEFAULT_INTEGRATOR, INTEGRATORS  # noqa: E402
 from physics.simulate import BlowUpError  # noqa: E402
 from scenes import catalog  # noqa: E402
-from scenes.constants import ConstantError, check_value  # noqa: E402
+from scenes import ConstantError, check_value  # noqa: E402
 
 
 EXAMPLES = """examples:
@@ -117,7 +117,7 @@ def list_scenes() -> str:
 
 def presets_report(setup) -> str:
     """The scene's presets with what each changes, for --constants: `critical damping   b = 2√(mk) = 40 kg/s`."""
-    from scenes.constants import format_value
+    from scenes import format_value
 
     options = catalog.presets(setup)
     if not options:
@@ -209,7 +209,7 @@ def run_headless(args, setup) -> int:
         headless.check_writable(args.csv, what="CSV file")
     if args.plot is not None:
         headless.check_writable(args.plot, what="figure")
-        import plotting
+        from reports import plotting
 
         plotting.check_format(args.plot)
     method = model.methods(args.integrator)
@@ -236,7 +236,7 @@ def run_headless(args, setup) -> int:
     if args.csv is not None:
         headless.write_csv(result, args.csv)
     if args.plot is not None:
-        import plotting
+        from reports import plotting
 
         plotting.plot(result, args.plot)
     if args.steps is None:
@@ -294,7 +294,7 @@ def main(argv=None) -> int:
     except BlowUpError as problem:
         print(f"error: {problem}", file=sys.stderr)
         return 1
-    from scenes.view import show
+    from browser.view import show
 
     preset = catalog.find_preset(setup, args.preset)[0] if args.preset else None
     if preset is None and args.scenario is not None:  # the page's preset menu names the scenario shown

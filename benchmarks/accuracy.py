@@ -26,7 +26,7 @@ from physics.forces import net_force
 from physics.integrators import INTEGRATORS
 from physics.simulate import run
 from physics.state import make_state, velocity
-from scenes.single_mass import forces_for
+from scenes._single_mass import forces_for
 
 from .common import table
 

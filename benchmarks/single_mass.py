@@ -29,7 +29,7 @@ import tempfile
 
 from physics.simulate import Simulation, every
 from physics.state import make_state
-from scenes.single_mass import forces_for
+from scenes._single_mass import forces_for
 
 from .common import process_time, table, timed, verdict
 from .page_vector import L0, anchor, dt, g, k, load_vector, m, page_style_loop, r0

@@ -28,7 +28,7 @@ whole number of steps, and the loop stops after the same number of steps as a he
 
 Every number comes from the scene's model (the force objects and the initial state), written with
 repr, so the program starts from exactly the same values. Constants are named as in the scene
-files, with their unit and meaning from the scene's constants block (scenes/constants.py).
+files, with their unit and meaning from the scene's constants block (scenes/_constants.py).
 Scenes with several masses (a row of oscillators) keep lists and step each mass in a for loop.
 
 The Web VPython form (glowscript.org, trinket) is the same program with `Web VPython 3.2` as its
@@ -41,7 +41,7 @@ import numpy as np
 from physics.forces import Driving, Gravity, LinearDamping, QuadraticDrag, Spring
 from physics.integrators import DEFAULT_INTEGRATOR, INTEGRATORS
 from physics.simulate import steps_to_reach
-from scenes.catalog import summary
+from scenes import summary
 
 from .exact_curve import exact_lines
 from .lines import ProgramError, align_comments, commented, number, vector
@@ -222,7 +222,7 @@ def _update(method: str, forces: _Forces, *, r: str, p: str, m: str) -> list[str
 # ---- the program ----
 
 def program(setup, *, integrator: str | None = None, web: bool = False) -> str:
-    """The VPython program for a configured scene (scenes.catalog.Setup), as text.
+    """The VPython program for a configured scene (scenes._catalog.Setup), as text.
 
     integrator  the method (default euler-cromer, the page's update); scenes that step each mass
                 with its own method (integrators) keep theirs, as headless runs do.
@@ -326,7 +326,7 @@ def program(setup, *, integrator: str | None = None, web: bool = False) -> str:
 
 def _changed(setup) -> str:
     """The constants set differently from the scene file's defaults, as `k = 60 N/m, b = 2 kg/s`."""
-    from scenes.constants import format_value
+    from scenes import format_value
 
     return ", ".join(f"{name} = {format_value(setup.values[name], constant.unit)}"
                      for name, constant in setup.constants.items()

@@ -23,8 +23,8 @@ import numpy as np
 from physics.forces import Gravity, LinearDamping, QuadraticDrag, Spring
 from physics.state import make_state
 
-from .model import Model
-from .row import anchors_in_a_row, exact_row, start_positions
+from ._model import Model
+from ._row import anchors_in_a_row, exact_row, start_positions
 
 # ---- constants: edit these (unit: meaning); 0 switches a force off ----
 m = 0.27                   # kg: mass of each ball (a volleyball)
@@ -40,6 +40,8 @@ spacing = 1.0              # m: distance between the two anchors along x
 dt = 0.005                 # s: time step Δt of the momentum update
 until = 30.0               # s: how long to run
 # ---- end of constants ----
+
+MENU_ORDER = 5               # where it stands in --list and the page's scene menu
 
 PRESETS = {
     "Moon gravity": {"g": 1.62},

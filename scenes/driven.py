@@ -7,7 +7,7 @@ five scenarios with --scenario N.
 """
 import numpy as np
 
-from .single_mass import build_single_mass
+from ._single_mass import build_single_mass
 
 # ---- constants: edit these (unit: meaning); 0 switches a force off ----
 m = 4.0                    # kg: mass of the block
@@ -28,6 +28,8 @@ v0 = (0, 0, 0)             # m/s: start velocity
 dt = 0.01                  # s: time step Δt of the momentum update
 until = 20.0               # s: how long to run
 # ---- end of constants ----
+
+MENU_ORDER = 3               # where it stands in --list and the page's scene menu
 
 # The page's five scenarios, each changing the one before it.
 SCENARIOS = [

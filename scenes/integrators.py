@@ -14,8 +14,8 @@ difference shows within a few periods; shrink dt and the four curves close up.
 from physics.forces import Spring
 from physics.state import make_state
 
-from .model import Model
-from .row import anchors_in_a_row, exact_row, start_positions
+from ._model import Model
+from ._row import anchors_in_a_row, exact_row, start_positions
 
 # ---- constants: edit these (unit: meaning); 0 switches a force off ----
 m = 1.0                    # kg: mass of each block
@@ -26,6 +26,8 @@ spacing = 0.6              # m: distance between neighbouring anchors, down the 
 dt = 0.06                  # s: time step Δt, the same for all four (ω Δt = 0.3)
 until = 3.0                # s: how long to run (about two and a half periods)
 # ---- end of constants ----
+
+MENU_ORDER = 7               # where it stands in --list and the page's scene menu
 
 METHODS = ("euler", "euler-cromer", "verlet", "rk4")
 ALONG_WALL = (0.0, -1.0, 0.0)   # the anchors go down the wall

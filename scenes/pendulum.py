@@ -11,7 +11,7 @@ default k the bounce is about twice the swing frequency (ω_s ≈ 2 ω_p), where
 strongest. A small sideways push along z makes the path a genuinely 3-D rosette, drawn as a trail.
 With no damping, E = K + U_spring + U_gravity stays constant. There is no closed form.
 """
-from .single_mass import build_single_mass
+from ._single_mass import build_single_mass
 
 # ---- constants: edit these (unit: meaning); 0 switches a force off ----
 m = 1.0                    # kg: mass of the bob
@@ -31,6 +31,8 @@ v0 = (0, 0, 0.3)           # m/s: start velocity, a small push along z to make t
 dt = 0.005                 # s: time step Δt of the momentum update
 until = 30.0               # s: how long to run
 # ---- end of constants ----
+
+MENU_ORDER = 6               # where it stands in --list and the page's scene menu
 
 PRESETS = {
     "Moon gravity": {"g": 1.62},

@@ -10,7 +10,7 @@ damping constant b in F = −b v differs. Critical damping is b_c = 2√(mk) (b�
 The middle oscillator's b is a constant, critical by default (8 kg/s = 2√(mk) for the default m and
 k), so a teacher can slide it through the three regimes. b = None means "critical for whatever m
 and k are", and the preset "critical damping" sets b = 2√(mk) for the m and k of the moment
-(scenes/catalog.py). The other two are fixed
+(scenes/_catalog.py). The other two are fixed
 fractions and multiples of b_c. Each curve has its exact solution from physics.exact.oscillator.
 """
 import numpy as np
@@ -19,9 +19,9 @@ from physics.exact import critical_damping, damping_regime
 from physics.forces import Gravity, LinearDamping, Spring
 from physics.state import make_state
 
-from .constants import ConstantError
-from .model import Model
-from .row import anchors_in_a_row, exact_row, start_positions
+from ._constants import ConstantError
+from ._model import Model
+from ._row import anchors_in_a_row, exact_row, start_positions
 
 # ---- constants: edit these (unit: meaning); 0 switches a force off ----
 m = 1.0                    # kg: mass of each block
@@ -36,6 +36,8 @@ spacing = 1.0              # m: distance between neighbouring anchors along x
 dt = 0.01                  # s: time step Δt of the momentum update
 until = 8.0                # s: how long to run
 # ---- end of constants ----
+
+MENU_ORDER = 4               # where it stands in --list and the page's scene menu
 
 PRESETS = {"critical damping": {"b": None}}
 

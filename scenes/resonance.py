@@ -25,9 +25,9 @@ from physics.forces import Driving, Gravity, LinearDamping, Spring
 from physics.simulate import time_grid, trajectory
 from physics.state import make_state
 
-from .constants import ConstantError
-from .model import Model
-from .row import anchors_in_a_row, exact_row, start_positions
+from ._constants import ConstantError
+from ._model import Model
+from ._row import anchors_in_a_row, exact_row, start_positions
 
 # ---- constants: edit these (unit: meaning); 0 switches a force off ----
 m = 1.0                    # kg: mass of each block
@@ -47,6 +47,8 @@ periods = 3.0              # 1: periods of the slowest driving frequency over wh
 dt = 0.02                  # s: time step Δt
 until = 50.0               # s: how long the row runs in the view and headless
 # ---- end of constants ----
+
+MENU_ORDER = 8               # where it stands in --list and the page's scene menu
 
 DRIVE_AXIS = (0.0, 1.0, 0.0)   # F0 cos(ω t) acts up and down, along the springs
 SMOOTH_POINTS = 401            # ω values on which extra_json gives the exact curves as lines
@@ -208,7 +210,7 @@ ROW_COLOUR = (1.0, 0.55, 0.1)  # the live dots: the springs shown in 3-D (orange
 
 
 def view_graph(setup) -> dict:
-    """The page's resonance graph (scenes/view.py): amplitude against driving frequency.
+    """The page's resonance graph (browser/view.py): amplitude against driving frequency.
 
     For each b, the exact A(ω) = F0/√((k − mω²)² + (bω)²) as a line. On top, every spring of the
     batch shown in 3-D: its A = √(x² + (v/ω)²) at this instant, as dots that wobble while the

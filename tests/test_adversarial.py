@@ -213,7 +213,7 @@ def test_bad_input_ends_cleanly(argv, status, expected, tmp_path, monkeypatch, c
 
 
 def test_there_are_at_least_60_bad_inputs_across_every_scene_and_flag():
-    from scenes.catalog import SCENE_NAMES
+    from scenes import SCENE_NAMES
 
     assert len(BAD) >= 60
     used = " ".join(argv for argv, _, _ in BAD)
@@ -223,8 +223,8 @@ def test_there_are_at_least_60_bad_inputs_across_every_scene_and_flag():
 
 
 def test_every_constant_of_every_scene_has_a_declared_range_its_default_obeys():
-    from scenes.catalog import SCENE_NAMES, configure, load, scenarios
-    from scenes.constants import DECLARED, read_constants
+    from scenes import SCENE_NAMES, configure, load, scenarios
+    from scenes import DECLARED, read_constants
 
     for name in SCENE_NAMES:
         constants = read_constants(load(name))
@@ -236,7 +236,7 @@ def test_every_constant_of_every_scene_has_a_declared_range_its_default_obeys():
 
 def test_declared_ranges_keep_the_forces_far_from_overflow():
     """The largest products the forces take, with every constant at its bound, stay finite and small."""
-    from scenes.constants import DECLARED
+    from scenes import DECLARED
 
     high = {name: max(abs(d.low), abs(d.high)) for name, d in DECLARED.items()}
     v = high["v0"]
@@ -248,7 +248,7 @@ def test_declared_ranges_keep_the_forces_far_from_overflow():
 
 
 def test_a_file_that_fails_part_way_leaves_the_old_file_untouched(tmp_path):
-    import headless
+    from reports import headless
 
     path = tmp_path / "run.csv"
     path.write_text("the teacher's old data\n")
@@ -280,7 +280,7 @@ def test_a_file_size_limit_leaves_the_old_csv_untouched_and_no_partial_file(tmp_
 
 
 def test_json_with_a_value_that_has_none_is_null_with_a_note():
-    import headless
+    from reports import headless
 
     text = headless.to_json({"energy": {"K": float("inf"), "U": 1.0}, "r": [0.0, float("nan"), 0.0]})
     out = strict_json(text)
@@ -291,7 +291,7 @@ def test_json_with_a_value_that_has_none_is_null_with_a_note():
 
 
 def test_every_scene_gives_strict_json_and_no_inf_or_nan(tmp_path, monkeypatch, capsys):
-    from scenes.catalog import SCENE_NAMES
+    from scenes import SCENE_NAMES
 
     monkeypatch.chdir(tmp_path)
     for name in SCENE_NAMES:
@@ -319,7 +319,7 @@ def test_the_readme_and_a_blow_up_agree():
 # ---- what needs a real process ----
 
 def test_the_last_resort_handler_turns_any_bug_into_one_line_and_status_1(tmp_path):
-    code = ("import sys, headless, main\n"
+    code = ("import sys, main\nfrom reports import headless\n"
             "def broken(result): raise KeyError('a bug nobody foresaw')\n"
             "headless.final_report = broken\n"
             "sys.exit(main.run(['vertical', '--headless']))\n")

@@ -1,4 +1,4 @@
-"""Graph axes with round ticks (scenes/axes.py): flot's own spacing rule, run on many ranges.
+"""Graph axes with round ticks (browser/axes.py): flot's own spacing rule, run on many ranges.
 
 The page's tick labels themselves are read in Chromium by tests/test_classroom_page.py.
 """
@@ -7,7 +7,7 @@ import math
 import pytest
 from hypothesis import given, strategies as st
 
-from scenes.axes import AxisFit, flot_tick_step, is_round, nice_range
+from browser.axes import AxisFit, flot_tick_step, is_round, nice_range
 
 
 def test_flot_spacing_rule_gives_the_uneven_ticks_the_issue_saw():

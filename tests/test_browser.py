@@ -31,7 +31,7 @@ import pytest
 from browser_support import (CHROMIUM, CHROMIUM_ARGS, TIME, colours, curve_pixels, free_port,
                              pixels_like, screenshot_folder, wait_for)
 from scenes import catalog
-from scenes.view import slider_range, time_decimals
+from browser.view import slider_range, time_decimals
 
 ROOT = Path(__file__).resolve().parent.parent
 SCREENSHOTS = screenshot_folder()   # docs/screenshots/ only with UPDATE_SCREENSHOTS=1

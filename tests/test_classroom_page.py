@@ -2,7 +2,7 @@
 
 * The first move of a slider takes effect: a single click on the k track and a single drag of the
   m handle, each the first move of that slider, change its label and restart the run from t = 0
-  (vpython 7.6.5's page dropped a slider's first value; scenes/view.py primes it).
+  (vpython 7.6.5's page dropped a slider's first value; browser/view.py primes it).
 * In `integrators` euler's mass runs away alone: the page names it and the time, the other three
   run on and stay large spheres; after a new k in `vertical` the mass is framed again, not shrunk.
 * At 1400 px the resonance page's three graphs share one row.
@@ -21,8 +21,8 @@ import re
 import pytest
 
 from browser_support import colours, pixels_like, wait_for
-from scenes.palette import mass_colour
-from scenes.view import slider_range
+from export.palette import mass_colour
+from browser.view import slider_range
 from test_browser import (Program, browser, caption_lines, crop, graph_boxes, menu,  # noqa: F401 (a fixture)
                           shown_time)
 

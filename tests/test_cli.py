@@ -391,8 +391,8 @@ def two_hanging_masses():
 
     from physics.forces import Gravity, Spring
     from physics.state import make_state
-    from scenes.catalog import Setup
-    from scenes.model import Model
+    from scenes import Setup
+    from scenes import Model
 
     anchors = np.array([[0.0, 0.0, 0.0], [1.0, 0.0, 0.0]])
 
@@ -406,7 +406,7 @@ def two_hanging_masses():
 
 
 def test_multi_mass_json_text_and_csv_name_each_body(tmp_path):
-    import headless
+    from reports import headless
 
     result = headless.simulate(two_hanging_masses())
     out = json.loads(json.dumps(headless.as_json(result)))
@@ -456,9 +456,9 @@ def test_a_long_run_reports_progress_and_steps_exactly_as_one_run(monkeypatch):
 
     import numpy as np
 
-    import headless
+    from reports import headless
     from physics.simulate import run
-    from scenes.catalog import configure
+    from scenes import configure
 
     import physics.simulate
 
@@ -649,8 +649,8 @@ def test_every_readme_example_does_what_its_comment_says(tmp_path):
 def test_the_plot_draws_the_exact_solution_smooth_even_at_a_coarse_dt(tmp_path, monkeypatch):
     """vertical at Δt = 0.1 s to 0.2 s has 3 step times; the exact curve still gets 2,000 points."""
     pytest.importorskip("matplotlib")
-    import headless
-    import plotting
+    from reports import headless
+    from reports import plotting
     from scenes import catalog
 
     drawn = []

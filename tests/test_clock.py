@@ -14,7 +14,7 @@ from hypothesis import given, settings, strategies as st
 
 from physics.simulate import run
 from scenes import catalog
-from scenes.clock import LiveRun, RealTimeClock, StepBudget, Trace, expected_runaways, window
+from browser.clock import LiveRun, RealTimeClock, StepBudget, Trace, expected_runaways, window
 
 
 def run_frames(clock, frame_times, *, speed=1.0, running=lambda i: True, quiet=lambda i: 0.0,
@@ -295,6 +295,6 @@ def test_graph_window_starts_at_zero_then_scrolls():
 
 
 def test_importing_the_view_does_not_import_vpython():
-    code = ("import sys, scenes.view, scenes.clock, scenes.loopback_server; "
+    code = ("import sys, browser.view, browser.clock, browser.loopback_server; "
             "sys.exit('vpython' in sys.modules)")
     assert subprocess.run([sys.executable, "-c", code], timeout=60).returncode == 0

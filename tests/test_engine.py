@@ -13,14 +13,14 @@ import re
 import numpy as np
 import pytest
 
-import headless
+from reports import headless
 from physics.forces import Gravity, LinearDamping, QuadraticDrag, Spring
 from physics.integrators import INTEGRATORS
 from physics.simulate import BlowUpError, Cancelled, Simulation, every, time_grid
 from physics.stability import amplification, judge, largest_stable_dt
 from physics.state import State, make_state
 from scenes import catalog
-from scenes.clock import LiveRun
+from browser.clock import LiveRun
 
 
 def page_engine(**options):

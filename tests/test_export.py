@@ -335,8 +335,8 @@ def test_writer_stays_in_its_layer():
             "from scenes import catalog\n"
             "for name in catalog.SCENE_NAMES:\n"
             "    export.program(catalog.configure(name), web=True)\n"
-            "print(sorted(m for m in sys.modules if m.split('.')[0] in ('vpython', 'headless', 'plotting', 'main')"
-            " or m == 'scenes.view'))\n")
+            "print(sorted(m for m in sys.modules if m.split('.')[0] in ('vpython', 'reports', 'browser', 'main')"
+            " or m == 'browser.view'))\n")
     done = subprocess.run([sys.executable, "-c", code], cwd=ROOT, capture_output=True, text=True, timeout=120)
     assert done.returncode == 0, done.stderr
     assert done.stdout.strip().splitlines()[-1] == "[]"

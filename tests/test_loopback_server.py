@@ -1,4 +1,4 @@
-"""scenes.loopback_server: vpython's servers on 127.0.0.1 only, no file leaks, clean exits.
+"""browser.loopback_server: vpython's servers on 127.0.0.1 only, no file leaks, clean exits.
 
 Each test runs a small driver program in a subprocess (start() blocks until a browser connects,
 and vpython's servers live for the whole process), with its working directory holding a
@@ -26,7 +26,7 @@ CHROMIUM = "/usr/bin/chromium"
 
 DRIVER = """
 import sys, time
-from scenes import loopback_server
+from browser import loopback_server
 info = loopback_server.start(open_browser=False, remind_after=float(sys.argv[1]))
 print("CONNECTED", info.url, info.http_port, info.socket_port, flush=True)
 connected_at = info.last_contact()
@@ -394,7 +394,7 @@ def test_ctrl_c_while_vpython_loads_exits_cleanly(run_driver):
 
 BUSY_PORT_CHECK = """
 import sys
-from scenes.loopback_server import ServerError, start
+from browser.loopback_server import ServerError, start
 assert "vpython" not in sys.modules
 for port in [int(sys.argv[1]), 0, -1, 70000, "8000", 1.5, True]:
     try:
@@ -524,7 +524,7 @@ def test_refused_connections_are_counted_and_reported_at_most_every_few_seconds(
         assert b" 403 " in status_line
     for n in range(20):
         assert get_with_host(http_port, "rebind.example")[0] == 421
-    from scenes.loopback_server import REPORT_EVERY
+    from browser.loopback_server import REPORT_EVERY
 
     time.sleep(REPORT_EVERY + 1.5)
     lines = refusal_lines(driver)

@@ -18,9 +18,9 @@ from physics.forces import Gravity, LinearDamping
 from physics.energy import kinetic, potential
 from physics.simulate import run
 from physics.state import State
-from scenes.catalog import SCENE_NAMES, configure, load
-from scenes.constants import ConstantError, read_constants
-from scenes.row import rest_length
+from scenes import SCENE_NAMES, configure, load
+from scenes import ConstantError, read_constants
+from scenes._row import rest_length
 
 NEW_SCENES = ["regimes", "drag", "pendulum", "integrators", "resonance"]
 SINGLE_MASS_CONSTANTS = {"m", "k", "L0", "g", "b", "C", "A", "rho", "F0", "omega", "drive_axis",
@@ -336,7 +336,7 @@ def test_resonance_row_follows_the_exact_driven_motion():
 
 
 def test_resonance_extra_json_gives_grid_and_amplitudes():
-    import headless
+    from reports import headless
 
     setup = configure("resonance").with_values(count=4, curves=2, settle=5.0, periods=1.0, dt=0.05,
                                                until=10.0)
@@ -398,7 +398,7 @@ def test_zero_length_springs_have_no_anchor_limit():
 
 
 def test_the_figure_stops_drawing_the_exact_curve_where_it_stops_holding():
-    from plotting import exact_curve
+    from reports.plotting import exact_curve
 
     model = configure("driven", scenario=2, assignments=["L0=1"]).build()
     t = np.linspace(0.0, 2.0, 201)

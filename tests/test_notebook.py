@@ -62,7 +62,7 @@ def test_the_example_notebook_has_one_cell_per_scene_and_no_outputs():
 
 def test_outside_a_notebook_show_refuses_and_never_imports_vpython():
     code = ("import sys\n"
-            "from scenes.notebook import show\n"
+            "from browser.notebook import show\n"
             "try:\n"
             "    show('vertical', k=60)\n"
             "except RuntimeError as problem:\n"
@@ -86,8 +86,8 @@ def test_outside_a_notebook_show_refuses_and_never_imports_vpython():
     (dict(name="vertical", preset="Mars gravity"), "unknown preset 'Mars gravity'"),
 ])
 def test_bad_arguments_are_one_clear_message_before_anything_is_drawn(call, expected):
-    from scenes.constants import ConstantError
-    from scenes.notebook import show
+    from scenes import ConstantError
+    from browser.notebook import show
 
     call = dict(call)
     with pytest.raises(ConstantError, match=re.escape(expected)):
@@ -375,7 +375,7 @@ def test_after_the_page_has_gone_show_says_so_in_one_line_not_a_traceback():
         "gone = threading.Thread(target=lambda: None); gone.start(); gone.join()\n"
         "sys.modules['vpython.with_notebook'] = types.SimpleNamespace(t=gone)  # its server thread, ended\n"
         "shell = InteractiveShell.instance()\n"
-        "shell.run_cell('from scenes.notebook import _require_live_page\\n_require_live_page()')\n")
+        "shell.run_cell('from browser.notebook import _require_live_page\\n_require_live_page()')\n")
     done = subprocess.run([sys.executable, "-c", code], cwd=ROOT, capture_output=True, text=True, timeout=60)
     shown = [line for line in (done.stdout + done.stderr).splitlines() if line.strip()]
     assert len(shown) == 1, shown

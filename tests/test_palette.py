@@ -1,4 +1,4 @@
-"""One palette for the page and for `--plot` (scenes/palette.py), and curves that stay apart.
+"""One palette for the page and for `--plot` (export/palette.py), and curves that stay apart.
 
 The page's graphs are checked in a browser (tests/test_classroom_page.py); here the figure that
 `--plot` writes is checked by its pixels: each mass in the page's colour, never matplotlib's own.
@@ -9,7 +9,7 @@ from pathlib import Path
 
 import pytest
 
-from scenes.palette import MASS_COLOURS, simulation_width
+from export.palette import MASS_COLOURS, simulation_width
 
 ROOT = Path(__file__).resolve().parent.parent
 MATPLOTLIB_DEFAULTS = [(31, 119, 180), (255, 127, 14)]   # its first two colours, blue then orange
@@ -20,7 +20,7 @@ def rgb(colour) -> tuple[int, int, int]:
 
 
 def test_the_palette_imports_neither_vpython_nor_matplotlib():
-    code = ("import sys, scenes.palette\n"
+    code = ("import sys, export.palette\n"
             "print(sorted(m for m in ('vpython', 'matplotlib') if m in sys.modules))")
     done = subprocess.run([sys.executable, "-c", code], cwd=ROOT, capture_output=True, text=True, timeout=60)
     assert done.stdout.strip() == "[]", done.stderr

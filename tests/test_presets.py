@@ -19,7 +19,7 @@ from pathlib import Path
 import pytest
 
 from scenes import catalog
-from scenes.constants import ConstantError
+from scenes import ConstantError
 
 ROOT = Path(__file__).resolve().parents[1]
 

@@ -96,7 +96,7 @@ def test_json_table_obeys_the_momentum_update_for_other_methods(integrator):
 
 
 def test_multi_mass_table_has_a_row_per_body_per_step():
-    import headless
+    from reports import headless
     from tests.test_cli import two_hanging_masses
 
     table = headless.step_table(two_hanging_masses(), steps=2)
@@ -112,8 +112,8 @@ def test_multi_mass_table_has_a_row_per_body_per_step():
 
 
 def test_the_table_is_for_hand_checking_and_refuses_a_huge_one_in_one_line():
-    import headless
-    from scenes.constants import ConstantError
+    from reports import headless
+    from scenes import ConstantError
     from tests.test_cli import two_hanging_masses
 
     # Two masses: each step is two rows, so MAX_TABLE_ROWS / 2 steps fit and one more does not.

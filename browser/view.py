@@ -17,7 +17,7 @@ dict: title, xtitle, ytitle (with units), xmin/xmax/ymin/ymax, "lines" and "dots
 dots that follow the run (scenes/resonance.py draws its resonance curves this way).
 
 The view only reads the state. The physics is physics.simulate.stepper (the chosen integrator);
-energy is physics.energy; the real-time stepping and the graph windows are scenes/clock.py.
+energy is physics.energy; the real-time stepping and the graph windows are browser/clock.py.
 
 How the page behaves, for the teacher:
 
@@ -26,13 +26,13 @@ How the page behaves, for the teacher:
 * Moving a slider, or picking another integrator, rebuilds the model with that choice and starts
   again from t = 0, so the graphs and the exact curve always describe one run. The caption says so.
 * Speed ¼× to 4× scales simulation time against wall-clock time and does not restart.
-* The preset menu applies one of the scene's presets (scenes/catalog.py: Moon, Earth or Jupiter
+* The preset menu applies one of the scene's presets (scenes/_catalog.py: Moon, Earth or Jupiter
   gravity, critical damping, the driven scenarios, ...) and starts again from t = 0, with the page
   rebuilt so that every slider shows the new value (a slider's range cannot change in vpython).
 * The scene menu switches to another scene in place, with its default constants: the 3-D objects
   of the old scene are hidden, its graphs and controls removed, and the new scene's built.
 * The graphs: the simulation thick in each mass's colour, the exact solution thin and dark on
-  top (scenes/palette.py, shared with --plot); every y axis ticks at round steps (scenes/axes.py).
+  top (export/palette.py, shared with --plot); every y axis ticks at round steps (browser/axes.py).
   The energy graph shows K, U, E and E − W_nc, measured from rest at equilibrium where the run
   starts there (resonance), or each mass's own E where masses use different integrators.
 * A mass the scene expects may run away (euler in `integrators`, LiveRun.runaways) is shown
@@ -49,7 +49,7 @@ How the page behaves, for the teacher:
   (1,200 for 30 s), so a 30-minute run costs the page no more than a 1-minute run.
 * If the page stops asking for updates for more than 5 s (a tab the browser has frozen, a laptop
   that slept), the clock stops and resumes without a jump; a page that is merely slow to draw
-  keeps real time (scenes/clock.py).
+  keeps real time (browser/clock.py).
 
 Closing the tab, or Ctrl-C, makes vpython raise SystemExit(0) in this (main) thread; nothing here
 catches it, so the program ends with status 0.
@@ -68,16 +68,16 @@ from urllib.parse import quote
 
 import numpy as np
 
-from headless import CSV_HEADER, ENERGY_KEYS, clean, clean_time
+from export.numbers import CSV_HEADER, ENERGY_KEYS, clean, clean_time
 from physics.energy import kinetic, potential, rest_potential
 from physics.integrators import INTEGRATORS
 from physics.state import State, velocity
 
-from . import catalog
+from scenes import catalog
 from .axes import AxisFit, nice_range
 from .clock import LiveRun, RealTimeClock, Sample, StepBudget, Trace, expected_runaways, window
-from .constants import format_value
-from .palette import (ENERGY_COLOURS, ENERGY_LABELS, EXACT_COLOUR, EXACT_WIDTH, mass_colour, shade,
+from scenes import format_value
+from export.palette import (ENERGY_COLOURS, ENERGY_LABELS, EXACT_COLOUR, EXACT_WIDTH, mass_colour, shade,
                       simulation_width)
 
 FRAME_RATE = 50           # frames per second the loop aims for
@@ -581,7 +581,7 @@ class SceneView:
         """One frame: carry out the page's clicks, run the steps real time says are due, redraw.
 
         Returns the seconds to wait before the next frame. run_forever calls it in a loop; in a
-        notebook, scenes/notebook.py calls it from the kernel's event loop, so the cell returns.
+        notebook, browser/notebook.py calls it from the kernel's event loop, so the cell returns.
         """
         start = time.perf_counter()
         if self._page_loads() > self.loads_shown:
@@ -814,7 +814,7 @@ class SceneView:
 
     @staticmethod
     def _fit(graph, fit: AxisFit, values) -> None:
-        """Widen a graph's y axis, to round ticks, when the values leave it (scenes/axes.py).
+        """Widen a graph's y axis, to round ticks, when the values leave it (browser/axes.py).
 
         The position axis follows the exact motion where there is one: a numerical curve that
         strays far from it runs off the graph, rather than squashing every other curve flat, as

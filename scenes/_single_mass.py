@@ -19,7 +19,7 @@ from physics.exact import single_mass_motion
 from physics.forces import Driving, Gravity, LinearDamping, QuadraticDrag, Spring
 from physics.state import make_state
 
-from .model import Model
+from ._model import Model
 
 
 def forces_for(*, k, L0, anchor, g, b, C, A, rho, F0, omega, drive_axis) -> tuple:

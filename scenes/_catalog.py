@@ -1,6 +1,10 @@
-"""The list of scenes, their presets, and turning a scene name plus overrides into a ready Model.
+"""The scenes, their presets, and turning a scene name plus overrides into a ready Model.
 
-Importing a scene module never imports vpython; the browser view is separate (scenes/view.py).
+A scene is any module in this folder whose name does not start with "_" (those are the shared
+builders), plus any in the folders named by the environment variable SPRING_SCENES (separated
+like PATH): a teacher's own scenes, kept outside the project. Nothing lists them by hand; a scene
+may set MENU_ORDER (a number; lower comes first, default 100) to place itself in --list and in the
+page's scene menu. Importing a scene module never imports vpython; the browser is separate.
 
 A preset is a named set of constant changes, kept as data: `(label, {name: value})`. The same
 list feeds the command line (`--preset NAME`) and the page's preset menu. Every scene offers the
@@ -18,15 +22,41 @@ from __future__ import annotations
 
 import difflib
 import importlib
+import importlib.util
+import os
+import pkgutil
+import sys
 from dataclasses import dataclass
+from pathlib import Path
 
 from physics.exact import critical_damping
 
-from .constants import ConstantError, Constant, check_value, parse_assignments, read_constants
-from .model import Model
+from ._constants import ConstantError, Constant, check_value, parse_assignments, read_constants
+from ._model import Model
 
-SCENE_NAMES = ["vertical", "damped", "driven", "regimes", "drag", "pendulum", "integrators", "resonance"]
 DEFAULT_SCENE = "vertical"
+EXTRA_FOLDERS = "SPRING_SCENES"   # environment variable: more folders of scenes, like PATH
+
+
+def _discover() -> list[str]:
+    """Every scene's name, in menu order: this folder's modules and those of SPRING_SCENES."""
+    here = Path(__file__).parent
+    found = {info.name: None for info in pkgutil.iter_modules([str(here)]) if not info.name.startswith("_")}
+    for folder in filter(None, os.environ.get(EXTRA_FOLDERS, "").split(os.pathsep)):
+        for path in sorted(Path(folder).glob("[!_]*.py")):
+            if path.stem not in found:
+                found[path.stem] = path
+    for name, path in found.items():
+        if path is not None and f"scenes.{name}" not in sys.modules:   # a teacher's own scene file
+            spec = importlib.util.spec_from_file_location(f"scenes.{name}", path)
+            module = importlib.util.module_from_spec(spec)
+            sys.modules[spec.name] = module
+            spec.loader.exec_module(module)
+    order = {name: getattr(importlib.import_module(f"scenes.{name}"), "MENU_ORDER", 100) for name in found}
+    return sorted(found, key=lambda name: (order[name], name))
+
+
+SCENE_NAMES = _discover()
 
 GRAVITY_PRESETS = {                # m/s², the strength of gravity at the surface
     "Moon gravity": {"g": 1.62},

@@ -13,8 +13,8 @@ import sys
 
 import numpy as np
 
-from headless import OutputError, atomic_file
-from scenes.palette import (ENERGY_COLOURS, ENERGY_LABELS, EXACT_COLOUR, mass_colour, shade,
+from reports.headless import OutputError, atomic_file
+from export.palette import (ENERGY_COLOURS, ENERGY_LABELS, EXACT_COLOUR, mass_colour, shade,
                             simulation_width)
 
 POINTS_PER_PX = 0.75 # matplotlib widths are in points: the page's px widths, scaled to this figure

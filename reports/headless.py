@@ -33,14 +33,12 @@ from physics.integrators import INTEGRATORS, describe
 from physics.simulate import BlowUpError, RunTooLong, check_cost, every, steps_to_reach, time_grid, trajectory
 from physics.stability import judge
 from physics.state import velocity
-from scenes.constants import ConstantError
+from export.numbers import CSV_HEADER, ENERGY_KEYS, FILE_DIGITS, clean, clean_time, time_decimals
+from scenes import ConstantError
 
 UNITS = {"t": "s", "dt": "s", "r": "m", "v": "m/s", "p": "kg·m/s", "F_net": "N", "energy": "J",
          "exact_valid_until": "s"}
-ENERGY_KEYS = ("K", "U", "E", "W_nc")
-CSV_HEADER = ["t", "x", "y", "z", "vx", "vy", "vz", "px", "py", "pz", *ENERGY_KEYS]
 SIGNIFICANT = 6
-FILE_DIGITS = 15  # significant digits of every number in --json and --csv (a double holds 15 to 17)
 
 
 # A run is refused before it starts if the engine estimates it longer than MAX_RUN_SECONDS
@@ -69,28 +67,6 @@ def number(x: float, digits: int = SIGNIFICANT) -> str:
         return NO_VALUE
     text = f"{float(x):.{digits}g}"
     return "0" if text in ("-0", "0", "-0.0") else text
-
-
-def clean(x: float) -> float:
-    """x to FILE_DIGITS significant digits: -7.800000000000001 → -7.8 (round-off, not information)."""
-    return float(f"{float(x):.{FILE_DIGITS}g}")
-
-
-def time_decimals(dt: float) -> int:
-    """The decimals Δt is written with: 1 for 0.1 s, 3 for 0.005 s, 0 for 2 s."""
-    text = f"{float(dt):.{FILE_DIGITS}g}"
-    if "e" in text:
-        mantissa, exponent = text.split("e")
-        return max(0, len(mantissa.partition(".")[2]) - int(exponent))
-    return len(text.partition(".")[2])
-
-
-def clean_time(t: float, dt: float) -> float:
-    """A time on the grid of Δt, rounded to Δt's decimals: 0.30000000000000004 → 0.3 when Δt = 0.1 s.
-
-    Every step time n·Δt has no more decimals than Δt, so the rounding removes only round-off.
-    """
-    return clean(round(float(t), time_decimals(dt)))
 
 
 def _cleaned(value):
@@ -170,7 +146,7 @@ def step_count(model, *, until: float, rows_per_step: float = 0.0) -> int:
 
 def simulate(setup, *, model=None, integrator: str | None = None, until: float | None = None,
              every_step: bool = True, progress="stderr") -> Result:
-    """Run a configured scene (scenes.catalog.Setup) from its start to `until` (default: its question time).
+    """Run a configured scene (scenes._catalog.Setup) from its start to `until` (default: its question time).
 
     every_step  record every step (for --csv and --plot); else only the end, and the window a
                 scene measures in (resonance: the steady-state amplitudes)
@@ -298,7 +274,7 @@ def final_report(result: Result) -> str:
 
 def constants_report(setup) -> str:
     """Each constant of a configured scene: `k = 40 N/m   spring constant (stiffness)`."""
-    from scenes.constants import format_value
+    from scenes import format_value
 
     rows = [(f"{name} = {format_value(setup.values[name], constant.unit)}", constant.meaning)
             for name, constant in setup.constants.items()]

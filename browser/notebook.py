@@ -1,6 +1,6 @@
 """Show a scene in a Jupyter notebook cell, through vpython's notebook mode.
 
-    from scenes.notebook import show
+    from browser.notebook import show
     show("vertical")                       # the page's Simple Example
     show("vertical", k=60, dt=0.01)        # any constant, in the scene's units
     show("driven", scenario=3)             # one of the scene's numbered scenarios
@@ -44,8 +44,8 @@ import traceback
 
 from physics.integrators import DEFAULT_INTEGRATOR, INTEGRATORS
 
-from . import catalog
-from .constants import ConstantError
+from scenes import catalog
+from scenes import ConstantError
 
 _live = None  # the scene running in this kernel: (task, view)
 
@@ -150,7 +150,7 @@ def _report_failure(task) -> None:
 def _require_notebook() -> None:
     shell = getattr(sys.modules.get("IPython"), "get_ipython", lambda: None)()
     if type(shell).__name__ != "ZMQInteractiveShell":
-        raise RuntimeError("scenes.notebook.show() runs in a Jupyter notebook; "
+        raise RuntimeError("browser.notebook.show() runs in a Jupyter notebook; "
                            "elsewhere use: python main.py NAME")
 
 
