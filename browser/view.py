@@ -138,6 +138,11 @@ def show(setup, *, integrator: str, port: int | None, open_browser: bool, preset
     return 0
 
 
+def scene_menu_choices() -> list[str]:
+    """The scene menu: every scene found (scenes/_catalog.py), in menu order."""
+    return list(catalog.SCENE_NAMES)
+
+
 def slider_names(setup, view: dict) -> list[str]:
     """The constants that get a slider: VIEW["sliders"], else m and k and the forces switched on.
 
@@ -429,7 +434,7 @@ class SceneView:
         scene.append_to_caption("    speed ")
         vp.menu(choices=list(SPEEDS), selected=self.speed, bind=lambda menu: put(("speed", menu.selected)))
         scene.append_to_caption("\n\nscene ")
-        vp.menu(choices=list(catalog.SCENE_NAMES), selected=self.setup.name,
+        vp.menu(choices=scene_menu_choices(), selected=self.setup.name,
                 bind=lambda menu: put(("scene", menu.selected)))
         scene.append_to_caption("    preset ")
         labels = [label for label, _ in catalog.presets(self.setup)]
