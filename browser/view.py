@@ -73,7 +73,7 @@ from physics.energy import kinetic, potential, rest_potential
 from physics.integrators import INTEGRATORS
 from physics.state import State, velocity
 
-from scenes import catalog
+from scenes import DECLARED, catalog
 from .axes import AxisFit, nice_range
 from .clock import LiveRun, RealTimeClock, Sample, StepBudget, Trace, expected_runaways, window
 from scenes import format_value
@@ -85,7 +85,6 @@ SAMPLE_EVERY = 0.05       # s of simulation time between graph points
 LEGEND_MASSES = 6         # more masses than this: no legend entry per mass
 SPEEDS = {"¼×": 0.25, "½×": 0.5, "1×": 1.0, "2×": 2.0, "4×": 4.0}
 SLIDER_CHOICES = ("m", "k", "b", "F0", "omega")
-SYMBOLS = {"omega": "ω", "rho": "ρ"}
 DEFAULT_VIEW = {"support": "ceiling", "plot": "y", "trail": False, "exact": True, "coils": 12,
                 "window": 30.0}
 
@@ -158,11 +157,12 @@ def slider_range(name: str, value: float, default: float | None = None) -> tuple
     """(min, max, step) around a constant's default: from a tenth of it (or 0) to three times it.
 
     Constants that must stay positive (m, k, dt, ...) start at a tenth; those where 0 means "off"
-    (b, F0, ω, C, g, x0) start at 0. A value outside that range (set by a preset or --set) widens
+    (b, F0, ω, C, g, x0: slider_from_zero in scenes/_constants.py) start at 0. A value outside that range (set by a preset or --set) widens
     it, to one and a half times the value.
     """
     default = value if default is None or not isinstance(default, (int, float)) else default
-    low = 0.0 if name in ("b", "F0", "omega", "C", "g", "x0") else 0.1 * abs(default)
+    declared = DECLARED.get(name)
+    low = 0.0 if declared is not None and declared.slider_from_zero else 0.1 * abs(default)
     high = 3.0 * abs(default) if default else 1.0
     low = min(low, value)
     high = max(high, 1.5 * value)
@@ -171,7 +171,9 @@ def slider_range(name: str, value: float, default: float | None = None) -> tuple
 
 
 def symbol(name: str) -> str:
-    return SYMBOLS.get(name, name)
+    """How the page writes a constant: ω for omega, ρ for rho (declared in scenes/_constants.py)."""
+    declared = DECLARED.get(name)
+    return declared.symbol if declared is not None and declared.symbol else name
 
 
 def time_decimals(dt: float) -> int:

@@ -1,10 +1,13 @@
-"""Reading, checking and overriding a scene's constants.
+"""What each constant is, and reading, checking and overriding a scene's constants.
 
-A scene keeps its constants as plain assignments at the top of its file, each with its unit and
-meaning in a trailing comment, ``k = 40.0  # N/m: spring constant``. That block is the one place a
-teacher edits, so this module reads the units and meanings from those comments rather than keeping
-a second copy. Overrides from the command line (``--set k=25``) are parsed and checked here, with
-one clear message per problem.
+Everything about a constant that is the same in every scene is declared once, in DECLARED: its
+unit, the symbol the page writes, whether it is a vector, the values it may take, and where a
+slider for it starts (PhET's NumberProperty carries its units and range the same way). What
+differs between scenes, its default and its meaning in that scene, stays in the scene's file as
+the readable list a teacher edits, ``k = 40.0  # N/m: spring constant``; the unit in that comment
+must agree with the declaration, and a line that is not of that form is refused with its file and
+line. Overrides from the command line (``--set k=25``) are parsed and checked here, with one clear
+message per problem.
 """
 from __future__ import annotations
 
@@ -17,7 +20,6 @@ import re
 import tokenize
 from dataclasses import dataclass
 
-VECTOR_NAMES = {"anchor", "r0", "v0", "drive_axis"}
 
 
 
@@ -32,23 +34,31 @@ def _short(x: float) -> str:
 
 @dataclass(frozen=True)
 class Declared:
-    """What values one constant may take, in the unit of the scene files, and why.
+    """One constant, as every scene has it: its unit and symbol, and what values it may take.
 
-    Every number a constant (or each component of a vector constant) may take lies from `low` to
-    `high`; `above_low` leaves `low` itself out (m > 0). The bounds are wide for teaching, and
-    narrow enough that the products the forces take, m·g, k·(|L| − L0), b·v, ½ρCA|v|², stay
-    far from floating-point overflow (10³⁰⁸) and Δt stays far from round-off (10⁻¹⁶ of t).
-    `whole` asks for a whole number (a count); `nonzero` asks a vector for a non-zero length
-    (a direction). `note` is added to the range in the message. One declaration per name, for
-    every scene: a later field (symbol, unit, slider range) belongs here too.
+    unit      its SI unit ("1" for a pure number), as the scene files' comments write it
+    symbol    how the page writes it (ω, ρ); "" means its name
+    vector    three numbers (a position, a velocity, a direction) rather than one
+    low, high every number it (or each component) may take lies from `low` to `high`; `above_low`
+              leaves `low` itself out (m > 0). Wide for teaching, narrow enough that the products
+              the forces take, m·g, k·(|L| − L0), b·v, ½ρCA|v|², stay far from floating-point
+              overflow (10³⁰⁸) and Δt far from round-off (10⁻¹⁶ of t).
+    whole     a whole number (a count); `nonzero`: a vector of non-zero length (a direction)
+    note      added to the range in the message
+    slider_from_zero  a slider for it starts at 0, where 0 switches its force off (b, F0, ω, ...);
+              otherwise at a tenth of its default (m, k, Δt must stay positive)
     """
 
+    unit: str
     low: float
     high: float
+    symbol: str = ""
+    vector: bool = False
     above_low: bool = False
     whole: bool = False
     nonzero: bool = False
     note: str = ""
+    slider_from_zero: bool = False
 
     def allows(self, value) -> bool:
         numbers = value if isinstance(value, tuple) else (value,)
@@ -75,33 +85,33 @@ NONZERO = 1e-6  # a direction's largest component must be at least this, so its 
 
 # The one table of what each constant may be, for every scene (the units are the scene files').
 DECLARED = {
-    "m": Declared(1e-6, 1e6),
-    "k": Declared(0, 1e6),
-    "b": Declared(0, 1e6),
-    "C": Declared(0, 100),
-    "A": Declared(0, 1e3),
-    "rho": Declared(0, 1e5),
-    "L0": Declared(0, 1e4),
-    "g": Declared(0, 1e3, note="it is a magnitude; gravity acts along −y"),
-    "F0": Declared(-1e6, 1e6),
-    "omega": Declared(0, 1e4),
-    "drive_axis": Declared(-1e6, 1e6, nonzero=True),
-    "anchor": Declared(-1e4, 1e4),
-    "r0": Declared(-1e4, 1e4),
-    "v0": Declared(-1e4, 1e4),
-    "x0": Declared(-1e4, 1e4),
-    "spacing": Declared(0, 1e3),
-    "under_fraction": Declared(0, 1e3),
-    "over_multiple": Declared(0, 1e3),
-    "b_ratio": Declared(0, 1e3, above_low=True),
-    "curves": Declared(1, 100, whole=True),
-    "count": Declared(2, 10_000, whole=True),
-    "omega_min": Declared(0, 1e4, above_low=True),
-    "omega_max": Declared(0, 1e4, above_low=True),
-    "settle": Declared(0, 1e6),
-    "periods": Declared(0, 1e4, above_low=True),
-    "dt": Declared(1e-6, 1e3),
-    "until": Declared(0, 1e6),
+    "m": Declared("kg", 1e-6, 1e6),
+    "k": Declared("N/m", 0, 1e6),
+    "b": Declared("kg/s", 0, 1e6, slider_from_zero=True),
+    "C": Declared("1", 0, 100, slider_from_zero=True),
+    "A": Declared("m²", 0, 1e3),
+    "rho": Declared("kg/m³", 0, 1e5, symbol="ρ"),
+    "L0": Declared("m", 0, 1e4),
+    "g": Declared("m/s²", 0, 1e3, note="it is a magnitude; gravity acts along −y", slider_from_zero=True),
+    "F0": Declared("N", -1e6, 1e6, slider_from_zero=True),
+    "omega": Declared("rad/s", 0, 1e4, symbol="ω", slider_from_zero=True),
+    "drive_axis": Declared("1", -1e6, 1e6, vector=True, nonzero=True),
+    "anchor": Declared("m", -1e4, 1e4, vector=True),
+    "r0": Declared("m", -1e4, 1e4, vector=True),
+    "v0": Declared("m/s", -1e4, 1e4, vector=True),
+    "x0": Declared("m", -1e4, 1e4, slider_from_zero=True),
+    "spacing": Declared("m", 0, 1e3),
+    "under_fraction": Declared("1", 0, 1e3),
+    "over_multiple": Declared("1", 0, 1e3),
+    "b_ratio": Declared("1", 0, 1e3, above_low=True),
+    "curves": Declared("1", 1, 100, whole=True),
+    "count": Declared("1", 2, 10_000, whole=True),
+    "omega_min": Declared("rad/s", 0, 1e4, symbol="ω_min", above_low=True),
+    "omega_max": Declared("rad/s", 0, 1e4, symbol="ω_max", above_low=True),
+    "settle": Declared("s", 0, 1e6),
+    "periods": Declared("1", 0, 1e4, above_low=True),
+    "dt": Declared("s", 1e-6, 1e3, symbol="Δt"),
+    "until": Declared("s", 0, 1e6),
 }
 
 
@@ -116,16 +126,25 @@ class Constant:
 
     @property
     def is_vector(self) -> bool:
-        return self.name in VECTOR_NAMES
+        return DECLARED[self.name].vector
+
+    @property
+    def symbol(self) -> str:
+        return DECLARED[self.name].symbol or self.name
 
 
 END_OF_CONSTANTS = "# ---- end of constants ----"
 
 
 def read_constants(module) -> dict[str, Constant]:
-    """The constants block of a scene module: top-level assignments with a `# unit: meaning` comment,
-    up to the line `# ---- end of constants ----` (or the first function or class)."""
+    """The constants block of a scene module: its top-level assignments up to the line
+    `# ---- end of constants ----`, each `name = value  # unit: meaning`.
+
+    Raises ConstantError naming the file and line of an assignment without that comment, of a
+    name DECLARED does not know, or of a unit that is not the declared one.
+    """
     source = inspect.getsource(module)
+    where = getattr(module, "__file__", module.__name__)
     comments = {tok.start[0]: tok.string.lstrip("#").strip()
                 for tok in tokenize.generate_tokens(io.StringIO(source).readline)
                 if tok.type == tokenize.COMMENT}
@@ -136,21 +155,31 @@ def read_constants(module) -> dict[str, Constant]:
     for node in ast.parse(source).body:
         if isinstance(node, (ast.FunctionDef, ast.ClassDef)) or node.lineno > block_end:
             break
-        if not (isinstance(node, ast.Assign) and len(node.targets) == 1
-                and isinstance(node.targets[0], ast.Name)):
+        if not isinstance(node, (ast.Assign, ast.AnnAssign, ast.AugAssign)):
             continue
+
+        def refuse(problem):
+            raise ConstantError(f"{where}, line {node.lineno}: {problem}; each line of the constants "
+                                f"block is `name = value  # unit: meaning`, like "
+                                f"`k = 40.0  # N/m: spring constant` (got: {lines[node.lineno - 1].strip()})")
+        if not (isinstance(node, ast.Assign) and len(node.targets) == 1 and isinstance(node.targets[0], ast.Name)):
+            refuse("expected one name, an = sign and a value")
+        name = node.targets[0].id
         comment = comments.get(node.end_lineno)
         if comment is None or ":" not in comment:
-            continue
+            refuse(f"{name} needs a comment with its unit and meaning, separated by a colon")
         unit, meaning = (part.strip() for part in comment.split(":", 1))
-        name = node.targets[0].id
+        if name not in DECLARED:
+            refuse(f"{name} is not a constant any scene knows: declare it in scenes/_constants.py")
+        if unit != DECLARED[name].unit:
+            refuse(f"the unit of {name} is {DECLARED[name].unit}, not {unit!r}")
         constants[name] = Constant(name, getattr(module, name), unit, meaning)
     return constants
 
 
 def parse_value(name: str, text: str):
     """A number, or for vector constants three numbers written `0,0.284,0` (optionally in < >)."""
-    if name in VECTOR_NAMES:
+    if name in DECLARED and DECLARED[name].vector:
         parts = text.strip().strip("<>()[] ").split(",")
         try:
             vector = tuple(float(part) for part in parts)
