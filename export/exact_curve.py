@@ -27,7 +27,7 @@ def on_line(model) -> bool:
     if np.any(lengths == 0):
         return False
     u = offsets / lengths[:, None]
-    along = [model.state.p / model.state.m[:, None]]
+    along = [model.state.v]
     along += [np.broadcast_to(f.direction, u.shape) for f in model.forces if isinstance(f, Gravity)]
     along += [np.broadcast_to(f.axis, u.shape) for f in model.forces if isinstance(f, Driving)]
     for vectors in along:

@@ -20,7 +20,6 @@ from __future__ import annotations
 
 import numpy as np
 
-REGIMES = ("under-damped", "critically damped", "over-damped")
 
 
 def damping_regime(*, m: float, k: float, b: float, rtol: float = 1e-9) -> str:
@@ -102,8 +101,7 @@ def _along(vector, u):
     return component, bool(np.linalg.norm(off_line) <= 1e-12 * max(1.0, np.linalg.norm(vector)))
 
 
-def single_mass_motion(*, m, k, L0, g, b, C, F0, omega, drive_axis, anchor, r0, v0,
-                       gravity_direction=(0.0, -1.0, 0.0)):
+def single_mass_motion(*, m, k, L0, g, b, C, F0, omega, drive_axis, anchor, r0, v0):
     """The exact motion of one mass on a spring, or None where no closed form applies.
 
     A closed form exists when the motion stays on one straight line through the anchor (the spring,
@@ -118,7 +116,7 @@ def single_mass_motion(*, m, k, L0, g, b, C, F0, omega, drive_axis, anchor, r0, 
     if C != 0 or k <= 0:
         return None
     anchor, r0, v0 = (np.asarray(a, dtype=float) for a in (anchor, r0, v0))
-    g_vec = g * np.asarray(gravity_direction, dtype=float)
+    g_vec = g * np.array([0.0, -1.0, 0.0])        # gravity along −y, as physics.forces.Gravity
     drive = np.asarray(drive_axis, dtype=float)
     drive = drive / np.linalg.norm(drive) if F0 != 0 else np.zeros(3)
     if L0 == 0:

@@ -20,7 +20,11 @@ the exact initial state (reassignment, nothing recomputed).
 Speed. numpy pays about a microsecond per call whatever the array's size, so a single mass stepped
 with numpy is slower than plain Python floats. For systems of up to 32 masses the engine traces
 its own tick once and runs it as a loop over floats (physics/compiled.py): the same arithmetic,
-several times faster. Bigger batches stay in numpy, where each call does a lot of work.
+several times faster. Bigger batches stay in numpy, where each call does a lot of work; there
+r and p are laid out column by column ("Fortran" order, physics.state.make_state), which keeps each
+component contiguous, so the per-mass columns (k, m, |L| of shape (N, 1)) broadcast against (N, 3)
+at full speed. Shapes, indexing and results are the same in either layout. The figures and how
+they were measured are in docs/performance.md.
 """
 from __future__ import annotations
 
@@ -35,7 +39,7 @@ from .energy import nonconservative_power, series, work_step
 from .forces import Spring
 from .integrators import DEFAULT_INTEGRATOR, INTEGRATORS, describe, methods_for
 from .stability import fastest_angular_frequency, judge
-from .state import State
+from .state import State, velocity
 
 CHUNK = 1024                 # steps between two checks for blow-up, cancellation and progress
 PROGRESS_EVERY = 1.0         # s of computing between two progress reports
@@ -96,7 +100,7 @@ class Samples:
 
     @property
     def v(self) -> np.ndarray:
-        return self.p / self.m[None, :, None]
+        return velocity(self.p, self.m)
 
     def __len__(self) -> int:
         return len(self.t)
@@ -304,7 +308,7 @@ class Simulation:
         """The sentence for masses `rows` that blew up: when, how, and what Δt would be stable."""
         finite = bool(np.all(np.isfinite(self._r[rows])) and np.all(np.isfinite(self._p[rows])))
         how = "motion growing without bound" if finite else "non-finite state"
-        v = np.nan_to_num(self._p / self.start.m[:, None], nan=0.0, posinf=0.0, neginf=0.0)
+        v = np.nan_to_num(velocity(self._p, self.start.m), nan=0.0, posinf=0.0, neginf=0.0)
         methods = tuple(self.methods[i] for i in rows)
         forces_rows = self.forces
         verdict = judge(forces_rows, self.start.m, self.methods, self.dt, v=v)
@@ -448,7 +452,7 @@ def _motion_scale(state: State, springs, omega: float) -> float:
         return math.inf
     spring = springs[0]
     offset = np.max(np.linalg.norm(state.r - spring.anchor, axis=-1))
-    speed = np.max(np.linalg.norm(state.p / state.m[:, None], axis=-1))
+    speed = np.max(np.linalg.norm(state.v, axis=-1))
     return float(offset + speed / omega + np.max(spring.L0) + 9.8 / omega**2 + 1.0)
 
 
@@ -467,7 +471,7 @@ class Trajectory:
 
     @property
     def v(self) -> np.ndarray:
-        return self.p / self.m[None, :, None]
+        return velocity(self.p, self.m)
 
     @property
     def final(self) -> State:

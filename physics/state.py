@@ -38,7 +38,7 @@ class State:
 
 
 def velocity(p: np.ndarray, m: np.ndarray) -> np.ndarray:
-    """v = p / m for every mass: p has shape (N, D), m has shape (N,)."""
+    """v = p / m for every mass: p has shape (N, D), or (n, N, D) for n samples; m has shape (N,)."""
     return p / m[:, None]
 
 
@@ -46,11 +46,9 @@ def make_state(*, r, v=None, m, t: float = 0.0) -> State:
     """A state from positions r (m), velocities v (m/s, default rest) and masses m (kg).
 
     r and v may be one 3-vector (a single mass) or an (N, 3) array; m a number or an (N,) array.
-    Momentum is computed as p = m v.
+    Momentum is computed as p = m v. (The arrays are laid out column by column, for speed: see
+    physics/simulate.py.)
     """
-    # Column-major ("Fortran") layout keeps each component of r contiguous, so the per-mass
-    # columns (k, m, |L| of shape (N, 1)) broadcast against (N, 3) at full speed. Shapes, indexing
-    # and results are the same as in the default layout; p follows r's layout.
     r = np.array(np.atleast_2d(np.asarray(r, dtype=float)), order="F")
     v = np.zeros_like(r) if v is None else np.broadcast_to(np.asarray(v, dtype=float), r.shape).copy(order="F")
     m = np.broadcast_to(np.asarray(m, dtype=float), r.shape[:1]).copy()

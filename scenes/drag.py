@@ -44,9 +44,6 @@ until = 30.0               # s: how long to run
 MENU_ORDER = 5               # where it stands in --list and the page's scene menu
 
 PRESETS = {
-    "Moon gravity": {"g": 1.62},
-    "Earth gravity": {"g": 9.8},
-    "Jupiter gravity": {"g": 24.79},
     "falling, no spring": {"k": 0.0, "b": 0.153},
 }
 

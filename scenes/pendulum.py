@@ -34,11 +34,6 @@ until = 30.0               # s: how long to run
 
 MENU_ORDER = 6               # where it stands in --list and the page's scene menu
 
-PRESETS = {
-    "Moon gravity": {"g": 1.62},
-    "Earth gravity": {"g": 9.8},
-    "Jupiter gravity": {"g": 24.79},
-}
 
 
 def build(**constants):

@@ -39,7 +39,6 @@ until = 8.0                # s: how long to run
 
 MENU_ORDER = 4               # where it stands in --list and the page's scene menu
 
-PRESETS = {"critical damping": {"b": None}}
 
 
 def damping_constants(*, m, k, b, under_fraction, over_multiple) -> np.ndarray:

@@ -238,7 +238,6 @@ def view_graph(setup) -> dict:
             "live": live, "live_label": "springs now", "live_colour": ROW_COLOUR}
 
 
-PRESETS = {"critical damping": {"b": None}}
 
 # The resonance graph shows the amplitudes; each spring's exact curve would only crowd the position graph.
 VIEW = {"support": "ceiling", "plot": "y", "trail": False, "exact": False, "sliders": ["b", "F0", "m", "k"]}

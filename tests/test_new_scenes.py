@@ -18,7 +18,7 @@ from physics.forces import Gravity, LinearDamping
 from physics.energy import kinetic, potential
 from physics.simulate import run
 from physics.state import State
-from scenes import SCENE_NAMES, configure, load
+from scenes import SCENE_NAMES, configure, load, presets
 from scenes import ConstantError, read_constants
 from scenes._row import rest_length
 
@@ -91,10 +91,10 @@ def test_model_shapes_agree(name):
 
 
 @pytest.mark.parametrize("name, label", [(name, label) for name in NEW_SCENES
-                                         for label in getattr(load(name), "PRESETS", {})])
+                                         for label, _ in presets(load(name))])
 def test_presets_name_real_constants_and_apply(name, label):
     setup = configure(name)
-    preset = setup.module.PRESETS[label]
+    preset = dict(presets(setup))[label]
     assert set(preset) <= set(setup.constants)
     model = setup.with_values(**preset).build()
     if "g" in preset:
@@ -104,14 +104,14 @@ def test_presets_name_real_constants_and_apply(name, label):
 
 @pytest.mark.parametrize("name", ["pendulum", "drag"])
 def test_gravity_presets_are_moon_earth_jupiter(name):
-    presets = load(name).PRESETS
-    assert sorted(p["g"] for p in presets.values() if set(p) == {"g"}) == [1.62, 9.8, 24.79]
+    offered = dict(presets(load(name)))
+    assert sorted(p["g"] for p in offered.values() if set(p) == {"g"}) == [1.62, 9.8, 24.79]
 
 
 @pytest.mark.parametrize("name", ["regimes", "resonance"])
 def test_critical_preset_gives_b_equal_two_root_mk(name):
     setup = configure(name).with_values(m=2.0, k=18.0)
-    model = setup.with_values(**setup.module.PRESETS["critical damping"]).build()
+    model = setup.with_preset("critical damping").build()
     (damping,) = [f for f in model.forces if isinstance(f, LinearDamping)]
     b = np.broadcast_to(damping.b, (model.state.count, 1))[:, 0]
     # regimes: the middle mass; resonance: the first row (further rows have b · b_ratio^j)
