@@ -34,7 +34,8 @@ if __name__ == "__main__":  # run() takes over once everything is loaded
     signal.signal(signal.SIGINT, _stop_while_loading)
     signal.signal(signal.SIGTERM, _stop_while_loading)
 
-from reports import headless
+from export import files  # noqa: E402
+from reports import headless  # noqa: E402
 from physics.integrators import DEFAULT_INTEGRATOR, INTEGRATORS  # noqa: E402
 from physics.simulate import BlowUpError  # noqa: E402
 from scenes import catalog  # noqa: E402
@@ -188,7 +189,7 @@ def check_options(args) -> None:
         raise UsageError(f"--port must be a whole number from 1 to 65535 (got {args.port}); "
                          f"leave --port out for any free port")
     outputs = [(flag, path) for flag, path in (("--csv", args.csv), ("--plot", args.plot)) if path]
-    if len(outputs) == 2 and headless.same_file(outputs[0][1], outputs[1][1]):
+    if len(outputs) == 2 and files.same_file(outputs[0][1], outputs[1][1]):
         raise UsageError(f"--csv and --plot both write {args.csv!r}: give them different files")
 
 
@@ -206,9 +207,9 @@ def run_headless(args, setup) -> int:
     if args.steps is None or every_step:  # a run too long is refused before anything prints
         headless.step_count(model, until=until, rows_per_step=model.state.count if every_step else 0)
     if args.csv is not None:
-        headless.check_writable(args.csv, what="CSV file")
+        files.check_writable(args.csv, what="CSV file")
     if args.plot is not None:
-        headless.check_writable(args.plot, what="figure")
+        files.check_writable(args.plot, what="figure")
         from reports import plotting
 
         plotting.check_format(args.plot)
@@ -288,7 +289,7 @@ def main(argv=None) -> int:
                 return 0
         if args.headless or args.steps is not None or args.plot is not None:
             return run_headless(args, setup)
-    except (ConstantError, UsageError, headless.OutputError) as problem:
+    except (ConstantError, UsageError, files.OutputError) as problem:
         print(f"error: {problem}", file=sys.stderr)
         return 2
     except BlowUpError as problem:

@@ -232,7 +232,7 @@ class RecordedRun(LiveRun):
 
 
 def csv_text(samples, *, m, labels, dt) -> str:
-    """The samples as CSV, with the command line's columns (headless.CSV_HEADER).
+    """The samples as CSV, with the command line's columns (export.numbers.CSV_HEADER).
 
     One row per sample and mass: t, r, v = p/m, p, then the system's K, U, E, W_nc in J; several
     masses add a `body` column with each mass's label. Numbers as in --csv: t rounded to Δt's

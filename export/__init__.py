@@ -9,8 +9,8 @@ imports vpython, the command line or the browser view.
     lines             numbers and comments as the program spells them
     files             writing the file whole (a temporary file renamed over the target)
 """
-from .files import check_path, write_program
+from .files import OutputError, check_path, write_program
 from .lines import ProgramError
 from .vpython_program import program
 
-__all__ = ["ProgramError", "check_path", "program", "write_program"]
+__all__ = ["OutputError", "ProgramError", "check_path", "program", "write_program"]

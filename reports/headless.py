@@ -17,13 +17,10 @@ which is exactly the arithmetic a student does by hand. Nothing here imports vpy
 """
 from __future__ import annotations
 
-import contextlib
 import csv
 import json
 import math
-import os
 import sys
-import tempfile
 from dataclasses import dataclass
 
 import numpy as np
@@ -33,7 +30,8 @@ from physics.integrators import INTEGRATORS, describe
 from physics.simulate import BlowUpError, RunTooLong, check_cost, every, steps_to_reach, time_grid, trajectory
 from physics.stability import judge
 from physics.state import velocity
-from export.numbers import CSV_HEADER, ENERGY_KEYS, FILE_DIGITS, clean, clean_time, time_decimals
+from export.files import STDOUT, atomic_file
+from export.numbers import CSV_HEADER, ENERGY_KEYS, clean, clean_time
 from scenes import ConstantError
 
 UNITS = {"t": "s", "dt": "s", "r": "m", "v": "m/s", "p": "kg·m/s", "F_net": "N", "energy": "J",
@@ -45,11 +43,6 @@ SIGNIFICANT = 6
 # (physics.simulate.check_cost); each row of a CSV file or figure adds ROW_SECONDS to that.
 ROW_SECONDS = 25e-6           # s per row: csv.writer measured 24.6 s for 1,000,001 rows here
 MAX_TABLE_ROWS = 10_000        # rows of the step table (steps × masses)
-STDOUT = "-"                   # the file name that means standard output
-
-
-class OutputError(ValueError):
-    """An output file that cannot be written: a one-line message, found before the run starts."""
 
 
 class TooManySteps(ConstantError):
@@ -372,37 +365,6 @@ def _exact_entry(r, v, r_exact, v_exact) -> dict:
 
 # ---- CSV ----
 
-def check_writable(path: str, *, what: str, allow_stdout: bool = False) -> None:
-    """Raise OutputError if `path` cannot be written as a file (checked before a run starts).
-
-    The check opens the file for writing, without changing one that exists and removing one it
-    had to create, so it also catches what permission bits do not show (a read-only file system,
-    /proc, a file standing where a folder should be, or running as root). "-" means standard
-    output where allow_stdout is True, and is refused otherwise.
-    """
-    if path == STDOUT:
-        if allow_stdout:
-            return
-        raise OutputError(f"cannot write {what} to '-' (standard output) here: give a file name, "
-                          f"like run.csv")
-    if not path:
-        raise OutputError(f"cannot write {what} '': give a file name, like run.csv")
-    if os.path.isdir(path):
-        raise OutputError(f"cannot write {what} {path!r}: it is a directory")
-    folder = os.path.dirname(os.path.abspath(path))
-    if not os.path.isdir(folder):
-        raise OutputError(f"cannot write {what} {path!r}: folder {folder!r} does not exist")
-    existed = os.path.exists(path)
-    try:
-        with open(path, "ab"):
-            pass
-    except OSError as problem:
-        raise OutputError(f"cannot write {what} {path!r}: {problem.strerror or problem}") from None
-    if not existed:
-        os.remove(path)
-    os.remove(_temporary_beside(path, what=what))  # the folder must take the temporary file too
-
-
 def write_csv(result: Result, path: str) -> int:
     """One row per step (per mass): t, r, v, p, then the system's K, U, E, W_nc in J; returns rows written.
 
@@ -415,51 +377,6 @@ def write_csv(result: Result, path: str) -> int:
     with atomic_file(path, what="CSV file") as temporary:
         with open(temporary, "w", newline="", encoding="utf-8") as handle:
             return _write_rows(result, handle)
-
-
-def same_file(first: str, second: str) -> bool:
-    """Whether two output paths name the same file (after ., .., symbolic links and case on disk)."""
-    if first == STDOUT or second == STDOUT:
-        return first == second
-    if os.path.exists(first) and os.path.exists(second):
-        return os.path.samefile(first, second)
-    return os.path.realpath(first) == os.path.realpath(second)
-
-
-def _temporary_beside(path: str, *, what: str) -> str:
-    """A new empty file in path's folder, with the permissions `path` has or a new file would get."""
-    folder, name = os.path.split(os.path.abspath(path))
-    try:
-        handle, temporary = tempfile.mkstemp(prefix=f".{name}.", suffix=".part", dir=folder)
-        os.close(handle)
-        if os.path.exists(path):  # keep the old file's permissions, not mkstemp's private 0600
-            os.chmod(temporary, os.stat(path).st_mode & 0o7777)
-        else:
-            umask = os.umask(0)
-            os.umask(umask)
-            os.chmod(temporary, 0o666 & ~umask)
-    except OSError as problem:
-        raise OutputError(f"cannot write {what} {path!r}: {problem.strerror or problem}") from None
-    return temporary
-
-
-@contextlib.contextmanager
-def atomic_file(path: str, *, what: str):
-    """Yield a temporary file name in path's folder; on success it is renamed onto `path`.
-
-    A rename within one folder is atomic, so `path` is always either the old file, untouched, or
-    the complete new one: a full disk, a file-size limit, Ctrl-C or SIGTERM part-way leave no
-    half-written file (the temporary one is removed). An OSError becomes OutputError.
-    """
-    temporary = _temporary_beside(path, what=what)
-    try:
-        yield temporary
-        os.replace(temporary, path)
-    except OSError as problem:
-        raise OutputError(f"cannot write {what} {path!r}: {problem.strerror or problem}") from None
-    finally:
-        with contextlib.suppress(FileNotFoundError):
-            os.remove(temporary)
 
 
 def _write_rows(result: Result, handle) -> int:

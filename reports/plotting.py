@@ -13,7 +13,7 @@ import sys
 
 import numpy as np
 
-from reports.headless import OutputError, atomic_file
+from export.files import OutputError, atomic_file
 from export.palette import (ENERGY_COLOURS, ENERGY_LABELS, EXACT_COLOUR, mass_colour, shade,
                             simulation_width)
 

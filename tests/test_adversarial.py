@@ -248,12 +248,12 @@ def test_declared_ranges_keep_the_forces_far_from_overflow():
 
 
 def test_a_file_that_fails_part_way_leaves_the_old_file_untouched(tmp_path):
-    from reports import headless
+    from export import files
 
     path = tmp_path / "run.csv"
     path.write_text("the teacher's old data\n")
     with pytest.raises(RuntimeError):
-        with headless.atomic_file(str(path), what="CSV file") as temporary:
+        with files.atomic_file(str(path), what="CSV file") as temporary:
             Path(temporary).write_text("half a ro")
             raise RuntimeError("the disk filled up")
     assert path.read_text() == "the teacher's old data\n"

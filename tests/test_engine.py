@@ -14,11 +14,11 @@ import numpy as np
 import pytest
 
 from reports import headless
-from physics.forces import Gravity, LinearDamping, QuadraticDrag, Spring
+from physics.forces import Gravity, QuadraticDrag, Spring
 from physics.integrators import INTEGRATORS
 from physics.simulate import BlowUpError, Cancelled, Simulation, every, time_grid
 from physics.stability import amplification, judge, largest_stable_dt
-from physics.state import State, make_state
+from physics.state import make_state
 from scenes import catalog
 from browser.clock import LiveRun
 

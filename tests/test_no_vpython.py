@@ -8,7 +8,6 @@ import subprocess
 import sys
 from pathlib import Path
 
-import pytest
 
 ROOT = Path(__file__).resolve().parent.parent
 REPORT = "\nprint(sorted(name for name in sys.modules if name.split('.')[0] == 'vpython'))\n"
