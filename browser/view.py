@@ -349,10 +349,8 @@ class SceneView:
         scene.title = (PAGE_STYLE + f"<b style='font-size:130%'>{self.setup.name}</b>: "
                        f"{_summary(self.setup.module)}\n")
         low, high = motion_box(model)
-        size = float(np.max(high - low)) or 1.0
         anchors = model.anchors
-        gaps = [np.linalg.norm(a - b) for i, a in enumerate(anchors) for b in anchors[i + 1:]]
-        radius = min([0.08 * size] + [0.3 * gap for gap in gaps if gap > 0])
+        radius = _mass_radius(low, high, anchors)
         self.radius = radius
         thickness = 0.4 * radius
         pad = 2 * radius
@@ -400,8 +398,14 @@ class SceneView:
         the masses would shrink with every change.
         """
         low, high = motion_box(model)
-        low = np.minimum(low - 1.3 * self.radius, self.support_box[0])
-        high = np.maximum(high + 1.3 * self.radius, self.support_box[1])
+        radius = _mass_radius(low, high, model.anchors)  # a mass swinging 20 m is drawn bigger
+        if radius != self.radius:
+            self.radius = radius
+            for mass, spring in zip(self.masses, self.springs):
+                mass.radius = radius
+                spring.radius, spring.thickness = 0.45 * radius, 0.12 * radius
+        low = np.minimum(low - 1.3 * radius, self.support_box[0])
+        high = np.maximum(high + 1.3 * radius, self.support_box[1])
         self._frame_camera(low, high)
 
     def _frame_camera(self, low, high) -> None:
@@ -921,6 +925,13 @@ def _replace_points(series, points) -> None:
     series._data = []  # vpython 7.6.5's delete() keeps its Python copy of the points
     if points:
         series.plot(points)
+
+
+def _mass_radius(low, high, anchors) -> float:
+    """The spheres' radius, m: 8 % of the motion's size, and less than a third of the gap between anchors."""
+    size = float(np.max(high - low)) or 1.0
+    gaps = [np.linalg.norm(a - b) for i, a in enumerate(anchors) for b in anchors[i + 1:]]
+    return min([0.08 * size] + [0.3 * gap for gap in gaps if gap > 0])
 
 
 def _wrap(text: str, width: int = 110) -> str:
