@@ -66,6 +66,13 @@ class Declared:
                      and (not self.whole or x == int(x)) for x in numbers)
         return inside and (not self.nonzero or max(abs(x) for x in numbers) >= NONZERO)
 
+    @staticmethod
+    def too_small(value) -> bool:
+        """Whether a number is nonzero but below SMALLEST in size: round-off, not a value to
+        compute with (k = 1e-320 N/m makes the stretch m·g/k overflow)."""
+        numbers = value if isinstance(value, tuple) else (value,)
+        return any(0 < abs(x) < SMALLEST for x in numbers)
+
     def words(self, unit: str = "", *, vector: bool = False) -> str:
         """`from 0 to 1e6 N/m`, `greater than 0 and at most 1e6 kg`, `a whole number from 2 to 10000`."""
         unit = f" {unit}" if unit and unit != "1" else ""
@@ -82,6 +89,7 @@ class Declared:
 
 
 NONZERO = 1e-6  # a direction's largest component must be at least this, so its length is not round-off
+SMALLEST = 1e-9  # any number given is 0 or at least this in size
 
 # The one table of what each constant may be, for every scene (the units are the scene files').
 DECLARED = {
@@ -210,6 +218,10 @@ def check_value(name: str, value, unit: str = "") -> None:
         raise ConstantError(f"{name} must be {what} (got {format_value(value, unit)})")
     if declared is not None and not declared.allows(value):
         raise ConstantError(f"{name} must be {declared.words(unit, vector=vector)} "
+                            f"(got {format_value(value, unit)})")
+    if Declared.too_small(value):
+        shown = f" {unit}" if unit and unit != "1" else ""
+        raise ConstantError(f"{name} must be 0 or at least {_short(SMALLEST)}{shown} in size "
                             f"(got {format_value(value, unit)})")
 
 

@@ -25,7 +25,7 @@ from physics.forces import Driving, Gravity, LinearDamping, Spring
 from physics.simulate import time_grid, trajectory
 from physics.state import make_state
 
-from ._constants import ConstantError
+from ._constants import DECLARED, ConstantError
 from ._model import Model
 from ._row import anchors_in_a_row, exact_row, start_positions
 
@@ -93,7 +93,13 @@ def damping_values(*, m, k, b, b_ratio, curves) -> np.ndarray:
     if b_ratio <= 0:
         raise ConstantError(f"b_ratio must be greater than 0 (got {b_ratio:g})")
     b = critical_damping(m=m, k=k) if b is None else b
-    return b * b_ratio ** np.arange(_whole("curves", curves, 1))
+    values = b * b_ratio ** np.arange(_whole("curves", curves, 1), dtype=float)
+    largest = DECLARED["b"].high
+    if not values[-1] <= largest:  # b·ratio^(curves − 1) must stay a damping constant b may be
+        raise ConstantError(f"b_ratio = {b_ratio:g} over {curves:g} curves makes the last b = "
+                            f"{values[-1]:.3g} kg/s, more than the {largest:g} kg/s b may be; "
+                            f"use a smaller b_ratio or fewer curves")
+    return values
 
 
 def _grid(*, m, k, b, b_ratio, curves, omega_min, omega_max, count):
