@@ -295,7 +295,14 @@ def main(argv=None) -> int:
     except BlowUpError as problem:
         print(f"error: {problem}", file=sys.stderr)
         return 1
+    from browser.clock import check_live_cost
     from browser.view import show
+
+    try:
+        check_live_cost(setup.build(), args.integrator)
+    except ValueError as problem:
+        print(f"error: {problem}", file=sys.stderr)
+        return 2
 
     preset = catalog.find_preset(setup, args.preset)[0] if args.preset else None
     if preset is None and args.scenario is not None:  # the page's preset menu names the scenario shown

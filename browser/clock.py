@@ -38,6 +38,27 @@ from physics.stability import growing, judge, rates
 from physics.state import State
 
 
+MAX_DRAWN_MASSES = 2000      # a sphere and a helix each: more would stall the page on a school laptop
+SLOWEST = 1 / 60             # the page must manage at least 1 s of simulated time per minute
+
+
+def check_live_cost(model, integrator=None) -> None:
+    """Refuse, with one line, a scene the page cannot show: too many masses to draw, or steps so
+    dear that a simulated second takes more than a minute (physics.simulate's measured cost).
+
+    Raises ValueError; the browser and the notebook call this before anything is drawn.
+    """
+    count = model.state.count
+    if count > MAX_DRAWN_MASSES:
+        raise ValueError(f"{count:,} masses are more than the {MAX_DRAWN_MASSES:,} the page can draw; "
+                         f"use fewer (count, curves), or run it headless")
+    seconds = model.simulation(integrator).seconds_per_step() / model.dt   # computing per simulated s
+    if seconds > 1 / SLOWEST:
+        raise ValueError(f"each simulated second takes about {seconds:.3g} s of computing here "
+                         f"(dt = {model.dt:g} s, {count:,} masses), so the page would crawl; use a "
+                         f"larger dt or fewer masses, or run it headless")
+
+
 class RealTimeClock:
     """Turns wall-clock time into a whole number of physics steps of Δt per frame.
 

@@ -44,6 +44,8 @@ import traceback
 
 from physics.integrators import DEFAULT_INTEGRATOR, INTEGRATORS
 
+from .clock import check_live_cost
+
 from scenes import catalog
 from scenes import ConstantError
 
@@ -105,6 +107,10 @@ def show(name: str = catalog.DEFAULT_SCENE, *, scenario: int | None = None, pres
     if integrator not in INTEGRATORS:
         raise ConstantError(f"unknown integrator {integrator!r} (choose from {', '.join(INTEGRATORS)})")
     model = setup.build()
+    try:
+        check_live_cost(model, integrator)
+    except ValueError as problem:
+        raise ConstantError(str(problem)) from None
     _require_notebook()
     _require_live_page()
     stop()

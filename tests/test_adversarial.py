@@ -128,6 +128,8 @@ BAD = [
     ("vertical --vpython /nonexistent/x.py", 2, "folder '/nonexistent' does not exist"),
     ("vertical --webvpython /tmp", 2, "it is a directory"),
     ("resonance --headless --json --set until=10", 2, "set until to at least"),
+    ("resonance --no-browser --set count=10000", 2, "30,000 masses are more than the 2,000 the page can draw"),
+    ("resonance --no-browser --set count=2000 --set curves=1 --set dt=1e-6", 2, "so the page would crawl"),
     # ---- flags that conflict, or do nothing in the chosen mode ----
     ("vertical --json", 2, "--json needs --headless"),
     ("vertical --csv x.csv", 2, "--csv needs --headless"),
