@@ -299,16 +299,20 @@ def main(argv=None) -> int:
     from browser.view import show
 
     try:
-        check_live_cost(setup.build(), args.integrator)
+        model = setup.build()
+        check_live_cost(model, args.integrator)
     except ValueError as problem:
         print(f"error: {problem}", file=sys.stderr)
         return 2
+    # the page's integrator menu starts where a headless run would: the scene's own default (rk4 for
+    # resonance), else the page's euler-cromer
+    integrator = args.integrator or model.default_integrator or DEFAULT_INTEGRATOR
 
     preset = catalog.find_preset(setup, args.preset)[0] if args.preset else None
     if preset is None and args.scenario is not None:  # the page's preset menu names the scenario shown
         preset = next((label for label, _ in catalog.presets(setup)
                        if label.startswith(f"scenario {args.scenario}:")), None)
-    sys.exit(show(setup, integrator=args.integrator or DEFAULT_INTEGRATOR, port=args.port,
+    sys.exit(show(setup, integrator=integrator, port=args.port,
                   open_browser=not args.no_browser, preset=preset))
 
 

@@ -88,12 +88,12 @@ class NotebookLink:
 
 
 def show(name: str = catalog.DEFAULT_SCENE, *, scenario: int | None = None, preset: str | None = None,
-         integrator: str = DEFAULT_INTEGRATOR, **constants) -> None:
+         integrator: str | None = None, **constants) -> None:
     """Show scene `name` in this cell, with any constants changed, and keep it running.
 
     scenario    one of the scene's numbered scenarios (as --scenario N)
     preset      the label of one of its presets (as --preset), applied before the constants
-    integrator  a name from physics.integrators.INTEGRATORS
+    integrator  a name from physics.integrators.INTEGRATORS (default: the scene's own, else euler-cromer)
     constants   any of the scene's constants, in its units; a vector as three numbers
 
     Raises ConstantError (a ValueError) for an unknown scene, constant or integrator or a bad
@@ -104,9 +104,10 @@ def show(name: str = catalog.DEFAULT_SCENE, *, scenario: int | None = None, pres
     setup = catalog.configure(name, scenario=scenario, preset=preset, assignments=[
         f"{key}={','.join(map(str, value)) if isinstance(value, (tuple, list)) else value}"
         for key, value in constants.items()])
-    if integrator not in INTEGRATORS:
+    if integrator is not None and integrator not in INTEGRATORS:
         raise ConstantError(f"unknown integrator {integrator!r} (choose from {', '.join(INTEGRATORS)})")
     model = setup.build()
+    integrator = integrator or model.default_integrator or DEFAULT_INTEGRATOR
     try:
         check_live_cost(model, integrator)
     except ValueError as problem:
