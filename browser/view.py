@@ -8,8 +8,8 @@ The page has three parts, each built by its constructor from the scene's model a
 
 :class:`SceneView` here owns the run (browser/clock.py's LiveRun, RealTimeClock and StepBudget):
 once per frame it carries out the clicks, asks the engine for the steps real time says are due,
-and tells the parts to draw. A scene's VIEW dict names what to draw (support, plot, trail, exact,
-sliders, coils, window: DEFAULT_VIEW below). What the page does for the teacher is in README.md.
+and tells the parts to draw. A scene's VIEW dict names what to draw (DEFAULT_VIEW below). What the
+page does for the teacher is in README.md.
 
 Closing the tab, or Ctrl-C, makes vpython raise SystemExit(0) in this (main) thread; nothing here
 catches it, so the program ends with status 0.
@@ -32,6 +32,10 @@ __all__ = ["show", "SceneView", "DEFAULT_VIEW", "csv_text", "constants_text", "s
            "slider_names", "slider_range", "symbol", "time_decimals"]
 
 FRAME_RATE = 50           # frames per second the loop aims for
+# What a scene's VIEW may name, and what it is when it does not: support "ceiling" or "wall"; plot
+# the coordinate that moves ("x", "y", "z" or "xyz"); trail: each mass's path over the last 15 s;
+# exact: False hides the exact curve; sliders: the constants that get one (else m, k and the forces
+# switched on); coils: turns per helix; window: seconds the graphs show before they scroll.
 DEFAULT_VIEW = {"support": "ceiling", "plot": "y", "trail": False, "exact": True, "coils": 12,
                 "window": 30.0}
 # Larger text than vpython's default, for a projector at the back of a classroom.
