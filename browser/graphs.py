@@ -194,11 +194,11 @@ class Graphs:
 
     # ---- plotting ----
 
-    def plot(self, samples, live, *, matter, may_run_away, redraw: bool = False) -> None:
+    def plot(self, samples, live, *, matter, redraw: bool = False) -> None:
         """Add samples to every curve (a whole curve is resent only when its window scrolls).
 
-        matter        the masses the position axis follows (not those that may run away)
-        may_run_away  masses whose own energy does not widen the energy axis
+        matter  the masses the position axis follows: not those that may run away
+                (live.may_run_away), whose own energy does not widen the energy axis either
         """
         if not samples and not redraw:
             return
@@ -233,7 +233,7 @@ class Graphs:
         elif len(t):
             _fit(self.position_graph, self.position_fit, r[:, matter][..., self.axes].ravel())
         _fit(self.energy_graph, self.energy_fit,
-             [value for key, values in energies.items() if key not in may_run_away for value in values])
+             [value for key, values in energies.items() if key not in live.may_run_away for value in values])
         if len(t):
             start, end = window(float(t[-1]), span=self.span)
             if start != self.position_graph.xmin:
@@ -276,7 +276,7 @@ class Graphs:
 
     # ---- the caption's error readout ----
 
-    def error_readout(self, live, *, matter, may_run_away) -> str:
+    def error_readout(self, live, *, matter) -> str:
         """How far the simulation is from the exact solution now, for the caption ('' without one)."""
         if not self.show_exact:
             return ""
@@ -291,8 +291,8 @@ class Graphs:
         if errors.size == 1:
             name = "xyz"[self.axes[0]]
             return f"error {name} − {name}<sub>exact</sub> = {float(errors.flat[0]):+.3g} m"
-        others = (f" ({', '.join(model.labels[i] for i in may_run_away)} left out)"
-                  if may_run_away else "")
+        others = (f" ({', '.join(model.labels[i] for i in live.may_run_away)} left out)"
+                  if live.may_run_away else "")
         return f"largest |error| against the exact solutions = {worst:.3g} m{others}"
 
 

@@ -21,7 +21,7 @@ import time
 
 from scenes import catalog
 
-from .clock import LiveRun, RealTimeClock, StepBudget, expected_runaways
+from .clock import LiveRun, RealTimeClock, StepBudget
 from .controls import (PRESET_PROMPT, SPEEDS, Controls, constants_text, csv_href, program_href,
                        scene_menu_choices, slider_names, slider_range, symbol, time_decimals)
 from .graphs import SAMPLE_EVERY, Graphs, csv_text
@@ -125,11 +125,7 @@ class SceneView:
 
     def _start_run(self) -> None:
         """Show self.live from t = 0: empty graphs and trails, the constants, a restarted clock."""
-        model = self.live.model
-        self.may_run_away = expected_runaways(model)
-        self.matter = [i for i in range(model.state.count) if i not in self.may_run_away]
-        self.decimals = time_decimals(model.dt)
-        self.clock.dt = model.dt
+        self.clock.dt = self.live.model.dt
         self._reset()
         self.controls.show_constants(self.setup)
         self._draw()
@@ -141,6 +137,16 @@ class SceneView:
         self.scene.clear()
         self.graphs.clear()
         self._plot(samples, redraw=True)
+
+    @property
+    def matter(self) -> list[int]:
+        """The masses the camera and the position axis follow: all but those that may run away."""
+        return [i for i in range(self.live.state.count) if i not in self.live.may_run_away]
+
+    @property
+    def decimals(self) -> int:
+        """Decimals of t on the page: enough that one step of Δt shows."""
+        return time_decimals(self.live.model.dt)
 
     # ---- a reloaded tab ----
 
@@ -280,15 +286,14 @@ class SceneView:
         if not samples and not redraw:
             return
         self.scene.extend_trails(samples, self.live.runaways)
-        self.graphs.plot(samples, self.live, matter=self.matter, may_run_away=self.may_run_away, redraw=redraw)
+        self.graphs.plot(samples, self.live, matter=self.matter, redraw=redraw)
 
     def _draw(self) -> None:
         """Move the masses and springs to the state now and update the caption: once per frame."""
         live = self.live
         self.scene.draw(live, matter=self.matter)
         self.controls.show_time(live.state.t, decimals=self.decimals, running=self.running,
-                                error=self.graphs.error_readout(live, matter=self.matter,
-                                                                may_run_away=self.may_run_away))
+                                error=self.graphs.error_readout(live, matter=self.matter))
         self.controls.show_status(problem=live.problem, runaways=[reason for _, reason in live.runaways.values()],
                                   slow_dt=live.model.dt if self.clock.dropped > 0.01 else None)
 
