@@ -192,7 +192,7 @@ class LiveRun:
     Once it is farther than ``runaway_reach`` metres from its anchor the engine freezes it there
     (at rest) and names it in :attr:`runaways` as {mass index: (t in s, reason sentence)}, while
     the other masses run on; the whole run stops (:attr:`problem`) only if a mass not expected to
-    run away blows up.
+    run away blows up. :attr:`may_run_away` lists the masses expected to (expected_runaways).
     """
 
     def __init__(self, model, *, integrator: str, sample_every: float = 0.05,
@@ -204,9 +204,9 @@ class LiveRun:
         omega = float(np.max(rates(model.forces, model.state.m).omega))
         speed = float(np.max(np.linalg.norm(v0, axis=-1)))
         self.runaway_reach = 3.0 * (size + (speed / omega if omega else speed))
-        self._may_run_away = expected_runaways(model, model.methods(integrator))
+        self.may_run_away = expected_runaways(model, model.methods(integrator))
         self.engine = model.simulation(integrator, growth_limit=growth_limit,
-                                       may_run_away=self._may_run_away)
+                                       may_run_away=self.may_run_away)
         self.integrator = self.engine.integrator
         self.restart()
 
@@ -253,7 +253,7 @@ class LiveRun:
     def _freeze_runaways(self) -> None:
         """Have the engine freeze, at rest where they are, expected runaways that went too far."""
         r, engine = self.engine.state.r, self.engine
-        for i in self._may_run_away:
+        for i in self.may_run_away:
             if i in engine.runaways:
                 continue
             finite = bool(np.all(np.isfinite(r[i])))

@@ -137,10 +137,7 @@ def stop() -> None:
     task, view = _live
     _live = None
     task.cancel()
-    view.status_text.text = "<b>Stopped:</b> show() ran again, so this scene no longer updates."
-    for graph in view.graphs:
-        graph.delete()
-    view.vp.scene.delete()
+    view.close("<b>Stopped:</b> show() ran again, so this scene no longer updates.")
 
 
 async def _animate(view, link) -> None:

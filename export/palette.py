@@ -1,4 +1,4 @@
-"""One palette for everything the class sees: the page (browser/view.py) and `--plot` (reports/plotting.py).
+"""One palette for everything the class sees: the page (browser/) and `--plot` (reports/plotting.py).
 
 Colours are (r, g, b) from 0 to 1, as both vpython and matplotlib take them. This module imports
 neither, so the command line can use it without a browser and the page without matplotlib.

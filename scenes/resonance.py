@@ -216,7 +216,7 @@ ROW_COLOUR = (1.0, 0.55, 0.1)  # the live dots: the springs shown in 3-D (orange
 
 
 def view_graph(setup) -> dict:
-    """The page's resonance graph (browser/view.py): amplitude against driving frequency.
+    """The page's resonance graph (browser/graphs.py): amplitude against driving frequency.
 
     For each b, the exact A(ω) = F0/√((k − mω²)² + (bω)²) as a line. On top, every spring of the
     batch shown in 3-D: its A = √(x² + (v/ω)²) at this instant, as dots that wobble while the

@@ -2,7 +2,7 @@
 
 * The first move of a slider takes effect: a single click on the k track and a single drag of the
   m handle, each the first move of that slider, change its label and restart the run from t = 0
-  (vpython 7.6.5's page dropped a slider's first value; browser/view.py primes it).
+  (vpython 7.6.5's page dropped a slider's first value; browser/controls.py primes it).
 * In `integrators` euler's mass runs away alone: the page names it and the time, the other three
   run on and stay large spheres; after a new k in `vertical` the mass is framed again, not shrunk.
 * At 1400 px the resonance page's three graphs share one row.

@@ -1,0 +1,239 @@
+"""The page's controls and captions: buttons, menus, sliders, the time, the constants and the status.
+
+A click arrives on vpython's server thread; the control only queues it as a command, such as
+("toggle",), ("set", "k", 45.0) or ("scene", "pendulum"), and the frame loop (browser/view.py)
+carries the commands out between frames. Each build of the page has its own queue, so a click on
+a control of a page already taken down is never carried out.
+"""
+from __future__ import annotations
+
+import math
+import queue
+import textwrap
+from urllib.parse import quote
+
+from physics.integrators import INTEGRATORS
+
+from scenes import DECLARED, catalog, format_value
+
+SPEEDS = {"¼×": 0.25, "½×": 0.5, "1×": 1.0, "2×": 2.0, "4×": 4.0}
+SLIDER_CHOICES = ("m", "k", "b", "F0", "omega")
+PRESET_PROMPT = "choose a preset"
+# vpython 7.6.5's page sends a slider's value only when it differs from the last value it sent, and
+# before the first move there is none, so the first move of every slider was lost. This script tells
+# the page each new slider's starting value, by calling the slider's own change handler once with a
+# stand-in for a mouse event (its handlers ignore events without one), so the first move is sent.
+# It runs in the page from a wtext (jQuery runs scripts in the HTML it inserts); each slider is primed once.
+PRIME_SLIDERS = ("<script>$('.ui-slider').each(function () {"
+                 " if (this.dataset.primed) return; this.dataset.primed = '1';"
+                 " var change = $(this).slider('option', 'change');"
+                 " if (change) change({originalEvent: {}}); });</script>")
+
+
+class Controls:
+    """The caption under the 3-D picture for one scene: its controls, their queued clicks, and
+    the texts the frame loop updates.
+
+    vp           the vpython module
+    setup        the scene as configured (name, constants and their values)
+    view         the scene's VIEW merged with the defaults (sliders)
+    integrators  the model's one integrator per mass, if it has them (then no integrator menu)
+    integrator   the integrator chosen now; speed: the speed chosen now (a key of SPEEDS)
+    preset       the label of the preset applied, shown in the preset menu
+    """
+
+    def __init__(self, vp, *, setup, view: dict, integrators, integrator: str, speed: str,
+                 preset: str | None = None):
+        self.vp = vp
+        self.commands: queue.SimpleQueue = queue.SimpleQueue()
+        self.downloads = 0  # links offered so far: each gets its own id
+        put = self.commands.put
+        caption = vp.scene.append_to_caption
+        defaults = {name: constant.value for name, constant in setup.constants.items()}
+        caption("\n")
+        self.run_button = vp.button(text="Pause", bind=lambda _: put(("toggle",)))
+        caption("  ")
+        vp.button(text="Step", bind=lambda _: put(("step",)))
+        caption("  ")
+        vp.button(text="Reset", bind=lambda _: put(("reset",)))
+        caption("    integrator ")
+        if integrators:
+            vp.wtext(text="<i>" + ", ".join(integrators) + "</i> (one per mass)")
+        else:
+            vp.menu(choices=list(INTEGRATORS), selected=integrator,
+                    bind=lambda menu: put(("integrator", menu.selected)))
+        caption("    speed ")
+        vp.menu(choices=list(SPEEDS), selected=speed, bind=lambda menu: put(("speed", menu.selected)))
+        caption("\n\nscene ")
+        vp.menu(choices=scene_menu_choices(), selected=setup.name, bind=lambda menu: put(("scene", menu.selected)))
+        caption("    preset ")
+        labels = [label for label, _ in catalog.presets(setup)]
+        self.preset_menu = None
+        if labels:
+            self.preset_menu = vp.menu(choices=[PRESET_PROMPT] + labels, selected=preset or PRESET_PROMPT,
+                                       bind=lambda menu: put(("preset", menu.selected)))
+        else:
+            vp.wtext(text="<i>none for this scene</i>")
+        caption("    ")
+        vp.button(text="Download CSV", bind=lambda _: put(("csv",)))
+        caption(" ")
+        vp.button(text="Download program", bind=lambda _: put(("program",)))
+        caption(" ")
+        self.download_text = vp.wtext(text="")
+        caption("\n\n")
+        self.time_text = vp.wtext(text="t = 0.00 s")
+        caption("    ")
+        self.error_text = vp.wtext(text="")
+        caption("\n")
+        self.sliders, self.slider_texts = {}, {}
+        for name in slider_names(setup, view):
+            low, high, step = slider_range(name, float(setup.values[name]), defaults.get(name))
+            caption("\n")
+            self.sliders[name] = vp.slider(min=low, max=high, step=step, value=setup.values[name],
+                                           length=320, bind=lambda s, name=name: put(("set", name, s.value)))
+            self.slider_texts[name] = vp.wtext(text="")
+        if self.sliders:
+            vp.wtext(text="").text = PRIME_SLIDERS  # set, not made with it: the setter runs scripts
+        caption("\n\n")
+        self.constants_text = vp.wtext(text="")
+        caption("\n<i>Moving a slider, choosing another integrator or a preset restarts "
+                "the run from t = 0; Reset returns to the start; "
+                "Step advances one Δt.</i>\n")
+        self.status_text = vp.wtext(text="")
+        caption("\n")
+
+    def clicks(self) -> list[tuple]:
+        """The commands queued by clicks since the last call, oldest first."""
+        pending = []
+        while True:
+            try:
+                pending.append(self.commands.get_nowait())
+            except queue.Empty:
+                return pending
+
+    # ---- the texts ----
+
+    def show_constants(self, setup) -> None:
+        """The constants line and each slider's value, for a run that starts now."""
+        self.constants_text.text = "Constants: " + constants_text(setup)
+        for name, text in self.slider_texts.items():
+            unit = setup.constants[name].unit
+            text.text = f"  {symbol(name)} = {format_value(setup.values[name], unit)}"
+        self.download_text.text = ""
+
+    def show_time(self, t: float, *, decimals: int, running: bool, error: str) -> None:
+        """The time (to `decimals` places), Run or Pause on the button, and the error readout."""
+        self.time_text.text = f"<b style='font-size:150%'>t = {t:.{decimals}f} s</b>"
+        self.run_button.text = "Pause" if running else "Run"
+        self.error_text.text = error
+
+    def show_status(self, *, problem: str | None, runaways, slow_dt: float | None) -> None:
+        """The status line: why the run stopped, which masses ran away, or that it runs slower
+        than real time (slow_dt: the Δt that is small for this computer, None if keeping up)."""
+        status = problem or "\n".join(wrap(reason) for reason in runaways)
+        if slow_dt is not None and not status:
+            status = (f"Running slower than real time (Δt = {slow_dt:g} s is small for "
+                      f"this computer at this speed).")
+        if status != self.status_text.text:
+            self.status_text.text = status if not problem else f"<b>Stopped:</b> {status}"
+
+    def say(self, text: str) -> None:
+        """Put a sentence in the status line (a value that could not be used, a stopped scene)."""
+        self.status_text.text = text
+
+    def preset_left(self) -> None:
+        """The constants no longer match the preset chosen: the menu shows its prompt again."""
+        if self.preset_menu is not None:
+            self.preset_menu.selected = PRESET_PROMPT
+
+    def offer(self, *, kind: str, name: str, href: str, note: str) -> None:
+        """Hand a file to the browser: a data: link that a one-line script clicks; the link stays
+        on the page as a fallback, with a note on what it holds."""
+        self.downloads += 1
+        link = f"{kind}-download-{self.downloads}"
+        self.download_text.text = (f'<a id="{link}" download="{name}" href="{href}">{name}</a> ({note})'
+                                   f'<script>document.getElementById("{link}").click()</script>')
+
+    def offer_nothing(self, why: str) -> None:
+        """Say in place of a link why there is no file to download."""
+        self.download_text.text = f"<i>{why}</i>"
+
+    def take_down(self) -> None:
+        """Remove the controls from the page (the caption is emptied)."""
+        self.vp.scene.caption = ""
+
+
+def csv_href(text: str) -> str:
+    return f"data:text/csv;charset=utf-8,{quote(text, safe=',.-+')}"
+
+
+def program_href(text: str) -> str:
+    return f"data:text/x-python;charset=utf-8,{quote(text)}"
+
+
+def scene_menu_choices() -> list[str]:
+    """The scene menu: every scene found (scenes/_catalog.py), in menu order."""
+    return list(catalog.SCENE_NAMES)
+
+
+def slider_names(setup, view: dict) -> list[str]:
+    """The constants that get a slider: VIEW["sliders"], else m and k and the forces switched on.
+
+    Only plain numbers get one (a vector, or None meaning "derived", does not).
+    """
+    names = view.get("sliders") or [name for name in SLIDER_CHOICES
+                                    if name in ("m", "k") or setup.values.get(name)]
+    return [name for name in names if name in setup.constants
+            and isinstance(setup.values[name], (int, float)) and not isinstance(setup.values[name], bool)]
+
+
+def slider_range(name: str, value: float, default: float | None = None) -> tuple[float, float, float]:
+    """(min, max, step) around a constant's default: from a tenth of it (or 0) to three times it.
+
+    Constants that must stay positive (m, k, dt, ...) start at a tenth; those where 0 means "off"
+    (b, F0, ω, C, g, x0: slider_from_zero in scenes/_constants.py) start at 0. A value outside that range (set by a preset or --set) widens
+    it, to one and a half times the value.
+    """
+    default = value if default is None or not isinstance(default, (int, float)) else default
+    declared = DECLARED.get(name)
+    low = 0.0 if declared is not None and declared.slider_from_zero else 0.1 * abs(default)
+    high = 3.0 * abs(default) if default else 1.0
+    low = min(low, value)
+    high = max(high, 1.5 * value)
+    step = 10 ** math.floor(math.log10((high - low) / 200))
+    return low, high, step
+
+
+def symbol(name: str) -> str:
+    """How the page writes a constant: ω for omega, ρ for rho (declared in scenes/_constants.py)."""
+    declared = DECLARED.get(name)
+    return declared.symbol if declared is not None and declared.symbol else name
+
+
+def time_decimals(dt: float) -> int:
+    """Enough decimals that one step of Δt shows: 2 for Δt = 0.01 s, 4 for Δt = 1e-4 s."""
+    return max(2, math.ceil(-math.log10(dt) - 1e-9))
+
+
+def constants_text(setup) -> str:
+    """The scene's constants that are switched on, with units: `m = 10 kg, k = 40 N/m, ...`."""
+    parts = []
+    for name, constant in setup.constants.items():
+        value = setup.values[name]
+        if name == "until" or value is None or (not isinstance(value, tuple) and value == 0):
+            continue
+        if name == "drive_axis" and not setup.values.get("F0"):
+            continue
+        parts.append(f"{symbol(name)} = {format_value(value, constant.unit)}")
+    lines, line = [], ""
+    for part in parts:  # wrapped by hand: the caption keeps line breaks but does not wrap
+        if line and len(line) + len(part) > 95:
+            lines.append(line + ",")
+            line = ""
+        line = f"{line}, {part}" if line else part
+    return "\n".join(lines + [line])
+
+
+def wrap(text: str, width: int = 110) -> str:
+    """Line breaks in a long sentence: the caption keeps line breaks but does not wrap."""
+    return "\n".join(textwrap.wrap(text, width, break_on_hyphens=False))

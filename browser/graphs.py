@@ -1,0 +1,343 @@
+"""The page's graphs: position and energy against time, the scene's own graph, and the CSV of them.
+
+Position: the simulation thick in each mass's colour, the exact solution thin and dark on top
+(export/palette.py, shared with --plot). Energy: K, U, E and E − W_nc, measured from rest at
+equilibrium where the run starts there, or each mass's own E where masses use different
+integrators. Both scroll through a window of the last VIEW["window"] seconds (browser/clock.py's
+Trace and window) and widen their y axes to round ticks (browser/axes.py).
+
+A scene may add its own graph with ``view_graph(setup)`` returning a dict: title, xtitle, ytitle
+(with units), xmin/xmax/ymin/ymax, "lines" and "dots" as lists of (label, xs, ys, colour), and
+optionally "live": a function (model, state) -> (xs, ys) drawn as dots that follow the run
+(scenes/resonance.py draws its resonance curves this way).
+"""
+from __future__ import annotations
+
+import csv
+import io
+import math
+import time
+from collections import deque
+
+import numpy as np
+
+from export.numbers import CSV_HEADER, ENERGY_KEYS, clean, clean_time
+from export.palette import (ENERGY_COLOURS, ENERGY_LABELS, EXACT_COLOUR, EXACT_WIDTH, mass_colour, shade,
+                            simulation_width)
+from physics.energy import kinetic, potential, rest_potential
+from physics.state import State, velocity
+
+from .axes import AxisFit, nice_range
+from .clock import Trace, window
+
+SAMPLE_EVERY = 0.05       # s of simulation time between graph points
+LEGEND_MASSES = 6         # more masses than this: no legend entry per mass
+GRAPH_SIZE = (580, 290)   # px
+NARROW_GRAPH_WIDTH = 440  # px: three graphs side by side fit a 1400-px window (a projector's 1440 × 900)
+GRAPH_CANVAS_HEIGHT = GRAPH_SIZE[1] + 26  # px: vpython adds room for the title; flot spaces ticks by this
+LIVE_EVERY = 0.5          # s of wall time between redraws of a scene graph's live dots
+
+
+class Graphs:
+    """The graphs of one scene, empty at t = 0, and the samples they show (for Download CSV).
+
+    vp      the vpython module
+    setup   the scene as configured (its module may have view_graph)
+    model   the Model built from it
+    view    the scene's VIEW merged with the defaults (plot, exact, window)
+    """
+
+    def __init__(self, vp, *, setup, model, view: dict):
+        self.vp = vp
+        self.span = float(view["window"])
+        self.axes = ["xyz".index(axis) for axis in view["plot"]]
+        self.position_fit = AxisFit(pixels=GRAPH_CANVAS_HEIGHT)
+        self.energy_fit = AxisFit(pixels=GRAPH_CANVAS_HEIGHT)
+        self.recorded: deque = deque()  # the samples the graphs show, for Download CSV
+        self.curves = []  # (gcurve, Trace, what it plots)
+        has_own = hasattr(setup.module, "view_graph")
+        self.size = (NARROW_GRAPH_WIDTH if has_own else GRAPH_SIZE[0], GRAPH_SIZE[1])
+        # The scene's own graph is made first and filled at once, so it comes first on the page
+        # (vpython places a graph when its first points arrive).
+        self.scene_graph, self.scene_series, self.live_dots, self.live_points = None, [], None, None
+        self.live_drawn = -math.inf
+        if has_own:
+            self._build_scene_graph(setup.module.view_graph(setup))
+        self.position_graph = self._build_position_graph(model)
+        self.exact_curves = bool(view["exact"]) and model.exact is not None
+        self.show_exact = self.exact_curves
+        if self.show_exact:
+            self._add_exact_curves(model)
+        # What the energy graph shows, so that it tells the story (what would fill it otherwise):
+        # one method per mass: each mass's own E = K + U (summed, euler's runaway would swamp it);
+        # a system that starts at rest at equilibrium: energies measured from there (else a large
+        # constant m g h would flatten every curve).
+        self.per_mass_energy = bool(model.integrators)
+        self.energy_offset = 0.0 if self.per_mass_energy else (rest_potential(model.state, model.forces) or 0.0)
+        self.energy_graph = self._build_energy_graph(model)
+        self.graphs = [graph for graph in (self.scene_graph, self.position_graph, self.energy_graph)
+                       if graph is not None]
+
+    # ---- building ----
+
+    def _build_scene_graph(self, spec) -> None:
+        """The scene's own graph (view_graph): lines and dots, and dots that follow the run."""
+        vp = self.vp
+        width, height = self.size
+        self.scene_graph = vp.graph(title=spec["title"], xtitle=spec["xtitle"], ytitle=spec["ytitle"],
+                                    width=width, height=height, align="left", fast=True)
+        for label, _, _, colour in spec.get("lines", []):
+            self.scene_series.append(vp.gcurve(graph=self.scene_graph, label=label, color=vp.vector(*colour),
+                                               width=2))
+        for label, _, _, colour in spec.get("dots", []):
+            self.scene_series.append(vp.gdots(graph=self.scene_graph, label=label, color=vp.vector(*colour),
+                                              radius=3))
+        if "live" in spec:
+            self.live_dots = vp.gdots(graph=self.scene_graph, label=spec.get("live_label", ""),
+                                      color=vp.vector(*spec.get("live_colour", (0, 0, 0))), radius=5)
+        self._fill_scene_graph(spec)
+
+    def _fill_scene_graph(self, spec) -> None:
+        """Put a view_graph spec's points and labels into the scene graph's curves and dots."""
+        graph = self.scene_graph
+        for axis, pixels in (("x", self.size[0]), ("y", GRAPH_CANVAS_HEIGHT)):
+            low, high = spec.get(f"{axis}min"), spec.get(f"{axis}max")
+            if low is not None and high is not None:  # widened to round ticks
+                low, high = nice_range(low, high, pixels=pixels)
+            for key, value in ((f"{axis}min", low), (f"{axis}max", high)):
+                if value is not None:
+                    setattr(graph, key, value)
+        for series, (label, xs, ys, _) in zip(self.scene_series, spec.get("lines", []) + spec.get("dots", [])):
+            replace_points(series, [[float(x), float(y)] for x, y in zip(xs, ys)])
+            if series.label != label:
+                series.label = label
+        self.live_points = spec.get("live")
+        if self.live_dots is not None and self.live_dots.label != spec.get("live_label", ""):
+            self.live_dots.label = spec.get("live_label", "")
+
+    def _build_position_graph(self, model):
+        vp = self.vp
+        width, height = self.size
+        names = ", ".join("xyz"[axis] for axis in self.axes)
+        legend = model.state.count <= LEGEND_MASSES  # a long row's legend would hide the graph
+        title = "Position" if legend else f"Position of each of the {model.state.count} masses"
+        graph = vp.graph(title=title, xtitle="t (s)", ytitle=f"{names} (m)",
+                         width=width, height=height, align="left", fast=True, xmin=0, xmax=self.span)
+        many = model.state.count > 1
+        for i, label in enumerate(model.labels):
+            for axis in self.axes:
+                name = "xyz"[axis] + (f" {label}" if many or len(self.axes) > 1 else " (simulation)")
+                name = name if legend else ""
+                colour = vp.vector(*shade(mass_colour(i), self.axes.index(axis)))
+                self._curve(graph, name, colour, ("r", i, axis),
+                            width=simulation_width(i, model.state.count, crowded=not legend))
+        return graph
+
+    def _add_exact_curves(self, model) -> None:
+        """Made after the simulated curves, so drawn on top: thin and dark inside the thick ones."""
+        legend = model.state.count <= LEGEND_MASSES
+        for i, label in enumerate(model.labels):
+            for axis in self.axes:
+                # one legend entry for all the exact curves: they share a colour
+                name = f"{'xyz'[axis]} exact" if i == 0 and legend else ""
+                self._curve(self.position_graph, name, self.vp.vector(*EXACT_COLOUR), ("exact", i, axis),
+                            width=EXACT_WIDTH)
+
+    def _build_energy_graph(self, model):
+        vp = self.vp
+        width, height = self.size
+        title = ("Energy of each mass, E = K + U" if self.per_mass_energy else
+                 "Energy, measured from rest at equilibrium" if self.energy_offset else "Energy")
+        graph = vp.graph(title=title, xtitle="t (s)", ytitle="energy (J)",
+                         width=width, height=height, align="left", fast=True, xmin=0, xmax=self.span)
+        if self.per_mass_energy:
+            for i, label in enumerate(model.labels):
+                # half the position curves' widths: an energy that wobbles fast would fill a band
+                self._curve(graph, f"E {label}", vp.vector(*mass_colour(i)), ("mass_energy", i),
+                            width=simulation_width(i, model.state.count) / 2)
+        else:
+            for key, colour in ENERGY_COLOURS.items():
+                # E − W_nc comes last and thinner, so it shows on top of E when no work is done
+                label = ENERGY_LABELS[key] + (" − U_rest" if self.energy_offset and key != "K" else "")
+                self._curve(graph, label, vp.vector(*colour), ("energy", key), width=4 if key == "E" else 2)
+        return graph
+
+    def _curve(self, graph, label, colour, what, *, width) -> None:
+        curve = self.vp.gcurve(graph=graph, label=label, color=colour, width=width)
+        self.curves.append((curve, Trace(span=self.span), what))
+
+    # ---- a new run ----
+
+    def rebuilt(self, setup, model, *, changes: dict) -> None:
+        """The model was built again (new constants or integrator): redraw the scene's own graph
+        for the new constants, and show the exact curves if the new model has a closed form."""
+        if self.scene_graph is not None and changes:
+            self._fill_scene_graph(setup.module.view_graph(setup))
+        self.show_exact = self.exact_curves and model.exact is not None
+
+    def clear(self) -> None:
+        """Empty every curve and the recorded samples, and show t from 0 again."""
+        self.position_fit.clear()
+        self.energy_fit.clear()
+        for _, trace, _ in self.curves:
+            trace.clear()
+        self.recorded.clear()
+        for graph in (self.position_graph, self.energy_graph):
+            graph.xmin, graph.xmax = window(0.0, span=self.span)
+        self.live_drawn = -math.inf
+
+    def take_down(self) -> None:
+        """Remove the graphs from the page."""
+        for graph in self.graphs:
+            graph.delete()
+        self.graphs = []
+
+    # ---- plotting ----
+
+    def plot(self, samples, live, *, matter, redraw: bool = False) -> None:
+        """Add samples to every curve (a whole curve is resent only when its window scrolls).
+
+        matter  the masses the position axis follows: not those that may run away
+                (live.may_run_away), whose own energy does not widen the energy axis either
+        """
+        if not samples and not redraw:
+            return
+        self._record(samples)
+        t = np.array([s.t for s in samples])
+        r = np.array([s.r for s in samples]) if samples else np.zeros((0,) + live.state.r.shape)
+        exact = live.model.exact(t)[0] if (self.show_exact and len(t)) else None
+        if exact is not None:  # past the anchor the closed form no longer describes the mass
+            keep = t <= exact_valid_until(live.model, float(t[-1]))
+            exact = exact[keep] if not keep.all() else exact
+        energies = self._energies(samples, live)
+        for curve, trace, what in self.curves:
+            if what[0] == "r":
+                values = r[:, what[1], what[2]]
+            elif what[0] == "exact":
+                if exact is None:
+                    values = np.zeros(0)
+                else:
+                    values = exact[:, what[1], what[2]]
+            else:
+                values = energies[what[1]]
+            points = [[float(a), float(b)] for a, b in zip(t, values)]  # zip stops where exact does
+            if what[0] in ("r", "mass_energy") and what[1] in live.runaways:
+                frozen = live.runaways[what[1]][0]  # the curve ends where the mass ran away
+                points = [point for point in points if point[0] <= frozen]
+            if trace.add(points) or redraw:
+                replace_points(curve, list(trace.points))
+            elif points:
+                curve.plot(points)
+        if exact is not None and len(exact):
+            _fit(self.position_graph, self.position_fit, exact[..., self.axes].ravel())
+        elif len(t):
+            _fit(self.position_graph, self.position_fit, r[:, matter][..., self.axes].ravel())
+        _fit(self.energy_graph, self.energy_fit,
+             [value for key, values in energies.items() if key not in live.may_run_away for value in values])
+        if len(t):
+            start, end = window(float(t[-1]), span=self.span)
+            if start != self.position_graph.xmin:
+                for graph in (self.position_graph, self.energy_graph):
+                    graph.xmin, graph.xmax = start, end
+        self._plot_live(live, redraw=redraw)
+
+    def _energies(self, samples, live) -> dict:
+        """What the energy graph plots, per curve key, one value per sample, J.
+
+        K, U, E, E − W_nc of the system (U, E and E − W_nc less energy_offset), or, with one
+        integrator per mass, each mass's own E = K + U (key: the mass's index).
+        """
+        if not self.per_mass_energy:
+            return {key: [s.energy[key] - (0.0 if key == "K" else self.energy_offset) for s in samples]
+                    for key in ENERGY_COLOURS}
+        forces, m = live.model.forces, live.state.m
+        per_mass = [kinetic(State(t=s.t, r=s.r, p=s.p, m=m)) + potential(State(t=s.t, r=s.r, p=s.p, m=m), forces)
+                    for s in samples]
+        return {i: [float(E[i]) for E in per_mass] for i in range(len(m))}
+
+    def _plot_live(self, live, *, redraw: bool) -> None:
+        """Move the scene graph's live dots to the state now, at most every LIVE_EVERY seconds."""
+        if self.live_dots is None:
+            return
+        now = time.perf_counter()
+        if not redraw and now - self.live_drawn < LIVE_EVERY:
+            return
+        self.live_drawn = now
+        xs, ys = self.live_points(live.model, live.state)
+        replace_points(self.live_dots, [[float(x), float(y)] for x, y in zip(xs, ys) if math.isfinite(y)])
+
+    def _record(self, samples) -> None:
+        """Keep the samples the graphs show (the last `span` seconds), for Download CSV."""
+        self.recorded.extend(samples)
+        if self.recorded:
+            start = window(self.recorded[-1].t, span=self.span)[0]
+            while self.recorded and self.recorded[0].t < start - 1e-9:
+                self.recorded.popleft()
+
+    # ---- the caption's error readout ----
+
+    def error_readout(self, live, *, matter) -> str:
+        """How far the simulation is from the exact solution now, for the caption ('' without one)."""
+        if not self.show_exact:
+            return ""
+        model, state = live.model, live.state
+        valid_until = exact_valid_until(model, state.t)
+        if state.t > valid_until:
+            return (f"no exact value after t = {valid_until:.3g} s: the closed form "
+                    f"stops holding {model.exact_limit}")
+        exact = model.exact(np.array([state.t]))[0][0]
+        errors = state.r[matter][:, self.axes] - exact[matter][:, self.axes]
+        worst = float(np.max(np.abs(errors)))
+        if errors.size == 1:
+            name = "xyz"[self.axes[0]]
+            return f"error {name} − {name}<sub>exact</sub> = {float(errors.flat[0]):+.3g} m"
+        others = (f" ({', '.join(model.labels[i] for i in live.may_run_away)} left out)"
+                  if live.may_run_away else "")
+        return f"largest |error| against the exact solutions = {worst:.3g} m{others}"
+
+
+def exact_valid_until(model, t_end: float) -> float:
+    """The time, s, after which the model's closed form stops holding (math.inf if it holds to t_end)."""
+    check = model.exact_valid_until
+    return math.inf if check is None else check(t_end)
+
+
+def csv_text(samples, *, m, labels, dt) -> str:
+    """The samples as CSV, with the command line's columns (export.numbers.CSV_HEADER).
+
+    One row per sample and mass: t, r, v = p/m, p, then the system's K, U, E, W_nc in J; several
+    masses add a `body` column with each mass's label. Numbers as in --csv: t rounded to Δt's
+    decimals, the rest to 15 significant digits.
+    """
+    single = len(labels) == 1
+    out = io.StringIO()
+    writer = csv.writer(out, lineterminator="\n")
+    writer.writerow(CSV_HEADER + ([] if single else ["body"]))
+    for sample in samples:
+        v = velocity(sample.p, m)
+        energy = [clean(sample.energy[key]) for key in ENERGY_KEYS]
+        for i, label in enumerate(labels):
+            row = [clean_time(sample.t, dt), *map(clean, sample.r[i]), *map(clean, v[i]), *map(clean, sample.p[i]),
+                   *energy]
+            writer.writerow(row + ([] if single else [label]))
+    return out.getvalue()
+
+
+def replace_points(series, points) -> None:
+    """Replace all the points of a gcurve or gdots."""
+    series.delete()
+    series._data = []  # vpython 7.6.5's delete() keeps its Python copy of the points
+    if points:
+        series.plot(points)
+
+
+def _fit(graph, fit: AxisFit, values) -> None:
+    """Widen a graph's y axis, to round ticks, when the values leave it (browser/axes.py).
+
+    The position axis follows the exact motion where there is one: a numerical curve that
+    strays far from it runs off the graph, rather than squashing every other curve flat, as
+    euler's growing swing would.
+    """
+    ends = fit.update(values)
+    if ends is not None:
+        graph.ymin, graph.ymax = ends

@@ -1,0 +1,219 @@
+"""The page's 3-D picture: the support, a helix per spring, a sphere per mass, trails, the camera.
+
+A scene's VIEW names the support ("ceiling" or "wall"), whether to draw trails and how many coils
+each helix has. The picture is framed on the region the masses use over the first 20 s; it zooms
+out (never in) after a mass that matters, and a mass the scene expects may run away is frozen
+where it leaves the picture and labelled with its method and time.
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from export.palette import mass_colour
+
+CANVAS_SIZE = (900, 440)  # px
+TRAIL_POINTS = 300        # points kept in a trail: the last 15 s at one point per graph sample (0.05 s)
+SUPPORT_COLOUR = (0.6, 0.6, 0.65)
+SPRING_COLOUR = (0.85, 0.85, 0.9)
+BACKGROUND = (0.12, 0.13, 0.16)
+
+
+class Scene3D:
+    """The 3-D objects of one scene on vpython's canvas, built from the model at t = 0.
+
+    vp      the vpython module (already imported, loopback-only, by browser/loopback_server.py)
+    model   the scene's Model: anchors, initial state, exact solution
+    view    the scene's VIEW merged with the defaults (support, trail, coils)
+    title   the heading above the picture
+    """
+
+    def __init__(self, vp, *, model, view: dict, title: str):
+        self.vp = vp
+        canvas = vp.scene
+        canvas.width, canvas.height = CANVAS_SIZE
+        canvas.background = vp.vector(*BACKGROUND)
+        canvas.fov = 0.2  # rad: a long lens, so the support and springs look flat, as in a drawing
+        canvas.title = title
+        low, high = motion_box(model)
+        anchors = model.anchors
+        radius = mass_radius(low, high, anchors)
+        self.radius = radius
+        thickness = 0.4 * radius
+        pad = 2 * radius
+        low, high = low - radius, high + radius  # the spheres' own size
+        centre = 0.5 * (low + high)
+        if view["support"] == "wall":
+            wall_x = float(anchors[:, 0].min())
+            span_y = float(high[1] - low[1]) + 2 * pad
+            support = vp.box(pos=vp.vector(wall_x - thickness / 2, centre[1], centre[2]),
+                             size=vp.vector(thickness, span_y, 2 * radius), color=vp.vector(*SUPPORT_COLOUR))
+            low = np.minimum(low, [wall_x - thickness, centre[1] - span_y / 2, low[2]])
+            high = np.maximum(high, [high[0], centre[1] + span_y / 2, high[2]])
+        else:
+            ceiling_y = float(anchors[:, 1].max())
+            span_x = float(high[0] - low[0]) + 2 * pad
+            support = vp.box(pos=vp.vector(centre[0], ceiling_y + thickness / 2, centre[2]),
+                             size=vp.vector(span_x, thickness, 2 * radius), color=vp.vector(*SUPPORT_COLOUR))
+            low = np.minimum(low, [centre[0] - span_x / 2, low[1], low[2]])
+            high = np.maximum(high, [centre[0] + span_x / 2, ceiling_y + thickness, high[2]])
+        self.support_box = (np.asarray(_array(support.pos) - 0.5 * _array(support.size)),
+                            np.asarray(_array(support.pos) + 0.5 * _array(support.size)))
+        self.centre, self.range, self.max_range = self._frame_camera(low - 0.3 * radius, high + 0.3 * radius)
+        # A long row gets fewer turns per spring: each turn is many triangles for the browser.
+        coils = max(4, min(view["coils"], round(4 * view["coils"] / len(anchors))))
+        self.springs, self.masses = [], []
+        for i, (anchor, r) in enumerate(zip(anchors, model.state.r)):
+            self.springs.append(vp.helix(pos=vec(vp, anchor), axis=vec(vp, r - anchor),
+                                         radius=0.45 * radius, thickness=0.12 * radius,
+                                         coils=coils, color=vp.vector(*SPRING_COLOUR)))
+            self.masses.append(vp.sphere(pos=vec(vp, r), radius=radius, color=vp.vector(*mass_colour(i))))
+        # The trail is drawn from the graph samples (every 0.05 s of simulation time), not by
+        # vpython's make_trail, which adds a point only when the page draws a frame: on a busy
+        # computer that is a few times a second, and the trail came out as jagged straight segments.
+        self.trails = [vp.curve(color=vp.vector(*mass_colour(i)), radius=0.06 * radius, retain=TRAIL_POINTS)
+                       for i in range(len(anchors))] if view["trail"] else []
+        self.runaway_labels: dict = {}  # mass index -> its label, once it has run away
+        self.shapes = [support, *self.springs, *self.masses, *self.trails]
+
+    def reframe(self, model) -> None:
+        """Frame the new motion and the support once, after a new constant: in or out, as it needs.
+
+        Without this the view would only zoom out after the mass (a heavier mass hangs lower), and
+        the masses would shrink with every change.
+        """
+        low, high = motion_box(model)
+        radius = mass_radius(low, high, model.anchors)  # a mass swinging 20 m is drawn bigger
+        if radius != self.radius:
+            self.radius = radius
+            for mass, spring in zip(self.masses, self.springs):
+                mass.radius = radius
+                spring.radius, spring.thickness = 0.45 * radius, 0.12 * radius
+        low = np.minimum(low - 1.3 * radius, self.support_box[0])
+        high = np.maximum(high + 1.3 * radius, self.support_box[1])
+        self.centre, self.range, self.max_range = self._frame_camera(low, high)
+
+    def _frame_camera(self, low, high) -> tuple[np.ndarray, float, float]:
+        """Point the camera at the box from low to high; returns its centre, range and the range
+        the view may zoom out to (twice that)."""
+        canvas = self.vp.scene
+        width, height = CANVAS_SIZE
+        box = high - low
+        canvas.autoscale = False
+        canvas.center = vec(self.vp, 0.5 * (low + high))
+        # range is the distance from the centre to the nearer (here: top and bottom) edge
+        reach = 0.55 * max(box[1], box[0] * height / width, 1e-3)
+        canvas.range = reach
+        return 0.5 * (low + high), reach, 2 * reach
+
+    def clear(self) -> None:
+        """Back to t = 0: no trails, no runaway labels."""
+        for label in self.runaway_labels.values():
+            label.visible = False
+        self.runaway_labels = {}
+        for trail in self.trails:
+            trail.clear()
+
+    def extend_trails(self, samples, runaways) -> None:
+        """Add the graph samples' positions to each mass's trail (not to a mass that ran away)."""
+        if not self.trails or not samples:
+            return
+        r = np.array([s.r for s in samples])
+        for i, trail in enumerate(self.trails):
+            points = [vec(self.vp, where) for where in r[:, i] if np.all(np.isfinite(where))]
+            if points and i not in runaways:
+                trail.append(points)
+
+    def draw(self, live, *, matter) -> None:
+        """Move the masses and springs to the run's state now; follow the masses that matter."""
+        vp, state, anchors = self.vp, live.state, live.model.anchors
+        for i, (mass, spring, anchor, r) in enumerate(zip(self.masses, self.springs, anchors, state.r)):
+            if i in live.runaways:  # frozen: shown, and labelled, where it leaves the picture
+                r = self._inside_frame(anchor, r)
+                self._label_runaway(i, r, live)
+            if np.all(np.isfinite(r)):
+                mass.pos = vec(vp, r)
+                spring.axis = vec(vp, r - anchor)  # the helix runs from the anchor to the mass
+        self._keep_in_view(state.r[matter])
+
+    def take_down(self) -> None:
+        """Hide every object (vpython 7.6.5 cannot delete a 3-D object from the page) and turn the
+        camera back to face the page, for the next scene."""
+        vp = self.vp
+        for shape in self.shapes:
+            shape.visible = False
+        self.shapes = []
+        vp.scene.forward, vp.scene.up = vp.vector(0, 0, -1), vp.vector(0, 1, 0)
+
+    def _inside_frame(self, anchor, r):
+        """The point where the line from the anchor to r leaves the picture (r itself if inside), m."""
+        width, height = CANVAS_SIZE
+        half = np.array([self.range * width / height, self.range, math.inf]) - 1.5 * self.radius
+        d = r - anchor
+        scale = 1.0
+        for axis in (0, 1):
+            if abs(d[axis]) > 1e-12:
+                edge = self.centre[axis] + math.copysign(half[axis], d[axis])
+                scale = min(scale, max(0.0, (edge - anchor[axis]) / d[axis]))
+        return anchor + scale * d if np.all(np.isfinite(d)) else anchor
+
+    def _label_runaway(self, i: int, where, live) -> None:
+        """Label mass i, frozen after running away, with its method and time (once)."""
+        if i in self.runaway_labels:
+            return
+        t, _ = live.runaways[i]
+        inward = 60 if where[0] < self.centre[0] else -60  # px: the text stays inside the picture
+        label = self.vp.label(pos=vec(self.vp, where), text=f"{live.model.labels[i]} ran away\nat t = {t:.2f} s",
+                              xoffset=inward, yoffset=30, height=15, color=self.vp.vector(1, 1, 1),
+                              box=False, line=False)
+        self.runaway_labels[i] = label
+        self.shapes.append(label)
+
+    def _keep_in_view(self, r) -> None:
+        """Zoom out (never in) if a mass that matters leaves the framed region, up to max_range.
+
+        A mass the scene expects may run away (euler) is not followed: it leaves the picture, is
+        frozen and labelled, instead of shrinking every other mass to a dot.
+        """
+        finite = r[np.all(np.isfinite(r), axis=1)]
+        if not len(finite):
+            return
+        width, height = CANVAS_SIZE
+        reach = np.abs(finite - self.centre).max(axis=0)
+        needed = max(reach[1], reach[0] * height / width) + self.radius
+        if self.range < needed and self.range < self.max_range:
+            self.range = min(1.5 * needed, self.max_range)
+            self.vp.scene.range = self.range
+
+
+def motion_box(model) -> tuple[np.ndarray, np.ndarray]:
+    """Corners (low, high) of the region the masses and anchors use over the first 20 s, m."""
+    if model.exact is not None:
+        r, _ = model.exact(np.linspace(0.0, 20.0, 801))
+    else:
+        from physics.simulate import BlowUpError, run
+        until = min(10.0, 4000 * model.dt)
+        try:
+            r = run(model.state, model.forces, dt=model.dt, until=until).r
+        except BlowUpError:
+            r = model.state.r[None]
+    points = np.concatenate([np.reshape(r, (-1, 3)), model.anchors, model.state.r])
+    points = points[np.all(np.isfinite(points), axis=1)]
+    return points.min(axis=0), points.max(axis=0)
+
+
+def mass_radius(low, high, anchors) -> float:
+    """The spheres' radius, m: 8 % of the motion's size, and less than a third of the gap between anchors."""
+    size = float(np.max(high - low)) or 1.0
+    gaps = [np.linalg.norm(a - b) for i, a in enumerate(anchors) for b in anchors[i + 1:]]
+    return min([0.08 * size] + [0.3 * gap for gap in gaps if gap > 0])
+
+
+def vec(vp, a):
+    """A numpy 3-vector as a vpython vector."""
+    return vp.vector(float(a[0]), float(a[1]), float(a[2]))
+
+
+def _array(v) -> np.ndarray:
+    return np.array([v.x, v.y, v.z])
