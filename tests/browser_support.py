@@ -5,6 +5,7 @@ notebook) both drive Debian's Chromium through Playwright and judge screenshots 
 """
 from __future__ import annotations
 
+import contextlib
 import os
 import re
 import socket
@@ -21,6 +22,29 @@ CHROMIUM_ARGS = ["--no-sandbox", "--use-gl=angle", "--use-angle=swiftshader",
                  "--enable-unsafe-swiftshader", "--disable-background-networking",
                  "--disable-component-update", "--disable-sync", "--no-first-run"]
 TIME = re.compile(r"^\s*t = (-?\d+\.\d+) s\s*$")   # the caption's `t = 12.34 s`
+
+
+def require_browser():
+    """Skip the calling test module, with the reason, unless Chromium, Playwright and Pillow are
+    here; returns (playwright.sync_api, PIL.Image). Call it at module level."""
+    if not os.path.exists(CHROMIUM):
+        pytest.skip(f"Chromium is not installed at {CHROMIUM} (apt-get install chromium)",
+                    allow_module_level=True)
+    sync_api = pytest.importorskip("playwright.sync_api",
+                                   reason="Playwright for Python is not installed (pip install playwright)")
+    image = pytest.importorskip("PIL.Image", reason="Pillow is needed to inspect screenshots")
+    return sync_api, image
+
+
+@contextlib.contextmanager
+def launched(sync_api, *extra_args):
+    """Headless Chromium with the arguments that make its 3-D canvas draw, closed afterwards."""
+    with sync_api.sync_playwright() as playwright:
+        chromium = playwright.chromium.launch(executable_path=CHROMIUM, args=CHROMIUM_ARGS + list(extra_args))
+        try:
+            yield chromium
+        finally:
+            chromium.close()
 
 
 def screenshot_folder() -> Path:

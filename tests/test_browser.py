@@ -16,7 +16,6 @@ Skipped, with the reason, where Chromium or Playwright is missing (.ci/run insta
 from __future__ import annotations
 
 import csv
-import os
 import queue
 import re
 import socket
@@ -28,8 +27,8 @@ from pathlib import Path
 
 import pytest
 
-from browser_support import (CHROMIUM, CHROMIUM_ARGS, TIME, colours, curve_pixels, free_port,
-                             pixels_like, screenshot_folder, wait_for)
+from browser_support import (TIME, colours, curve_pixels, free_port, launched, pixels_like,
+                             require_browser, screenshot_folder, wait_for)
 from scenes import catalog
 from browser.view import slider_range, time_decimals
 
@@ -37,12 +36,7 @@ ROOT = Path(__file__).resolve().parent.parent
 SCREENSHOTS = screenshot_folder()   # docs/screenshots/ only with UPDATE_SCREENSHOTS=1
 
 pytestmark = pytest.mark.browser
-if not os.path.exists(CHROMIUM):
-    pytest.skip(f"Chromium is not installed at {CHROMIUM} (apt-get install chromium)",
-                allow_module_level=True)
-sync_api = pytest.importorskip("playwright.sync_api",
-                               reason="Playwright for Python is not installed (pip install playwright)")
-Image = pytest.importorskip("PIL.Image", reason="Pillow is needed to inspect screenshots")
+sync_api, Image = require_browser()
 
 
 def drawable_scenes() -> list[str]:
@@ -58,12 +52,8 @@ def drawable_scenes() -> list[str]:
 
 @pytest.fixture(scope="module")
 def browser():
-    with sync_api.sync_playwright() as playwright:
-        chromium = playwright.chromium.launch(executable_path=CHROMIUM, args=CHROMIUM_ARGS)
-        try:
-            yield chromium
-        finally:
-            chromium.close()
+    with launched(sync_api) as chromium:
+        yield chromium
 
 
 class Program:

@@ -19,19 +19,14 @@ from pathlib import Path
 
 import pytest
 
-from browser_support import CHROMIUM, CHROMIUM_ARGS, free_port, wait_for
+from browser_support import free_port, launched, require_browser, wait_for
 from test_browser import Program, shown_time
 
 ROOT = Path(__file__).resolve().parent.parent
 SCREENSHOTS = Path("/tmp/export-screenshots")
 
 pytestmark = pytest.mark.browser
-if not os.path.exists(CHROMIUM):
-    pytest.skip(f"Chromium is not installed at {CHROMIUM} (apt-get install chromium)",
-                allow_module_level=True)
-sync_api = pytest.importorskip("playwright.sync_api",
-                               reason="Playwright for Python is not installed (pip install playwright)")
-Image = pytest.importorskip("PIL.Image", reason="Pillow is needed to inspect screenshots")
+sync_api, Image = require_browser()
 
 
 def count(image, test) -> int:
@@ -59,12 +54,8 @@ def black(rgb):
 
 @pytest.fixture(scope="module")
 def browser():
-    with sync_api.sync_playwright() as playwright:
-        chromium = playwright.chromium.launch(executable_path=CHROMIUM, args=CHROMIUM_ARGS)
-        try:
-            yield chromium
-        finally:
-            chromium.close()
+    with launched(sync_api) as chromium:
+        yield chromium
 
 
 def test_exported_program_draws_with_the_real_vpython(browser, tmp_path):

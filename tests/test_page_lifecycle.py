@@ -13,9 +13,7 @@ Screenshots go to /tmp, not docs/: the reloaded page and the second tab are look
 """
 from __future__ import annotations
 
-import os
 import queue
-import re
 import socket
 import subprocess
 import sys
@@ -26,30 +24,20 @@ from pathlib import Path
 
 import pytest
 
-from browser_support import CHROMIUM, CHROMIUM_ARGS, TIME, colours, free_port, wait_for
+from browser_support import TIME, colours, free_port, launched, require_browser, wait_for
 
 ROOT = Path(__file__).resolve().parent.parent
 
 pytestmark = pytest.mark.browser
-if not os.path.exists(CHROMIUM):
-    pytest.skip(f"Chromium is not installed at {CHROMIUM} (apt-get install chromium)",
-                allow_module_level=True)
-sync_api = pytest.importorskip("playwright.sync_api",
-                               reason="Playwright for Python is not installed (pip install playwright)")
-Image = pytest.importorskip("PIL.Image", reason="Pillow is needed to inspect screenshots")
+sync_api, Image = require_browser()
 
 REBOUND = "rebind.test"  # a host name the browser is told resolves to 127.0.0.1
 
 
 @pytest.fixture(scope="module")
 def browser():
-    with sync_api.sync_playwright() as playwright:
-        chromium = playwright.chromium.launch(
-            executable_path=CHROMIUM, args=CHROMIUM_ARGS + [f"--host-resolver-rules=MAP {REBOUND} 127.0.0.1"])
-        try:
-            yield chromium
-        finally:
-            chromium.close()
+    with launched(sync_api, f"--host-resolver-rules=MAP {REBOUND} 127.0.0.1") as chromium:
+        yield chromium
 
 
 @pytest.fixture
