@@ -204,8 +204,9 @@ def run_headless(args, setup) -> int:
         raise UsageError(str(problem)) from None
     until = model.until if args.until is None else args.until
     every_step = args.csv is not None or args.plot is not None
+    engine = model.simulation(args.integrator)   # the one that runs: its cost is measured once
     if args.steps is None or every_step:  # a run too long is refused before anything prints
-        headless.step_count(model, until=until, rows_per_step=model.state.count if every_step else 0)
+        headless.step_count(engine, until=until, rows_per_step=model.state.count if every_step else 0)
     if args.csv is not None:
         files.check_writable(args.csv, what="CSV file")
     if args.plot is not None:
@@ -230,7 +231,7 @@ def run_headless(args, setup) -> int:
             return 0
 
     result = headless.simulate(setup, model=model, integrator=args.integrator, until=until,
-                               every_step=every_step)
+                               every_step=every_step, engine=engine)
     note = headless.stop_note(model, until=until)
     if note:
         print(note, file=sys.stderr)

@@ -214,17 +214,17 @@ class Simulation:
         schedule = record if record is not None else (lambda done: math.inf)
         mark = self._next_mark(schedule, self.steps, target, final)
         reported, last = time.monotonic(), None
+
+        def on_record(done, values=None, arrays=None):
+            rows.add(done, values=values, arrays=arrays)
+            return self._next_mark(schedule, done, target, final)
+
         with np.errstate(over="ignore", invalid="ignore"):
             while self.steps < target:
                 if self._cancelled:
                     self._cancelled = False
                     raise Cancelled(f"cancelled at t = {self.t:g} s")
                 stop = min(target, self.steps + CHUNK)
-
-                def on_record(done, values=None, arrays=None):
-                    rows.add(done, values=values, arrays=arrays)
-                    return self._next_mark(schedule, done, target, final)
-
                 mark = self._ticks(stop, mark, on_record, compile_ok=steps >= COMPILE_FROM_STEPS)
                 rows.flush()
                 self._check()
@@ -310,8 +310,7 @@ class Simulation:
         how = "motion growing without bound" if finite else "non-finite state"
         v = np.nan_to_num(velocity(self._p, self.start.m), nan=0.0, posinf=0.0, neginf=0.0)
         methods = tuple(self.methods[i] for i in rows)
-        forces_rows = self.forces
-        verdict = judge(forces_rows, self.start.m, self.methods, self.dt, v=v)
+        verdict = judge(self.forces, self.start.m, self.methods, self.dt, v=v)
         advice = (verdict.message if verdict.message and verdict.method in methods else
                   f"dt = {self.dt:g} s; try a smaller dt")
         return f"the simulation blew up by t = {self.t:.4g} s ({how}): {advice}"

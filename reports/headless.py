@@ -124,35 +124,37 @@ class Result:
         return f"the closed form stops holding at t = {number(t_break, 4)} s, {self.model.exact_limit}"
 
 
-def step_count(model, *, until: float, rows_per_step: float = 0.0) -> int:
-    """How many steps of Δt a run from the model's start to `until` takes, if it fits in time.
+def step_count(engine, *, until: float, rows_per_step: float = 0.0) -> int:
+    """How many steps of Δt the engine (physics.simulate.Simulation) takes to `until`, if it fits in time.
 
     Raises TooManySteps, before any step is taken, when the run would take longer than
-    MAX_RUN_SECONDS on the reference machine (the engine's own cost estimate, plus
-    ROW_SECONDS for each row written), naming the count and the longest --until that fits.
+    MAX_RUN_SECONDS on this computer (the engine's own measured cost, plus ROW_SECONDS for each
+    row written), naming the count and the longest --until that fits. The engine measures its
+    cost once, so asking again for the same engine costs nothing.
     """
     try:
-        return check_cost(model.simulation(), until=until, extra_per_step=rows_per_step * ROW_SECONDS)
+        return check_cost(engine, until=until, extra_per_step=rows_per_step * ROW_SECONDS)
     except RunTooLong as problem:
         raise TooManySteps(str(problem)) from None
 
 
 def simulate(setup, *, model=None, integrator: str | None = None, until: float | None = None,
-             every_step: bool = True, progress="stderr") -> Result:
+             every_step: bool = True, progress="stderr", engine=None) -> Result:
     """Run a configured scene (scenes._catalog.Setup) from its start to `until` (default: its question time).
 
     every_step  record every step (for --csv and --plot); else only the end, and the window a
                 scene measures in (resonance: the steady-state amplitudes)
     Runs that take more than a second or so write their progress to the stream `progress`
     (standard error by default; None: silently). Raises TooManySteps past MAX_RUN_SECONDS, before any step is taken, and
-    physics.simulate.BlowUpError when Δt is too large for the method.
+    physics.simulate.BlowUpError when Δt is too large for the method. `engine` is the model's
+    engine at its start, if the caller already made one (and checked its cost with step_count).
     """
     model = model if model is not None else setup.build()
-    engine = model.simulation(integrator)
+    engine = engine if engine is not None else model.simulation(integrator)
     until = model.until if until is None else until
     if "until" in setup.values and setup.values["until"] != until:  # report the until that was run
         setup = setup.with_values(until=float(until))
-    step_count(model, until=until, rows_per_step=model.state.count if every_step else 0)
+    step_count(engine, until=until, rows_per_step=model.state.count if every_step else 0)
     window = getattr(setup.module, "measure_window", None)
     if window is not None and window(setup.values)[1] > until:
         start, end = window(setup.values)
