@@ -336,10 +336,11 @@ def test_the_last_resort_handler_turns_any_bug_into_one_line_and_status_1(tmp_pa
         "with the command you ran)"]
 
 
-# Long enough to be interrupted after the first progress line (1 s of computing): 10⁷ steps for a
-# run that keeps only its end, 10⁶ steps written row by row (the CSV or figure costs the most).
+# Long enough to be interrupted after the first progress line (1 s of stepping): 10⁷ steps for a
+# run that keeps only its end, 10⁶ rk4 steps written row by row (the CSV or figure costs the most;
+# rk4 keeps the stepping itself past a second on a fast, quiet computer).
 LONG_RUN = ["vertical", "--headless", "--set", "dt=1e-6", "--until", "10"]
-LONG_ROWS = ["vertical", "--headless", "--set", "dt=1e-5", "--until", "10"]
+LONG_ROWS = ["vertical", "--headless", "--integrator", "rk4", "--set", "dt=1e-5", "--until", "10"]
 
 
 @pytest.mark.parametrize("signum, status, output", [(signal.SIGINT, 130, "--csv"), (signal.SIGTERM, 143, "--json"),
