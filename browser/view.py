@@ -212,8 +212,10 @@ class SceneView:
     def _apply_commands(self, *, now: float) -> bool:
         """Carry out the clicks queued by the page (they arrive on vpython's server thread).
 
-        A new scene or preset builds new controls; the clicks after it in this batch were made on
-        the old ones, so they are dropped.
+        They take effect in the order they were made, as if each came in a frame of its own: an
+        integrator or a slider value chosen just before a preset still holds after it (a preset
+        changes only its own constants). A new scene or preset builds new controls; the clicks
+        after it in this batch were made on the old ones, so they are dropped.
         """
         pending = self.controls.clicks()
         changes, integrator = {}, None
@@ -240,11 +242,12 @@ class SceneView:
                 self._offer_program()
             elif kind in ("preset", "scene"):
                 if kind == "preset" and command[1] != PRESET_PROMPT:
-                    setup, preset = self.setup.with_preset(command[1]), command[1]
+                    setup, preset = self.setup.with_values(**changes).with_preset(command[1]), command[1]
                 elif kind == "scene" and command[1] != self.setup.name:
                     setup, preset = catalog.configure(command[1]), None
                 else:
                     continue
+                self.integrator = integrator or self.integrator
                 changes, integrator = {}, None
                 if self._switch(setup, preset=preset):
                     break

@@ -574,6 +574,11 @@ def test_a_reload_reconnects_and_the_program_keeps_running(run_driver):
     assert driver.proc.poll() is None
     page, status_line = ws_handshake(ws_port, origin)
     assert b" 101 " in status_line
+    # The 101 reply can reach us before the server has finished opening the connection; a reply
+    # to a message shows it has (the page is answered only once open).
+    page.sendall(ws_frame(b"trigger"))
+    page.settimeout(5)
+    assert page.recv(2)[0] & 0x0F == 1  # a text frame back
     assert raw_get(http_port, "/status") == (200, b"busy")
     closed_at = time.monotonic()
     page.close()

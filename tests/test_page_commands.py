@@ -1,0 +1,49 @@
+"""The page's clicks take effect in the order they were made, even when several arrive in one frame.
+
+A teacher (or a fast test) can pick an integrator and then a preset before the frame loop runs;
+the preset must not undo the integrator, and a slider value set just before a preset stays
+unless the preset sets that constant. The frame loop's command handling is driven here without
+vpython: the view's rebuild and switch are replaced by recorders.
+"""
+from types import SimpleNamespace
+
+from browser.view import SceneView
+from scenes import catalog
+
+
+def view_with_clicks(*clicks):
+    """A SceneView of `vertical` on euler-cromer whose page has queued `clicks`, and what it did."""
+    view = SceneView.__new__(SceneView)
+    view.setup, view.integrator = catalog.configure("vertical"), "euler-cromer"
+    view.controls = SimpleNamespace(clicks=lambda: list(clicks))
+    done = []
+    view._switch = lambda setup, preset=None: done.append(("switch", setup, preset)) or True
+    view._rebuild = lambda changes, integrator: done.append(("rebuild", changes, integrator))
+    return view, done
+
+
+def test_an_integrator_chosen_just_before_a_preset_still_holds_after_it():
+    view, done = view_with_clicks(("integrator", "verlet"), ("preset", "Moon gravity"))
+    view._apply_commands(now=0.0)
+    (kind, setup, preset), = done
+    assert (kind, preset) == ("switch", "Moon gravity")
+    assert setup.values["g"] == 1.62
+    assert view.integrator == "verlet"
+
+
+def test_a_slider_value_set_just_before_a_preset_stays_unless_the_preset_sets_it():
+    view, done = view_with_clicks(("set", "k", 60.0), ("preset", "Moon gravity"))
+    view._apply_commands(now=0.0)
+    (kind, setup, preset), = done
+    assert setup.values["k"] == 60.0 and setup.values["g"] == 1.62
+    view, done = view_with_clicks(("set", "m", 20.0), ("preset", "critical damping"))
+    view._apply_commands(now=0.0)
+    (kind, setup, preset), = done
+    m, k = setup.values["m"], setup.values["k"]
+    assert m == 20.0 and abs(setup.values["b"] - 2 * (m * k) ** 0.5) < 1e-12  # b = 2√(mk), from the new m
+
+
+def test_an_integrator_alone_rebuilds_the_run_with_it():
+    view, done = view_with_clicks(("integrator", "rk4"))
+    view._apply_commands(now=0.0)
+    assert done == [("rebuild", {}, "rk4")]
