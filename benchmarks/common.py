@@ -34,16 +34,6 @@ def timed(function, *args, clock=time.process_time, **kwargs):
     return result, clock() - start
 
 
-def best_of(repeats: int, function, *args, clock=time.process_time, **kwargs):
-    """(result, seconds) of the fastest of `repeats` calls: the least disturbed by other work."""
-    best = None
-    for _ in range(repeats):
-        result, seconds = timed(function, *args, clock=clock, **kwargs)
-        if best is None or seconds < best[1]:
-            best = (result, seconds)
-    return best
-
-
 def _children_cpu() -> float:
     usage = resource.getrusage(resource.RUSAGE_CHILDREN)
     return usage.ru_utime + usage.ru_stime

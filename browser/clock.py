@@ -207,7 +207,6 @@ class LiveRun:
         self.may_run_away = expected_runaways(model, model.methods(integrator))
         self.engine = model.simulation(integrator, growth_limit=growth_limit,
                                        may_run_away=self.may_run_away)
-        self.integrator = self.engine.integrator
         self.restart()
 
     @property

@@ -17,17 +17,15 @@ class OutputError(ValueError):
 
 
 
-def check_writable(path: str, *, what: str, allow_stdout: bool = False) -> None:
+def check_writable(path: str, *, what: str) -> None:
     """Raise OutputError if `path` cannot be written as a file (checked before a run starts).
 
     The check opens the file for writing, without changing one that exists and removing one it
     had to create, so it also catches what permission bits do not show (a read-only file system,
-    /proc, a file standing where a folder should be, or running as root). "-" means standard
-    output where allow_stdout is True, and is refused otherwise.
+    /proc, a file standing where a folder should be, or running as root). "-" (standard output)
+    is refused: the callers that can print to it handle it before asking.
     """
     if path == STDOUT:
-        if allow_stdout:
-            return
         raise OutputError(f"cannot write {what} to '-' (standard output) here: give a file name, "
                           f"like run.csv")
     if not path:

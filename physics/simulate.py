@@ -35,9 +35,9 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from .compiled import MAX_COMPONENTS, MAX_TRACES, compile_loop
-from .energy import nonconservative_power, series, work_step
+from .energy import nonconservative_power, report, series, work_step
 from .forces import Spring
-from .integrators import DEFAULT_INTEGRATOR, INTEGRATORS, describe, methods_for
+from .integrators import DEFAULT_INTEGRATOR, INTEGRATORS, methods_for
 from .stability import fastest_angular_frequency, judge
 from .state import State, velocity
 
@@ -166,14 +166,9 @@ class Simulation:
             return self.start          # after restart(): the very initial state, reassigned
         return State(t=self.t, r=self._r, p=self._p, m=self.start.m)
 
-    @property
-    def integrator(self):
-        """The method's name if every mass uses it, else the tuple of names (for reports)."""
-        return describe(self.methods) if len(set(self.methods)) == 1 else self.methods
-
     def energy(self) -> dict:
         """K, U, E, W_nc and E − W_nc of the system now, J (numbers)."""
-        return {key: float(value) for key, value in series(self.state, self.forces, self.work).items()}
+        return report(self.state, self.forces, self.work)
 
     def cancel(self) -> None:
         """Ask a running advance() to stop at its next check; it raises Cancelled."""
@@ -343,10 +338,6 @@ class Simulation:
                 pass
             self._seconds_per_step = spent / steps if steps else 0.0
         return self._seconds_per_step
-
-    def estimate_seconds(self, steps: int) -> float:
-        """About how long `steps` more steps take on this computer, s."""
-        return float(steps) * self.seconds_per_step()
 
 
 MAX_RUN_SECONDS = 60.0       # the longest run the program starts, by the engine's estimate, s

@@ -91,9 +91,14 @@ class Result:
 
     setup: object
     model: object
-    integrator: object  # a name, or one name per mass for scenes that compare methods
+    methods: tuple      # the method of each mass (physics.integrators.methods_for)
     trajectory: object  # physics.simulate.Trajectory
     steps: int
+
+    @property
+    def integrator(self) -> str:
+        """The method in words: 'rk4', or one name per mass ('euler, euler-cromer, ...')."""
+        return describe(self.methods)
 
     @property
     def labels(self) -> tuple:
@@ -169,7 +174,7 @@ def simulate(setup, *, model=None, integrator: str | None = None, until: float |
             model.dt, t0=model.state.t, dt=model.dt, **dict(zip(("start", "end"), window(setup.values))))
     stream = sys.stderr if progress == "stderr" else progress     # looked up now, not at import
     samples = engine.run_until(until, record=record, progress=_progress_printer(stream))
-    return Result(setup=setup, model=model, integrator=engine.integrator,
+    return Result(setup=setup, model=model, methods=engine.methods,
                   trajectory=trajectory(engine, samples), steps=engine.steps)
 
 
@@ -227,8 +232,14 @@ def plural(count: int, noun: str) -> str:
     return f"{count} {noun}{'' if count == 1 else 's'}"
 
 
+def integrator_json(methods):
+    """The JSON key "integrator": one name when every mass uses it, else the list of names per mass."""
+    return methods[0] if len(set(methods)) == 1 else list(methods)
+
+
 def method_name(integrator) -> str:
-    return integrator if isinstance(integrator, str) else describe(integrator)
+    """The JSON "integrator" (a name or a list of names) in words."""
+    return describe([integrator] if isinstance(integrator, str) else integrator)
 
 
 # ---- text ----
@@ -241,7 +252,7 @@ def final_report(result: Result) -> str:
     F_net = net_force(model.forces, t, r, v, m)
     exact = result.exact()
     lines = [f"{result.setup.name}: {plural(result.steps, 'step')} of dt = {number(model.dt)} s "
-             f"with {method_name(result.integrator)}",
+             f"with {result.integrator}",
              f"t = {number(t)} s"]
     single = len(m) == 1
     for i, label in enumerate(result.labels):
@@ -307,7 +318,7 @@ def as_json(result: Result) -> dict:
         "t": float(traj.t[-1]),
         "steps": result.steps,
         "dt": float(model.dt),
-        "integrator": result.integrator if isinstance(result.integrator, str) else list(result.integrator),
+        "integrator": integrator_json(result.methods),
         "r": pick(r), "p": pick(p), "v": pick(v),
     }
     exact = result.exact()
@@ -432,10 +443,10 @@ def step_table(setup, *, model=None, integrator: str | None = None, steps: int) 
                          "p_f": _cleaned(traj.p[n, i].tolist()), "v_f": _cleaned(v[n, i].tolist()),
                          "r_f": _cleaned(traj.r[n, i].tolist())})
     uniform = len(set(engine.methods)) == 1
-    return {"scene": setup.name, "integrator": engine.integrator if uniform else list(engine.methods),
-            "dt": float(dt), "m": traj.m.tolist(),
-            "start": {"t": float(traj.t[0]), "r": traj.r[0].tolist(), "p": traj.p[0].tolist(),
-                      "v": v[0].tolist()},
+    return {"scene": setup.name, "integrator": integrator_json(engine.methods),
+            "dt": float(dt), "m": _cleaned(traj.m.tolist()),
+            "start": {"t": clean_time(traj.t[0], dt), "r": _cleaned(traj.r[0].tolist()),
+                      "p": _cleaned(traj.p[0].tolist()), "v": _cleaned(v[0].tolist())},
             "units": {"t": "s", "F_net": "N", "p_f": "kg·m/s", "v_f": "m/s", "r_f": "m"},
             "rule": (INTEGRATORS[engine.methods[0]].rule if uniform else
                      "F_net = (p_f − p_i)/Δt, the average force each mass's method used"),

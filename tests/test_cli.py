@@ -15,6 +15,7 @@ import csv
 import json
 import math
 import re
+import shlex
 import subprocess
 import sys
 from concurrent.futures import ThreadPoolExecutor
@@ -633,17 +634,67 @@ def test_the_step_table_json_has_clean_times_and_momenta():
     assert rows[0]["p_f"] == [0.0, -7.8, 0.0]
 
 
-def test_every_readme_example_does_what_its_comment_says(tmp_path):
-    """The README's `--csv` example writes one row per step for 20 s (it once stopped at 0.2 s)."""
+def readme_commands() -> list[tuple[list[str], str]]:
+    """Every `python main.py ...` line of the README's code blocks that runs without a browser, as
+    (arguments, comment). The browser commands (no --headless, --steps, --list, --constants,
+    --vpython) are left to the browser tests."""
     readme = (ROOT / "README.md").read_text(encoding="utf-8")
-    line = next(line for line in readme.splitlines() if "--csv damped.csv" in line)
-    args = line.split("#")[0].split()[2:]                     # after `python main.py`
-    assert "--until" in args
-    args[args.index("damped.csv")] = str(tmp_path / "damped.csv")
-    done = cli(*args)
+    found = []
+    for line in readme.splitlines():
+        if not line.startswith("    python main.py"):
+            continue
+        command, _, comment = line.partition("#")
+        args = shlex.split(command)[2:]
+        if {"--headless", "--steps", "--list", "--constants"} & set(args):
+            found.append((args, comment.strip()))
+    return found
+
+
+def test_every_readme_example_does_what_its_comment_says(tmp_path):
+    """Each headless example of the README, run as written: it succeeds, and gives what its comment
+    (or the README's text around it) promises. The `--csv` line once stopped at 0.2 s."""
+    commands = readme_commands()
+    assert len(commands) >= 7, commands
+    for args, comment in commands:
+        if "damped.csv" in args:
+            args[args.index("damped.csv")] = str(tmp_path / "damped.csv")
+        done = cli(*args)
+        assert done.returncode == 0 and done.stderr == "", (args, done.stderr)
+        out = done.stdout
+        if args == ["--list"]:
+            assert all(name in out for name in ("vertical", "damped", "driven", "resonance"))
+            assert "--scenario 5" in out                            # "... and the driven scenarios"
+        elif "--constants" in args:
+            assert "k = 40 N/m" in out and "b = 1 kg/s" in out      # "value, unit, meaning"
+            assert "spring constant" in out
+        elif "--steps" in args:                                     # the page's two hand-worked steps
+            rows = [line.split() for line in out.splitlines() if line[:1].isdigit()]
+            assert [row[:2] for row in rows] == [["1", "0.1"], ["2", "0.2"]]
+            assert "< 0, -1.578, 0 >" in out and "< 0, -1.73088, 0 >" in out
+        elif "--csv" in args:
+            rows = (tmp_path / "damped.csv").read_text().splitlines()
+            assert "201 rows" in comment and len(rows) - 1 == 201
+            assert rows[1].startswith("0.0,") and rows[-1].startswith("20.0,")
+        elif "--json" in args:
+            answer = json.loads(out)
+            assert answer["t"] == float(args[args.index("--until") + 1])
+            assert answer["constants"]["b"]["value"] == 2.0            # scenario 3: b = 2 kg/s
+        elif "--preset" in args:
+            assert "g = 1.62 m/s²" in cli(*args, "--constants").stdout
+        else:                                                       # "where is the mass at the question time?"
+            assert "t = 0.2 s" in out and "r = < 0, -1.73088, 0 > m" in out
+
+
+@pytest.mark.parametrize("scene", ["vertical", "damped", "driven", "regimes", "drag", "pendulum",
+                                   "integrators", "resonance"])
+def test_the_step_table_json_has_no_round_off_anywhere(scene):
+    """Every number of `--steps 3 --json`, the start included, has at most 15 significant digits
+    (drag's start was -1.7646000000000002 m)."""
+    done = cli(scene, "--steps", "3", "--headless", "--json")
     assert done.returncode == 0, done.stderr
-    rows = (tmp_path / "damped.csv").read_text().splitlines()
-    assert len(rows) - 1 == 201 and "201 rows" in line and rows[-1].startswith("20.0,")
+    numbers = re.findall(r"-?\d+\.\d+(?:e-?\d+)?", done.stdout)
+    assert numbers and all(significant_digits(n) <= 15 for n in numbers), \
+        [n for n in numbers if significant_digits(n) > 15]
 
 
 def test_the_plot_draws_the_exact_solution_smooth_even_at_a_coarse_dt(tmp_path, monkeypatch):
