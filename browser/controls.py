@@ -14,6 +14,7 @@ from urllib.parse import quote
 
 from physics.integrators import INTEGRATORS
 
+from export.numbers import time_decimals as file_time_decimals
 from scenes import DECLARED, catalog, format_value
 
 SPEEDS = {"¼×": 0.25, "½×": 0.5, "1×": 1.0, "2×": 2.0, "4×": 4.0}
@@ -211,8 +212,9 @@ def symbol(name: str) -> str:
 
 
 def time_decimals(dt: float) -> int:
-    """Enough decimals that one step of Δt shows: 2 for Δt = 0.01 s, 4 for Δt = 1e-4 s."""
-    return max(2, math.ceil(-math.log10(dt) - 1e-9))
+    """Decimals of t on the page: Δt's own (export/numbers.py, as in the files), and at least 2,
+    so the clock reads `t = 2.90 s` at Δt = 0.1 s and `t = 0.125 s` at Δt = 0.125 s."""
+    return max(2, file_time_decimals(dt))
 
 
 def constants_text(setup) -> str:

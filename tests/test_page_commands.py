@@ -47,3 +47,15 @@ def test_an_integrator_alone_rebuilds_the_run_with_it():
     view, done = view_with_clicks(("integrator", "rk4"))
     view._apply_commands(now=0.0)
     assert done == [("rebuild", {}, "rk4")]
+
+
+def test_the_page_clock_shows_every_step_time_as_the_csv_writes_it():
+    """The caption's t has Δt's decimals (at least 2): at Δt = 0.125 s it read 0.13 s, not 0.125 s."""
+    from browser.controls import time_decimals
+    from export.numbers import clean_time
+
+    for dt in (0.125, 0.1, 0.005, 1e-4, 0.02):
+        decimals = time_decimals(dt)
+        for n in (1, 3, 7, 1001):
+            shown = f"{n * dt:.{decimals}f}"
+            assert float(shown) == clean_time(n * dt, dt), (dt, n, shown)
