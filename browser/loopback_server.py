@@ -74,6 +74,7 @@ _CONTENT_TYPES = {
 }
 
 _Thread = threading.Thread  # the real one, also while _patched replaces it
+_current: "_State | None" = None  # the server start() made (one per process)
 _last_contact: float | None = None  # time.monotonic() of the page's last message
 _page_loads = 0  # how many times a page has connected: a reload connects again
 _page_built = 1  # the page load the scene has been built on (the first page gets it as it is made)
@@ -162,6 +163,16 @@ class ServerInfo:
         _page_built = load
 
 
+def interrupted() -> bool:
+    """True if the user pressed Ctrl-C, as opposed to the page closing.
+
+    Both end the program the same way, with SystemExit(0) from vpython's SIGINT handler (its
+    websocket sends SIGINT to its own process when the page closes); the command line tells them
+    apart with this, to exit with status 130 after a Ctrl-C as it does everywhere else.
+    """
+    return _current is not None and _current.interrupted
+
+
 def start(*, port: int | None = None, open_browser: bool = True,
           remind_after: float = 10.0) -> ServerInfo:
     """Serve the VPython page on 127.0.0.1 and return once a browser page has connected.
@@ -174,7 +185,8 @@ def start(*, port: int | None = None, open_browser: bool = True,
     if "vpython.no_notebook" in sys.modules:
         raise ServerError("vpython's server is already running; call start() before making "
                           "any vpython object")
-    state = _State(reservation=_reserve(port))
+    global _current
+    state = _current = _State(reservation=_reserve(port))
     http_port = state.reservation.getsockname()[1]
     state.url = url = f"http://{LOOPBACK}:{http_port}/"
     state.origins = {f"http://{host}:{http_port}" for host in (LOOPBACK, "localhost")}
@@ -225,7 +237,8 @@ class _State:
     socket_port: int = 0
     bind_error: OSError | None = None
     connected: bool = False  # the page's websocket has opened
-    interrupted: bool = False  # Ctrl-C came before that
+    interrupted: bool = False  # the user pressed Ctrl-C (before or after the page connected)
+    page_closed: bool = False  # the page closed and did not come back: vpython's SIGINT ends the program
     hosts: set[str] = field(default_factory=set)  # Host header values the HTTP server answers
     pages: set = field(default_factory=set)  # open websocket connections of the page (at most one)
     closing: object = None  # the timer that ends the program once the last page has closed
@@ -353,6 +366,7 @@ def _sigint_handler(vpython_handler, state: _State):
     """
     def handler(signum, frame):
         if state.connected:
+            state.interrupted = state.interrupted or not state.page_closed
             return vpython_handler(signum, frame)
         state.interrupted = True
         raise SystemExit(0)  # our patches made vpython's threads daemons: nothing to stop
@@ -551,6 +565,7 @@ def _guarded_protocol(vpython_protocol, state: _State):
                 if reloading and time.monotonic() - closed < RELOAD_WAIT:
                     state.closing = loop.call_later(0.1, end_unless_back)
                     return
+                state.page_closed = True  # the SIGINT vpython sends itself now is not a Ctrl-C
                 super(GuardedWSserver, self).onClose(wasClean, code, reason)
 
             state.closing = loop.call_later(CLOSE_GRACE, end_unless_back)

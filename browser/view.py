@@ -49,25 +49,28 @@ def show(setup, *, integrator: str, port: int | None, open_browser: bool, preset
 
     preset  the label of the preset already applied to `setup` (--preset), shown in the menu.
 
-    Returns 2 (after a one-line message) if the model or the server cannot start; otherwise the
-    program ends through SystemExit(0) when the tab closes or on Ctrl-C.
+    Returns 2 (after a one-line message) if the model or the server cannot start. Otherwise the
+    program ends through SystemExit(0) when the tab closes, and Ctrl-C (while waiting for a
+    browser or while running) raises KeyboardInterrupt, which the command line reports as one
+    line and status 130.
     """
     try:
         model = setup.build()
     except ValueError as problem:
         print(f"error: {problem}", file=sys.stderr)
         return 2
-    from .loopback_server import ServerError, start
+    from .loopback_server import ServerError, interrupted, start
 
     try:
         server = start(port=port, open_browser=open_browser)
+        SceneView(setup=setup, model=model, integrator=integrator, server=server, preset=preset).run_forever()
     except ServerError as problem:
         print(f"error: {problem}", file=sys.stderr)
         return 2
-    try:
-        SceneView(setup=setup, model=model, integrator=integrator, server=server, preset=preset).run_forever()
-    except KeyboardInterrupt:  # Ctrl-C before vpython's own handler turns it into SystemExit(0)
-        return 0
+    except (KeyboardInterrupt, SystemExit):  # vpython ends both a closed page and Ctrl-C with SystemExit(0)
+        if interrupted():
+            raise KeyboardInterrupt from None
+        raise
     return 0
 
 

@@ -382,3 +382,17 @@ def test_ctrl_c_while_the_program_is_still_loading_is_one_line_too(tmp_path):
     assert "Traceback" not in err and out == ""
     assert len([line for line in err.splitlines() if not line.startswith("running:")]) == 1, err
     assert os.listdir(tmp_path) == []
+
+
+def test_ctrl_c_while_the_browser_view_waits_for_a_browser_is_one_line_and_status_130(tmp_path):
+    """`main.py vertical --no-browser` prints its address and waits; Ctrl-C then ends it like any
+    command (it once exited 0 without a word). With a page connected: tests/test_page_lifecycle.py."""
+    process = subprocess.Popen([sys.executable, str(ROOT / "main.py"), "vertical", "--no-browser"], cwd=tmp_path,
+                               stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    assert process.stdout.readline().startswith("Open http://127.0.0.1:")
+    time.sleep(1.0)  # into vpython's wait for a browser
+    process.send_signal(signal.SIGINT)
+    out, err = process.communicate(timeout=30)
+    assert process.returncode == 130, err
+    assert err.splitlines() == ["stopped: interrupted (Ctrl-C); no file was left half-written"], err
+    assert os.listdir(tmp_path) == []

@@ -14,6 +14,7 @@ Screenshots go to /tmp, not docs/: the reloaded page and the second tab are look
 from __future__ import annotations
 
 import queue
+import signal
 import socket
 import subprocess
 import sys
@@ -160,3 +161,16 @@ def test_a_page_reached_through_another_host_name_is_refused(browser, program):
     own.close()
     program.wait(timeout=10)
     assert "Traceback" not in "".join(program.errors)
+
+
+def test_ctrl_c_while_the_page_runs_is_one_line_and_status_130(browser, program):
+    """Ctrl-C ends the program as it does any command; closing the tab (above) is status 0."""
+    page = browser.new_page()
+    page.goto(program.url)
+    running_past(page, 0.5)
+    program.send_signal(signal.SIGINT)
+    assert program.wait(timeout=10) == 130
+    time.sleep(0.5)  # the reader thread takes the last line
+    lines = [line for line in program.errors if line.strip()]
+    assert lines == ["stopped: interrupted (Ctrl-C); no file was left half-written\n"], lines
+    page.close()
