@@ -103,17 +103,22 @@ def build_parser() -> argparse.ArgumentParser:
     return parser
 
 
-def list_scenes() -> str:
-    """Each scene with its one-line description, and its numbered scenarios if it has any."""
+def list_scenes() -> tuple[str, list[str]]:
+    """Each scene with its one-line description, and its numbered scenarios if it has any; and
+    what is wrong with each scene file that cannot run (left out of the list)."""
     names = list(catalog.SCENE_NAMES)
     width = max(len(name) for name in names)
-    lines = []
+    lines, problems = [], []
     for name in names:
-        module = catalog.load(name)
+        try:
+            module = catalog.load(name)
+        except ConstantError as problem:
+            problems.append(str(problem))
+            continue
         lines.append(f"{name:<{width}}  {catalog.summary(module)}")
         for number, (label, _) in enumerate(catalog.scenarios(module), start=1):
             lines.append(f"{'':<{width}}    --scenario {number}: {label}")
-    return "\n".join(lines)
+    return "\n".join(lines), problems
 
 
 def presets_report(setup) -> str:
@@ -276,8 +281,11 @@ def main(argv=None) -> int:
     try:
         check_options(args)
         if args.list:
-            print(list_scenes())
-            return 0
+            listing, problems = list_scenes()
+            print(listing)
+            for problem in problems:  # the other scenes are listed, and run, as usual
+                print(f"error: {problem}", file=sys.stderr)
+            return 2 if problems else 0
         setup = catalog.configure(args.scene or catalog.DEFAULT_SCENE, assignments=args.assignments,
                                   scenario=args.scenario, preset=args.preset)
         if args.constants:

@@ -4,7 +4,9 @@ A scene is any module in this folder whose name does not start with "_" (those a
 builders), plus any in the folders named by the environment variable SPRING_SCENES (separated
 like PATH): a teacher's own scenes, kept outside the project. Nothing lists them by hand; a scene
 may set MENU_ORDER (a number; lower comes first, default 100) to place itself in --list and in the
-page's scene menu. Importing a scene module never imports vpython; the browser is separate.
+page's scene menu. MENU_ORDER is read from the file without running it, and a scene file runs only
+when that scene is asked for, so a typo in one file is one error naming its line and leaves the
+other scenes usable. Importing a scene module never imports vpython; the browser is separate.
 
 A preset is a named set of constant changes, kept as data: `(label, {name: value})`. The same
 list feeds the command line (`--preset NAME`) and the page's preset menu. Every scene offers the
@@ -20,43 +22,59 @@ In a preset, b = None means "critical": :func:`resolve` turns it into 2√(mk) o
 """
 from __future__ import annotations
 
+import ast
 import difflib
 import importlib
-import importlib.util
+import inspect
+import linecache
 import os
-import pkgutil
 import sys
+import textwrap
+import traceback
 from dataclasses import dataclass
 from pathlib import Path
 
 from physics.exact import critical_damping
 
-from ._constants import ConstantError, Constant, check_value, parse_assignments, read_constants
+from ._constants import (DECLARED, END_OF_CONSTANTS, ConstantError, Constant, check_value, parse_assignments,
+                         read_constants, shown_path)
 from ._model import Model
 
 DEFAULT_SCENE = "vertical"
 EXTRA_FOLDERS = "SPRING_SCENES"   # environment variable: more folders of scenes, like PATH
+FOLDERS = [Path(__file__).parent] + [Path(folder).absolute() for folder in
+                                     filter(None, os.environ.get(EXTRA_FOLDERS, "").split(os.pathsep))]
+
+# A teacher's folders come after this one in the package's search path, so `import scenes.NAME`
+# finds a teacher's scene as it finds ours (ours first when two share a name, as in SCENE_FILES).
+sys.modules[__package__].__path__.extend(str(folder) for folder in FOLDERS[1:])
 
 
-def _discover() -> list[str]:
-    """Every scene's name, in menu order: this folder's modules and those of SPRING_SCENES."""
-    here = Path(__file__).parent
-    found = {info.name: None for info in pkgutil.iter_modules([str(here)]) if not info.name.startswith("_")}
-    for folder in filter(None, os.environ.get(EXTRA_FOLDERS, "").split(os.pathsep)):
-        for path in sorted(Path(folder).glob("[!_]*.py")):
-            if path.stem not in found:
-                found[path.stem] = path
-    for name, path in found.items():
-        if path is not None and f"scenes.{name}" not in sys.modules:   # a teacher's own scene file
-            spec = importlib.util.spec_from_file_location(f"scenes.{name}", path)
-            module = importlib.util.module_from_spec(spec)
-            sys.modules[spec.name] = module
-            spec.loader.exec_module(module)
-    order = {name: getattr(importlib.import_module(f"scenes.{name}"), "MENU_ORDER", 100) for name in found}
-    return sorted(found, key=lambda name: (order[name], name))
+def _scene_files() -> dict[str, Path]:
+    """Every scene's name and file, from the first folder that has a file of that name."""
+    found = {}
+    for folder in FOLDERS:
+        for path in sorted(folder.glob("[!_]*.py")):
+            found.setdefault(path.stem, path)
+    return found
 
 
-SCENE_NAMES = _discover()
+def _menu_order(path: Path):
+    """A scene's MENU_ORDER, read from its file without running it: 100 where it sets no number
+    (or the file cannot be read at all; load() says why when the scene is asked for)."""
+    order = 100
+    try:
+        for node in ast.parse(path.read_bytes()).body:
+            if isinstance(node, ast.Assign) and any(getattr(target, "id", None) == "MENU_ORDER"
+                                                    for target in node.targets):
+                order = ast.literal_eval(node.value)
+    except Exception:  # whatever is in one file, the other scenes stay usable
+        return 100
+    return order if isinstance(order, (int, float)) and not isinstance(order, bool) else 100
+
+
+SCENE_FILES = _scene_files()
+SCENE_NAMES = sorted(SCENE_FILES, key=lambda name: (_menu_order(SCENE_FILES[name]), name))
 
 GRAVITY_PRESETS = {                # m/s², the strength of gravity at the surface
     "Moon gravity": {"g": 1.62},
@@ -67,17 +85,98 @@ CRITICAL_DAMPING = "critical damping"
 
 
 def load(name: str):
-    """The scene module called `name`, or ConstantError with the closest name."""
+    """The scene module called `name`, run the first time it is asked for.
+
+    Raises ConstantError with the closest name for an unknown scene, and with the file, the line and
+    what is wrong for a scene file that cannot run: a typo in one scene leaves the others usable.
+    """
     if name not in SCENE_NAMES:
         close = difflib.get_close_matches(name, SCENE_NAMES, n=1, cutoff=0.5)
         hint = f"; did you mean {close[0]!r}?" if close else ""
         raise ConstantError(f"unknown scene {name!r}{hint} (run 'python main.py --list' to see them)")
-    return importlib.import_module(f"scenes.{name}")
+    try:
+        return importlib.import_module(f"{__package__}.{name}")
+    except Exception as problem:  # anything a scene file can get wrong, from a typo to a bad import
+        raise ConstantError(_broken_file_message(SCENE_FILES[name], problem)) from None
+
+
+def _broken_file_message(path: Path, problem: Exception) -> str:
+    """`scenes/damped.py, line 13: invalid syntax (got: b = 1.0.)`: where a scene file failed, and why."""
+    if isinstance(problem, SyntaxError):
+        where, line, what = problem.filename or path, problem.lineno, problem.msg
+        text = problem.text or ""
+    else:   # the last line of this file that ran: the assignment, call or import that failed
+        lines = [frame.lineno for frame in traceback.extract_tb(problem.__traceback__)
+                 if os.path.abspath(frame.filename) == os.path.abspath(path)]
+        where, line, what = path, lines[-1] if lines else None, f"{type(problem).__name__}: {problem}"
+        text = linecache.getline(str(path), line) if line else ""
+    message = f"{shown_path(where)}{f', line {line}' if line else ''}: {what}"
+    if text.strip():
+        message += f" (got: {text.strip()})"
+    return " ".join(message.split())
+
+
+def _keywords(function) -> tuple[set[str], set[str] | None]:
+    """The keyword arguments `function` needs, and all those it takes (None: any at all).
+
+    Where it hands its `**constants` on (`build(**constants)` calling `build_single_mass(**constants)`),
+    what the function called needs and takes counts as its own.
+    """
+    parameters = inspect.signature(function).parameters.values()
+    named = {p.name for p in parameters if p.kind in (p.POSITIONAL_OR_KEYWORD, p.KEYWORD_ONLY)}
+    needs = {p.name for p in parameters if p.name in named and p.default is p.empty}
+    rest = next((p.name for p in parameters if p.kind is p.VAR_KEYWORD), None)
+    if rest is None:
+        return needs, named
+    try:
+        tree = ast.parse(textwrap.dedent(inspect.getsource(function)))
+    except (OSError, TypeError, SyntaxError):   # no source to read: trust it takes what it is given
+        return needs, None
+    takes = []
+    for call in ast.walk(tree):
+        if not (isinstance(call, ast.Call) and isinstance(call.func, ast.Name) and any(
+                keyword.arg is None and getattr(keyword.value, "id", None) == rest for keyword in call.keywords)):
+            continue
+        callee = function.__globals__.get(call.func.id)
+        if not inspect.isfunction(callee):
+            takes.append(None)
+            continue
+        given = {keyword.arg for keyword in call.keywords if keyword.arg}
+        callee_needs, callee_takes = _keywords(callee)
+        needs |= callee_needs - given
+        takes.append(None if callee_takes is None else callee_takes - given)
+    if not takes or None in takes:
+        return needs, None
+    return needs, named | set.intersection(*takes)
+
+
+def check_build(module, constants: dict[str, Constant]) -> None:
+    """Raise ConstantError, naming the scene file, unless its constants block has a line for each
+    constant its build function needs and for none it does not take: found before anything runs."""
+    where = shown_path(module.__file__) if getattr(module, "__file__", None) else module.__name__
+    if not callable(getattr(module, "build", None)):
+        raise ConstantError(f"{where}: a scene file needs a build function, `def build(**constants):` "
+                            f"after the constants block")
+    needs, takes = _keywords(module.build)
+    missing = sorted(needs - set(constants), key=str.casefold)
+    unused = sorted(set(constants) - takes, key=str.casefold) if takes is not None else []
+    if missing:
+        one = len(missing) == 1
+        unit = DECLARED[missing[0]].unit if missing[0] in DECLARED else "unit"
+        raise ConstantError(f"{where}: the constants block has no line{'' if one else 's'} for "
+                            f"{', '.join(missing)} (build needs {'it' if one else 'them'}); add "
+                            f"{'one' if one else 'each'} like `{missing[0]} = value  # {unit}: meaning` "
+                            f"above `{END_OF_CONSTANTS}`")
+    if unused:
+        one = len(unused) == 1
+        raise ConstantError(f"{where}: the constants block has a line for {', '.join(unused)}, which build "
+                            f"does not take; remove {'it' if one else 'them'} or add "
+                            f"{'it' if one else 'them'} to build's arguments")
 
 
 def summary(module) -> str:
-    """The first line of a scene's docstring: its one-line description."""
-    return (module.__doc__ or "").strip().splitlines()[0]
+    """The first line of a scene's docstring: its one-line description ("" if it has none)."""
+    return ((module.__doc__ or "").strip().splitlines() or [""])[0]
 
 
 def scenarios(module) -> list:
@@ -159,6 +258,7 @@ def configure(name: str, *, assignments=(), scenario: int | None = None, preset:
     """
     module = load(name)
     constants = read_constants(module)
+    check_build(module, constants)
     values = {key: constant.value for key, constant in constants.items()}
     if scenario is not None:
         options = scenarios(module)

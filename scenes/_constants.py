@@ -16,11 +16,11 @@ import difflib
 import inspect
 import io
 import math
+import numbers
+import os
 import re
 import tokenize
 from dataclasses import dataclass
-
-
 
 
 class ConstantError(ValueError):
@@ -45,6 +45,7 @@ class Declared:
               overflow (10³⁰⁸) and Δt far from round-off (10⁻¹⁶ of t).
     whole     a whole number (a count); `nonzero`: a vector of non-zero length (a direction)
     note      added to the range in the message
+    none      what None means, where a scene file may write it instead of a number ("" if it may not)
     slider_from_zero  a slider for it starts at 0, where 0 switches its force off (b, F0, ω, ...);
               otherwise at a tenth of its default (m, k, Δt must stay positive)
     """
@@ -58,6 +59,7 @@ class Declared:
     whole: bool = False
     nonzero: bool = False
     note: str = ""
+    none: str = ""
     slider_from_zero: bool = False
 
     def allows(self, value) -> bool:
@@ -95,7 +97,7 @@ SMALLEST = 1e-9  # any number given is 0 or at least this in size
 DECLARED = {
     "m": Declared("kg", 1e-6, 1e6),
     "k": Declared("N/m", 0, 1e6),
-    "b": Declared("kg/s", 0, 1e6, slider_from_zero=True),
+    "b": Declared("kg/s", 0, 1e6, none="critical damping, b = 2√(mk)", slider_from_zero=True),
     "C": Declared("1", 0, 100, slider_from_zero=True),
     "A": Declared("m²", 0, 1e3),
     "rho": Declared("kg/m³", 0, 1e5, symbol="ρ"),
@@ -105,7 +107,7 @@ DECLARED = {
     "omega": Declared("rad/s", 0, 1e4, symbol="ω", slider_from_zero=True),
     "drive_axis": Declared("1", -1e6, 1e6, vector=True, nonzero=True),
     "anchor": Declared("m", -1e4, 1e4, vector=True),
-    "r0": Declared("m", -1e4, 1e4, vector=True),
+    "r0": Declared("m", -1e4, 1e4, vector=True, none="worked out by the scene"),
     "v0": Declared("m/s", -1e4, 1e4, vector=True),
     "x0": Declared("m", -1e4, 1e4, slider_from_zero=True),
     "spacing": Declared("m", 0, 1e3),
@@ -144,15 +146,61 @@ class Constant:
 END_OF_CONSTANTS = "# ---- end of constants ----"
 
 
+def shown_path(path) -> str:
+    """A scene file's name as messages give it: relative to the current folder when it lies inside."""
+    try:
+        relative = os.path.relpath(path)
+    except (OSError, ValueError):   # the current folder is gone, or on another drive
+        return str(path)
+    return str(path) if relative.startswith(os.pardir) else relative
+
+
+def _is_number(x) -> bool:
+    return isinstance(x, numbers.Real) and not isinstance(x, bool)
+
+
+def value_problem(name: str, value) -> str:
+    """What is wrong with the kind of value a scene file gives a constant, or "" if nothing.
+
+    A value is a number (not True or False, not text in quotes), three numbers in parentheses for
+    a vector, or None where DECLARED says what None means.
+    """
+    declared = DECLARED[name]
+    if declared.vector:
+        fits = isinstance(value, tuple) and len(value) == 3 and all(map(_is_number, value))
+        wanted = "three numbers in parentheses, like (0, -1.5, 0)"
+    else:
+        fits = _is_number(value)
+        wanted = "a number, like 40.0"
+    if fits or (value is None and declared.none):
+        return ""
+    either = f", or None ({declared.none})" if declared.none else ""
+    got = ("text in quotes" if isinstance(value, str) else
+           repr(value) if value is None or isinstance(value, (bool, tuple, list)) else f"a {type(value).__name__}")
+    return f"{name} needs {wanted}{either}, not {got}"
+
+
 def read_constants(module) -> dict[str, Constant]:
     """The constants block of a scene module: its top-level assignments up to the line
     `# ---- end of constants ----`, each `name = value  # unit: meaning`.
 
     Raises ConstantError naming the file and line of an assignment without that comment, of a
-    name DECLARED does not know, or of a unit that is not the declared one.
+    name DECLARED does not know, of a unit that is not the declared one, or of a value that is not
+    a number (three numbers for a vector; see :func:`value_problem`).
     """
-    source = inspect.getsource(module)
-    where = getattr(module, "__file__", module.__name__)
+    where = shown_path(module.__file__) if getattr(module, "__file__", None) else module.__name__
+    try:
+        source = inspect.getsource(module)
+    except OSError:  # Python ran the file, but its text is not UTF-8 (an editor's Latin-1 "é")
+        with open(module.__file__, "rb") as file:
+            raw = file.read()
+        try:
+            raw.decode("utf-8")
+        except UnicodeDecodeError as bad:
+            line = raw.count(b"\n", 0, bad.start) + 1
+            raise ConstantError(f"{where}, line {line}: the file is not UTF-8 text (byte 0x{raw[bad.start]:02x}); "
+                                f"save it as UTF-8") from None
+        raise
     comments = {tok.start[0]: tok.string.lstrip("#").strip()
                 for tok in tokenize.generate_tokens(io.StringIO(source).readline)
                 if tok.type == tokenize.COMMENT}
@@ -181,7 +229,11 @@ def read_constants(module) -> dict[str, Constant]:
             refuse(f"{name} is not a constant any scene knows: declare it in scenes/_constants.py")
         if unit != DECLARED[name].unit:
             refuse(f"the unit of {name} is {DECLARED[name].unit}, not {unit!r}")
-        constants[name] = Constant(name, getattr(module, name), unit, meaning)
+        value = getattr(module, name)
+        problem = value_problem(name, value)
+        if problem:
+            refuse(problem)
+        constants[name] = Constant(name, value, unit, meaning)
     return constants
 
 
