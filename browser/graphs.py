@@ -7,9 +7,10 @@ integrators. Both scroll through a window of the last VIEW["window"] seconds (br
 Trace and window) and widen their y axes to round ticks (browser/axes.py).
 
 A scene may add its own graph with ``view_graph(setup)`` returning a dict: title, xtitle, ytitle
-(with units), xmin/xmax/ymin/ymax, "lines" and "dots" as lists of (label, xs, ys, colour), and
-optionally "live": a function (model, state) -> (xs, ys) drawn as dots that follow the run
-(scenes/resonance.py draws its resonance curves this way).
+(with units), xmin/xmax/ymin/ymax, "lines" and "dots" as lists of (label, xs, ys, j), drawn in the
+palette's curve_colour(j), and optionally "live": a function (model, state) -> (xs, ys) drawn as
+dots in LIVE_COLOUR that follow the run (scenes/resonance.py draws its resonance curves this way).
+Each mass's curves have its colour from export/palette.py's mass_colours, as its sphere has.
 """
 from __future__ import annotations
 
@@ -22,8 +23,8 @@ from collections import deque
 import numpy as np
 
 from export.numbers import CSV_HEADER, ENERGY_KEYS, clean, clean_time
-from export.palette import (ENERGY_COLOURS, ENERGY_LABELS, EXACT_COLOUR, EXACT_WIDTH, mass_colour, shade,
-                            simulation_width)
+from export.palette import (ENERGY_COLOURS, ENERGY_LABELS, EXACT_COLOUR, EXACT_WIDTH, LIVE_COLOUR, curve_colour,
+                            mass_colours, shade, simulation_width)
 from physics.energy import kinetic, potential, rest_potential
 from physics.state import State, velocity
 
@@ -55,6 +56,7 @@ class Graphs:
         self.energy_fit = AxisFit(pixels=GRAPH_CANVAS_HEIGHT)
         self.recorded: deque = deque()  # the samples the graphs show, for Download CSV
         self.curves = []  # (gcurve, Trace, what it plots)
+        self.colours = mass_colours(model, view)  # each mass's, as in the 3-D view
         has_own = hasattr(setup.module, "view_graph")
         self.size = (NARROW_GRAPH_WIDTH if has_own else GRAPH_SIZE[0], GRAPH_SIZE[1])
         # The scene's own graph is made first and filled at once, so it comes first on the page
@@ -86,15 +88,15 @@ class Graphs:
         width, height = self.size
         self.scene_graph = vp.graph(title=spec["title"], xtitle=spec["xtitle"], ytitle=spec["ytitle"],
                                     width=width, height=height, align="left", fast=True)
-        for label, _, _, colour in spec.get("lines", []):
-            self.scene_series.append(vp.gcurve(graph=self.scene_graph, label=label, color=vp.vector(*colour),
-                                               width=2))
-        for label, _, _, colour in spec.get("dots", []):
-            self.scene_series.append(vp.gdots(graph=self.scene_graph, label=label, color=vp.vector(*colour),
-                                              radius=3))
+        for label, _, _, j in spec.get("lines", []):
+            self.scene_series.append(vp.gcurve(graph=self.scene_graph, label=label,
+                                               color=vp.vector(*curve_colour(j)), width=2))
+        for label, _, _, j in spec.get("dots", []):
+            self.scene_series.append(vp.gdots(graph=self.scene_graph, label=label,
+                                              color=vp.vector(*curve_colour(j)), radius=3))
         if "live" in spec:
             self.live_dots = vp.gdots(graph=self.scene_graph, label=spec.get("live_label", ""),
-                                      color=vp.vector(*spec.get("live_colour", (0, 0, 0))), radius=5)
+                                      color=vp.vector(*LIVE_COLOUR), radius=5)
         self._fill_scene_graph(spec)
 
     def _fill_scene_graph(self, spec) -> None:
@@ -128,7 +130,7 @@ class Graphs:
             for axis in self.axes:
                 name = "xyz"[axis] + (f" {label}" if many or len(self.axes) > 1 else " (simulation)")
                 name = name if legend else ""
-                colour = vp.vector(*shade(mass_colour(i), self.axes.index(axis)))
+                colour = vp.vector(*shade(self.colours[i], self.axes.index(axis)))
                 self._curve(graph, name, colour, ("r", i, axis),
                             width=simulation_width(i, model.state.count, crowded=not legend))
         return graph
@@ -153,7 +155,7 @@ class Graphs:
         if self.per_mass_energy:
             for i, label in enumerate(model.labels):
                 # half the position curves' widths: an energy that wobbles fast would fill a band
-                self._curve(graph, f"E {label}", vp.vector(*mass_colour(i)), ("mass_energy", i),
+                self._curve(graph, f"E {label}", vp.vector(*self.colours[i]), ("mass_energy", i),
                             width=simulation_width(i, model.state.count) / 2)
         else:
             for key, colour in ENERGY_COLOURS.items():

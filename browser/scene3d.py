@@ -11,7 +11,7 @@ import math
 
 import numpy as np
 
-from export.palette import mass_colour
+from export.palette import mass_colours
 
 CANVAS_SIZE = (900, 440)  # px
 TRAIL_POINTS = 300        # points kept in a trail: the last 15 s at one point per graph sample (0.05 s)
@@ -64,16 +64,17 @@ class Scene3D:
         # A long row gets fewer turns per spring: each turn is many triangles for the browser.
         coils = max(4, min(view["coils"], round(4 * view["coils"] / len(anchors))))
         self.springs, self.masses = [], []
-        for i, (anchor, r) in enumerate(zip(anchors, model.state.r)):
+        colours = mass_colours(model, view)  # each mass's, as its curves on the graphs
+        for anchor, r, colour in zip(anchors, model.state.r, colours):
             self.springs.append(vp.helix(pos=vec(vp, anchor), axis=vec(vp, r - anchor),
                                          radius=0.45 * radius, thickness=0.12 * radius,
                                          coils=coils, color=vp.vector(*SPRING_COLOUR)))
-            self.masses.append(vp.sphere(pos=vec(vp, r), radius=radius, color=vp.vector(*mass_colour(i))))
+            self.masses.append(vp.sphere(pos=vec(vp, r), radius=radius, color=vp.vector(*colour)))
         # The trail is drawn from the graph samples (every 0.05 s of simulation time), not by
         # vpython's make_trail, which adds a point only when the page draws a frame: on a busy
         # computer that is a few times a second, and the trail came out as jagged straight segments.
-        self.trails = [vp.curve(color=vp.vector(*mass_colour(i)), radius=0.06 * radius, retain=TRAIL_POINTS)
-                       for i in range(len(anchors))] if view["trail"] else []
+        self.trails = [vp.curve(color=vp.vector(*colour), radius=0.06 * radius, retain=TRAIL_POINTS)
+                       for colour in colours] if view["trail"] else []
         self.runaway_labels: dict = {}  # mass index -> its label, once it has run away
         self.shapes = [support, *self.springs, *self.masses, *self.trails]
 

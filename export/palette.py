@@ -5,16 +5,24 @@ neither, so the command line can use it without a browser and the page without m
 
 How curves stay apart on a projector:
 
-* mass i has colour MASS_COLOURS[i] in the 3-D view and in every graph;
+* mass i has colour MASS_COLOURS[i] in the 3-D view and in every graph; where a scene groups its
+  masses in rows, one row per curve of its own graph (resonance: a row of springs per b), each
+  mass has its row's curve colour instead (mass_colours), so "the blue row" is the blue line;
 * the simulation is a thick line in the mass's colour, and the exact solution a thin dark line drawn
   on top of it: where the two agree the thin line runs inside the thick one and both show;
-* several masses whose curves may coincide (the two balls of `drag` at first) get lines of
-  different widths, the first widest, so one shows as a border round the other.
+* several masses whose curves may coincide (the two balls of `drag` at first, the four methods of
+  `integrators`) get lines of different widths, the first widest, so each shows as a border round
+  the next.
 """
 from __future__ import annotations
 
 MASS_COLOURS = [(1.0, 0.55, 0.1), (0.25, 0.65, 1.0), (0.3, 0.85, 0.35), (0.95, 0.35, 0.6),
                 (0.8, 0.75, 0.2), (0.65, 0.45, 0.95)]      # orange, blue, green, pink, yellow, purple
+CURVE_COLOURS = [(0.1, 0.3, 0.9), (0.85, 0.1, 0.1), (0.1, 0.6, 0.1), (0.6, 0.2, 0.8),
+                 (0.5, 0.5, 0.5)]                           # blue, red, green, purple, grey: a family of
+                                                            # curves, such as resonance's A(ω) per b
+LIVE_COLOUR = MASS_COLOURS[0]                               # a scene graph's dots that follow the run
+                                                            # (resonance's springs now): orange, no curve's
 EXACT_COLOUR = (0.1, 0.1, 0.1)                              # near black
 ENERGY_COLOURS = {"K": (0.85, 0.1, 0.1), "U": (0.1, 0.3, 0.9), "E": (0.0, 0.0, 0.0),
                   "E_minus_W_nc": (0.1, 0.6, 0.1)}          # red, blue, black, green
@@ -23,7 +31,7 @@ ENERGY_LABELS = {"K": "K", "U": "U", "E": "E = K + U", "E_minus_W_nc": "E − W_
 EXACT_WIDTH = 1            # px: the exact solution, thin, on top
 SIMULATION_WIDTH = 6       # px: the last (or only) mass's simulated curve
 WIDTH_STEP = 4             # px: each earlier mass's curve is this much wider (2 px of border each side)
-MAX_WIDTH = 14             # px: the widest curve
+MAX_WIDTH = 14             # px: the widest curve (more than three masses share it in smaller steps)
 CROWDED_WIDTH = 2          # px: every curve of a long row of masses (they do not overlap)
 
 
@@ -32,14 +40,42 @@ def mass_colour(i: int) -> tuple[float, float, float]:
     return MASS_COLOURS[i % len(MASS_COLOURS)]
 
 
+def curve_colour(j: int) -> tuple[float, float, float]:
+    """The colour of curve j of a family (the palette repeats after five curves)."""
+    return CURVE_COLOURS[j % len(CURVE_COLOURS)]
+
+
+def mass_colours(model, view: dict) -> list[tuple[float, float, float]]:
+    """The colour of each mass of a model: its sphere, its trail and its curves, on the page and in --plot.
+
+    Mass i has mass_colour(i), unless the scene's VIEW names "rows": a function of the model giving
+    each mass's row, one row per curve of the scene's own graph. Then every mass of row j has that
+    curve's colour, curve_colour(j): in `resonance` the springs of the row with b = 0.5 kg/s are
+    blue, as is the line of b = 0.5 kg/s on the amplitude graph.
+    """
+    rows = view.get("rows")
+    if rows is None:
+        return [mass_colour(i) for i in range(model.state.count)]
+    return [curve_colour(int(j)) for j in rows(model)]
+
+
 def shade(colour, rank: int) -> tuple[float, float, float]:
     """The colour, darker for the second and third coordinate of one mass (x, y, z in `pendulum`)."""
     factor = 1.0 - 0.3 * rank
     return tuple(c * factor for c in colour)
 
 
+def energy_label(key: str, *, from_rest: bool = False) -> str:
+    """The legend of energy curve `key` (K, U, E, E_minus_W_nc); from_rest: measured from rest at
+    equilibrium, so every energy but K has U_rest taken off."""
+    return ENERGY_LABELS[key] + (" − U_rest" if from_rest and key != "K" else "")
+
+
 def simulation_width(i: int, count: int, *, crowded: bool = False) -> float:
-    """Width, px, of mass i's simulated curve among `count`: wider for earlier masses."""
+    """Width, px, of mass i's simulated curve among `count`: wider for earlier masses, never wider
+    than MAX_WIDTH, so with four or more masses the step between neighbours is less than WIDTH_STEP
+    (four masses: 14, 11.3, 8.7 and 6 px)."""
     if crowded:
         return CROWDED_WIDTH
-    return min(SIMULATION_WIDTH + WIDTH_STEP * (count - 1 - i), MAX_WIDTH)
+    step = min(WIDTH_STEP, (MAX_WIDTH - SIMULATION_WIDTH) / max(count - 1, 1))
+    return SIMULATION_WIDTH + step * (count - 1 - i)

@@ -3,6 +3,9 @@
 Two graphs, like the page's: position against time for each mass (the iteration solid, the exact
 solution dashed where a closed form exists), and energy against time, K, U, E and E − W_nc.
 E − W_nc staying flat is the energy principle; how flat it stays shows the integrator's accuracy.
+As on the page, the energies of a system that starts at rest at equilibrium are measured from
+there, and the energy axis is fitted to the masses not expected to run away. A scene with its own
+graph (resonance) gets a third panel. Every colour is the page's (export/palette.py).
 
 matplotlib is an optional extra: it is imported only here, only when a figure is asked for, and
 with the Agg backend so no window is needed.
@@ -14,8 +17,11 @@ import sys
 import numpy as np
 
 from export.files import OutputError, atomic_file
-from export.palette import (ENERGY_COLOURS, ENERGY_LABELS, EXACT_COLOUR, mass_colour, shade,
+from export.palette import (ENERGY_COLOURS, EXACT_COLOUR, curve_colour, energy_label, mass_colours, shade,
                             simulation_width)
+from physics.energy import kinetic, potential, rest_potential
+from physics.stability import growing
+from physics.state import State
 
 POINTS_PER_PX = 0.75 # matplotlib widths are in points: the page's px widths, scaled to this figure
 
@@ -62,22 +68,22 @@ def moving_axes(r: np.ndarray, preferred: str | None = None) -> list[int]:
 
 def energy_per_body(traj, forces):
     """E = K + U and E − W_nc of each mass at every sample, (n, N) arrays in J."""
-    from physics.energy import kinetic, potential
-    from physics.state import State
-
     states = State(t=traj.t, r=traj.r, p=traj.p, m=traj.m)     # every sample at once
     E = kinetic(states) + potential(states, forces)
     return E, E - traj.work     # W_nc of each mass, as the engine metered it
 
 
 def resonance_panel(ax, curve: dict) -> None:
-    """Measured steady-state amplitudes (dots) on the exact F0/√((k − mω²)² + (bω)²) (lines), per b."""
+    """Measured steady-state amplitudes (dots) on the exact F0/√((k − mω²)² + (bω)²) (smooth lines),
+    per b, each b in the colour of its line on the page and of its row of springs."""
     omega = np.asarray(curve["omega_rad_per_s"])
     measured_all = curve["amplitude_m"] or [None] * len(curve["b_kg_per_s"])   # None: run too short
-    for b, measured, exact in zip(curve["b_kg_per_s"], measured_all, curve["exact_amplitude_m"]):
-        line, = ax.plot(omega, exact, label=f"exact, b = {b:.3g} kg/s")
+    for j, (b, measured, exact) in enumerate(zip(curve["b_kg_per_s"], measured_all,
+                                                 curve["smooth_exact_amplitude_m"])):
+        ax.plot(curve["smooth_omega_rad_per_s"], exact, color=curve_colour(j), label=f"exact, b = {b:.3g} kg/s")
         if measured is not None:
-            ax.plot(omega, measured, "o", ms=4, color=line.get_color(), label=f"measured, b = {b:.3g} kg/s")
+            ax.plot(omega, measured, "o", ms=5, color=curve_colour(j), markeredgecolor="white",
+                    label=f"measured, b = {b:.3g} kg/s")
     ax.set_xlabel("driving angular frequency ω (rad/s)")
     ax.set_ylabel("amplitude (m)")
     ax.legend(loc="best", fontsize="small")
@@ -95,11 +101,73 @@ def exact_curve(model, t):
     return r, v
 
 
+def expected_runaways(model, methods) -> set[int]:
+    """The masses expected to run away, judged as the page judges them (browser/clock.py's
+    expected_runaways, which reports/ may not import): those the scene names, and, where each mass
+    has its own integrator, those whose method makes the motion grow at this Δt (physics.stability)."""
+    runaways = set(model.may_run_away)
+    if model.integrators:
+        runaways |= {int(i) for i in np.flatnonzero(growing(model.forces, model.state.m, methods, model.dt))}
+    return runaways
+
+
+def fit_y(ax, values, *, margin: float = 0.05) -> tuple[float, float]:
+    """Fix the y axis on `values`, with matplotlib's usual 5 % margin: other curves may leave it."""
+    low, high = float(np.nanmin(values)), float(np.nanmax(values))
+    pad = margin * (high - low) or margin * max(abs(high), 1e-9)
+    ax.set_ylim(low - pad, high + pad)
+    return low - pad, high + pad
+
+
+def energy_panel(ax, result) -> None:
+    """Energy against time, as the page's energy graph shows it (browser/graphs.py).
+
+    Where the masses start at rest at equilibrium, every energy but K is measured from there
+    (U − U_rest, …): the oscillation's energy, not a constant m g h of hundreds of joules that
+    would flatten every curve. Two to four masses get each mass's own E (and E − W_nc where a force
+    does work), and the axis fits the masses not expected to run away: euler's growing energy leaves
+    the graph, as on the page.
+    """
+    traj, model = result.trajectory, result.model
+    rest = rest_potential(model.state, model.forces)    # Σ U at rest at equilibrium, or None
+    from_rest = rest is not None
+    if 1 < len(model.labels) <= MAX_LEGEND // 2:
+        E, E_minus_W = energy_per_body(traj, model.forces)
+        if from_rest:   # each mass's own U at rest
+            U_rest = potential(model.state, model.forces)
+            E, E_minus_W = E - U_rest, E_minus_W - U_rest
+        runaways = expected_runaways(model, result.methods)
+        steady = [i for i in range(len(model.labels)) if i not in runaways]
+        low, high = fit_y(ax, [E[:, steady], E_minus_W[:, steady]]) if runaways and steady else (-np.inf, np.inf)
+        colours = mass_colours(model, getattr(result.setup.module, "VIEW", {}))
+        for i, label in enumerate(model.labels):
+            name = f"{label}: {energy_label('E', from_rest=from_rest)}"
+            if np.nanmax(E[:, i]) > high or np.nanmin(E[:, i]) < low:
+                name += ", runs off the graph"
+            ax.plot(traj.t, E[:, i], color=colours[i], label=name)
+            if np.any(traj.work):   # else E − W_nc is E: a second line on it would only crowd the legend
+                ax.plot(traj.t, E_minus_W[:, i], ":", color=colours[i],
+                        label=f"{label}: {energy_label('E_minus_W_nc', from_rest=from_rest)}")
+        ax.set_title("Energy of each mass" + (", measured from rest at equilibrium" if from_rest else ""))
+        ax.legend(loc="best", fontsize="small")
+    elif traj.energy is not None:
+        for key, colour in ENERGY_COLOURS.items():
+            ax.plot(traj.t, traj.energy[key] - (rest if from_rest and key != "K" else 0.0), color=colour,
+                    label=energy_label(key, from_rest=from_rest), lw=2.4 if key == "E" else 1.5)
+        if from_rest:
+            ax.set_title("Energy, measured from rest at equilibrium")
+        ax.legend(loc="best", fontsize="small")
+    ax.set_ylabel("energy (J)")
+    ax.set_xlabel("t (s)")
+    ax.grid(alpha=0.3)
+
+
 def plot(result, path: str) -> None:
     """Write the run's position and energy graphs to `path` (a headless.Result)."""
     plt = _pyplot()
     traj, model = result.trajectory, result.model
-    preferred = getattr(result.setup.module, "VIEW", {}).get("plot")
+    view = getattr(result.setup.module, "VIEW", {})
+    preferred = view.get("plot")
     axes_shown = moving_axes(traj.r, preferred if isinstance(preferred, str) else None)
     # closed forms drawn smooth, whatever Δt is: at least 50 points a second, 2,000 in all
     smooth_t = np.linspace(traj.t[0], traj.t[-1], max(2000, int(50 * (traj.t[-1] - traj.t[0]))))
@@ -111,6 +179,7 @@ def plot(result, path: str) -> None:
     ax_e.sharex(ax_r)
     if curve:
         resonance_panel(axes[2], curve)
+    colours = mass_colours(model, view)
     for i, label in enumerate(model.labels):
         for axis in axes_shown:
             name = "xyz"[axis]
@@ -118,31 +187,17 @@ def plot(result, path: str) -> None:
             crowded = len(model.labels) * len(axes_shown) > MAX_LEGEND
             width = POINTS_PER_PX * simulation_width(i, len(model.labels), crowded=crowded)
             ax_r.plot(traj.t, traj.r[:, i, axis], lw=width, label=tag,
-                      color=shade(mass_colour(i), axes_shown.index(axis)))
+                      color=shade(colours[i], axes_shown.index(axis)))
             if exact is not None and not crowded and np.any(np.isfinite(exact[0][:, i, axis])):
                 first = not any(line.get_label() == "exact" for line in ax_r.lines)
                 ax_r.plot(smooth_t, exact[0][:, i, axis], "--", lw=1.2, color=EXACT_COLOUR, zorder=3,
                           label="exact" if first else "_nolegend_")
     ax_r.set_ylabel("position (m)")
-    ax_r.set_title(f"{result.setup.name}: dt = {model.dt:g} s, "
-                   f"{result.integrator if isinstance(result.integrator, str) else ', '.join(result.integrator)}")
+    ax_r.set_title(f"{result.setup.name}: dt = {model.dt:g} s, {result.integrator}")
     if len(ax_r.lines) <= MAX_LEGEND:
         ax_r.legend(loc="best", fontsize="small")
     ax_r.grid(alpha=0.3)
-    if 1 < len(model.labels) <= MAX_LEGEND // 2:
-        E, E_minus_W = energy_per_body(traj, model.forces)
-        for i, label in enumerate(model.labels):
-            ax_e.plot(traj.t, E[:, i], color=mass_colour(i), label=f"{label}: E")
-            ax_e.plot(traj.t, E_minus_W[:, i], ":", color=mass_colour(i), label=f"{label}: E − W_nc")
-        ax_e.legend(loc="best", fontsize="small")
-    elif traj.energy is not None:
-        for key, label in ENERGY_LABELS.items():
-            ax_e.plot(traj.t, traj.energy[key], color=ENERGY_COLOURS[key], label=label,
-                      lw=2.4 if key == "E" else 1.5)
-        ax_e.legend(loc="best", fontsize="small")
-    ax_e.set_ylabel("energy (J)")
-    ax_e.set_xlabel("t (s)")
-    ax_e.grid(alpha=0.3)
+    energy_panel(ax_e, result)
     fig.tight_layout()
     try:
         # A temporary file renamed into place: a failure part-way leaves the old figure as it was.

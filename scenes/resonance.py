@@ -211,14 +211,18 @@ def extra_json(result) -> dict:
     return {"resonance": out}
 
 
-CURVE_COLOURS = [(0.1, 0.3, 0.9), (0.85, 0.1, 0.1), (0.1, 0.6, 0.1), (0.6, 0.2, 0.8), (0.5, 0.5, 0.5)]
-ROW_COLOUR = (1.0, 0.55, 0.1)  # the live dots: the springs shown in 3-D (orange)
+def rows(model) -> np.ndarray:
+    """Which row each spring is in, 0 for the front one: row j has the j-th b (b·ratio^j), j·ROW_DEPTH
+    behind the front. The view draws row j's springs in the colour of curve j on the resonance
+    graph, the line of their b (export/palette.py's mass_colours)."""
+    return np.rint(-model.anchors[:, 2] / ROW_DEPTH).astype(int)
 
 
 def view_graph(setup) -> dict:
     """The page's resonance graph (browser/graphs.py): amplitude against driving frequency.
 
-    For each b, the exact A(ω) = F0/√((k − mω²)² + (bω)²) as a line. On top, every spring of the
+    For each b, the exact A(ω) = F0/√((k − mω²)² + (bω)²) as a line, curve j in the palette's
+    colour j (the colour of the row of springs with that b). On top, every spring of the
     batch shown in 3-D: its A = √(x² + (v/ω)²) at this instant, as dots that wobble while the
     start-up transient lasts and settle onto their b's line as it dies away (like e^(−bt/2m)).
     Nothing is run twice: the dots are the very springs the page steps.
@@ -230,7 +234,7 @@ def view_graph(setup) -> dict:
     lines = []
     for j, b_j in enumerate(b_each):
         exact = steady_state_amplitude(m=v["m"], k=v["k"], b=b_j, F0=v["F0"], omega=smooth)
-        lines.append((f"b = {b_j:.3g} kg/s", smooth, exact, CURVE_COLOURS[j % len(CURVE_COLOURS)]))
+        lines.append((f"b = {b_j:.3g} kg/s", smooth, exact, j))
     top = float(max(np.max(line[2]) for line in lines))
     omega_all = np.tile(omega, len(b_each))
 
@@ -241,9 +245,11 @@ def view_graph(setup) -> dict:
             "xtitle": "driving angular frequency ω (rad/s)", "ytitle": "amplitude A (m)",
             "xmin": float(v["omega_min"]), "xmax": float(v["omega_max"]), "ymin": 0.0, "ymax": 1.15 * top,
             "lines": lines, "dots": [],
-            "live": live, "live_label": "springs now", "live_colour": ROW_COLOUR}
+            "live": live, "live_label": "springs now"}
 
 
 
 # The resonance graph shows the amplitudes; each spring's exact curve would only crowd the position graph.
-VIEW = {"support": "ceiling", "plot": "y", "trail": False, "exact": False, "sliders": ["b", "F0", "m", "k"]}
+# Each row of springs in the colour of its b's line (rows).
+VIEW = {"support": "ceiling", "plot": "y", "trail": False, "exact": False, "sliders": ["b", "F0", "m", "k"],
+        "rows": rows}

@@ -7,9 +7,11 @@ import subprocess
 import sys
 from pathlib import Path
 
+import numpy as np
 import pytest
 
-from export.palette import MASS_COLOURS, simulation_width
+from export.palette import (CURVE_COLOURS, LIVE_COLOUR, MASS_COLOURS, MAX_WIDTH, SIMULATION_WIDTH, mass_colours,
+                            simulation_width)
 
 ROOT = Path(__file__).resolve().parent.parent
 MATPLOTLIB_DEFAULTS = [(31, 119, 180), (255, 127, 14)]   # its first two colours, blue then orange
@@ -47,3 +49,156 @@ def test_the_plot_draws_each_mass_in_the_page_colour(tmp_path):
     assert pixels_like(image, second, within=30) > 500
     for colour in MATPLOTLIB_DEFAULTS:
         assert pixels_like(image, colour, within=12) < 50, f"a curve in matplotlib's own colour {colour}"
+
+
+# ---- issue 12, "What the class sees": what --plot draws, as the page draws it ----
+
+def figure_of(scene: str, tmp_path, monkeypatch):
+    """The figure `--plot` draws for a scene's default run, its matplotlib objects kept for looking at."""
+    pytest.importorskip("matplotlib")
+    import matplotlib.figure
+
+    from reports import headless, plotting
+    from scenes import catalog
+
+    figures = []
+    save = matplotlib.figure.Figure.savefig
+    monkeypatch.setattr(matplotlib.figure.Figure, "savefig",
+                        lambda self, *a, **k: figures.append(self) or save(self, *a, **k))
+    plotting.plot(headless.simulate(catalog.configure(scene), progress=None), str(tmp_path / f"{scene}.png"))
+    (figure,) = figures
+    return figure
+
+
+def energy_axes(figure):
+    (ax,) = [ax for ax in figure.axes if ax.get_ylabel() == "energy (J)"]
+    return ax
+
+
+def test_the_plot_measures_resonance_energy_from_rest_at_equilibrium_as_the_page_does(tmp_path, monkeypatch):
+    """Not −450 J of m g h with the swing's few joules lost in it: U − U_rest starts at 0."""
+    ax = energy_axes(figure_of("resonance", tmp_path, monkeypatch))
+    lines = {line.get_label(): np.asarray(line.get_ydata()) for line in ax.lines}
+    assert set(lines) == {"K", "U − U_rest", "E = K + U − U_rest", "E − W_nc − U_rest"}
+    assert lines["U − U_rest"][0] == pytest.approx(0.0, abs=1e-9)
+    assert lines["E − W_nc − U_rest"] == pytest.approx(0.0, abs=0.01)    # the energy principle
+    low, high = ax.get_ylim()
+    assert -1.0 < low < 0.0 and 1.0 < high < 20.0                         # a few joules, not hundreds
+    assert 1.0 < lines["E = K + U − U_rest"].max() < high
+
+
+def test_the_plot_fits_the_energy_axis_to_the_methods_that_do_not_run_away(tmp_path, monkeypatch):
+    """integrators: euler's energy grows to 21 J; the axis shows the others' 0.3 J and euler leaves it."""
+    from physics.stability import growing
+    from scenes import catalog
+
+    model = catalog.configure("integrators").build()
+    runs_away = growing(model.forces, model.state.m, model.methods(), model.dt)
+    assert [name for name, grows in zip(model.labels, runs_away) if grows] == ["euler"]
+    ax = energy_axes(figure_of("integrators", tmp_path, monkeypatch))
+    low, high = ax.get_ylim()
+    assert high < 1.0
+    for line in ax.lines:
+        E = np.asarray(line.get_ydata())
+        if line.get_label().startswith("euler:"):
+            assert E.max() > 10 * high and "runs off the graph" in line.get_label()
+        else:
+            assert low < E.min() and E.max() < high, line.get_label()
+            if line.get_label().startswith("euler-cromer:"):                 # its wobble fills the graph
+                assert E.max() - E.min() > 0.5 * (high - low)
+
+
+def test_the_plot_draws_the_exact_resonance_curve_smooth(tmp_path, monkeypatch):
+    """A(ω) on hundreds of ω, not a polyline through the 13 springs' frequencies."""
+    from physics.exact import steady_state_amplitude
+    from scenes import catalog
+
+    v = catalog.configure("resonance").values
+    (ax,) = [ax for ax in energy_axes(figure_of("resonance", tmp_path, monkeypatch)).figure.axes
+             if ax.get_ylabel() == "amplitude (m)"]
+    exact = [line for line in ax.lines if line.get_label().startswith("exact")]
+    assert len(exact) == v["curves"]
+    for line in exact:
+        omega, A = (np.asarray(a) for a in line.get_data())
+        assert len(omega) >= 20 * v["count"]
+        assert omega[0] == v["omega_min"] and omega[-1] == v["omega_max"]
+        b = float(line.get_label().split("b = ")[1].split()[0])
+        assert A == pytest.approx(steady_state_amplitude(m=v["m"], k=v["k"], b=b, F0=v["F0"], omega=omega))
+
+
+def test_the_plot_draws_each_resonance_b_in_the_page_colour(tmp_path):
+    """b = 1 kg/s was matplotlib's orange in --plot and red on the page: now each b has CURVE_COLOURS[j]
+    in the amplitude panel and its row of springs in the position panel, and no curve is matplotlib's."""
+    pytest.importorskip("matplotlib")
+    Image = pytest.importorskip("PIL.Image")
+    from browser_support import pixels_like
+
+    path = tmp_path / "resonance.png"
+    done = subprocess.run([sys.executable, "main.py", "resonance", "--plot", str(path)],
+                          cwd=ROOT, capture_output=True, text=True, timeout=120)
+    assert done.returncode == 0, done.stderr
+    image = Image.open(path).convert("RGB")
+    for colour in CURVE_COLOURS[:3]:                     # blue, red, green: b = 0.5, 1 and 2 kg/s
+        assert pixels_like(image, rgb(colour), within=30) > 2000, colour
+    for colour in MATPLOTLIB_DEFAULTS + [rgb(c) for c in MASS_COLOURS[:2]]:
+        assert pixels_like(image, colour, within=12) < 50, f"a curve in colour {colour}"
+
+
+def resonance_page():
+    """The resonance page's 3-D view and graphs, drawn with a stand-in for vpython (no browser)."""
+    from browser.graphs import Graphs
+    from browser.scene3d import Scene3D
+    from browser.view import DEFAULT_VIEW
+    from scenes import catalog
+    from test_trail import Shape, stand_in_vpython
+
+    class Series(Shape):
+        def delete(self):
+            self.points.clear()
+
+        def plot(self, points):
+            self.points.extend(points)
+
+    vp = stand_in_vpython()
+    vp.graph, vp.gcurve, vp.gdots = Shape, Series, Series
+    setup = catalog.configure("resonance")
+    model = setup.build()
+    view = {**DEFAULT_VIEW, **setup.module.VIEW}
+    return setup, model, Scene3D(vp, model=model, view=view, title="resonance"), Graphs(vp, setup=setup,
+                                                                                        model=model, view=view)
+
+
+def test_each_row_of_resonance_springs_has_the_colour_of_its_b_line():
+    """On the page, the springs with b = 0.5 kg/s are blue, as the b = 0.5 kg/s line of the
+    amplitude graph and their curves on the position graph: a teacher can point at the blue row."""
+    setup, model, scene, graphs = resonance_page()
+    line_colour = {series.label: tuple(series.color) for series in graphs.scene_series}
+    assert sorted(line_colour.values()) == sorted(CURVE_COLOURS[:3])
+    positions = [curve.color for curve, _, what in graphs.curves if what[0] == "r"]
+    b = model.forces[1].b.ravel()
+    assert len(scene.masses) == len(positions) == len(b) == 39
+    for sphere, position, b_i in zip(scene.masses, positions, b):
+        colour = line_colour[f"b = {b_i:.3g} kg/s"]
+        assert tuple(sphere.color) == colour and tuple(position) == colour
+    assert tuple(graphs.live_dots.color) == LIVE_COLOUR      # the springs now: orange, no b's colour
+    assert LIVE_COLOUR not in CURVE_COLOURS
+
+
+def test_masses_not_in_rows_keep_their_own_colours():
+    from browser.view import DEFAULT_VIEW
+    from scenes import catalog
+
+    setup = catalog.configure("integrators")
+    colours = mass_colours(setup.build(), {**DEFAULT_VIEW, **setup.module.VIEW})
+    assert colours == MASS_COLOURS[:4]
+
+
+def test_four_masses_have_four_widths_that_a_projector_shows_apart():
+    """integrators' euler and euler-cromer were both 14 px: where they coincide only one showed."""
+    for count in (2, 3, 4):
+        widths = [simulation_width(i, count) for i in range(count)]
+        assert all(a >= b + 2 for a, b in zip(widths, widths[1:])), widths   # ≥ 1 px of border each side
+        assert widths[0] <= MAX_WIDTH and widths[-1] == SIMULATION_WIDTH
+    for count in (5, 6):
+        widths = [simulation_width(i, count) for i in range(count)]
+        assert all(a > b for a, b in zip(widths, widths[1:])) and widths[0] <= MAX_WIDTH, widths
