@@ -146,6 +146,8 @@ def presets_report(setup) -> str:
 BROWSER_ONLY = (("--port", "port"), ("--no-browser", "no_browser"))
 RUN_OPTIONS = (("--headless", "headless"), ("--json", "json"), ("--csv", "csv"), ("--plot", "plot"),
                ("--steps", "steps"), ("--until", "until"), ("--integrator", "integrator"))
+PROGRAM_OPTIONS = (("--vpython", "vpython"), ("--webvpython", "webvpython"))
+OUTPUT_FILES = (("--csv", "csv"), ("--plot", "plot"), *PROGRAM_OPTIONS)
 
 
 def _given(args, attribute) -> bool:
@@ -159,14 +161,15 @@ def check_options(args) -> None:
     if args.list:
         others = [flag for flag, attribute in (("--constants", "constants"), ("--set", "assignments"),
                                                ("--scenario", "scenario"), ("--preset", "preset"),
-                                               *RUN_OPTIONS, *BROWSER_ONLY) if _given(args, attribute)]
+                                               *RUN_OPTIONS, *PROGRAM_OPTIONS, *BROWSER_ONLY)
+                  if _given(args, attribute)]
         if args.scene is not None or others:
             what = f"scene {args.scene!r}" if args.scene is not None else others[0]
             raise UsageError(f"--list takes no scene or other option (got {what}); "
                              f"use 'python main.py SCENE --constants' for one scene")
         return
     if args.constants:
-        for flag, attribute in (*RUN_OPTIONS, *BROWSER_ONLY):
+        for flag, attribute in (*RUN_OPTIONS, *PROGRAM_OPTIONS, *BROWSER_ONLY):
             if _given(args, attribute):
                 raise UsageError(f"--constants only prints the constants, so {flag} would do nothing; "
                                  f"leave out one of them")
@@ -178,6 +181,12 @@ def check_options(args) -> None:
             if _given(args, attribute):
                 raise UsageError(f"{flag} is for the browser page, and a headless run (--headless, "
                                  f"--steps, --plot) has none; leave out one of them")
+    programs = [flag for flag, attribute in PROGRAM_OPTIONS if _given(args, attribute)]
+    if programs and not runs_headless:
+        for flag, attribute in BROWSER_ONLY:
+            if _given(args, attribute):
+                raise UsageError(f"{flag} is for the browser page, and {programs[0]} only writes a "
+                                 f"program (no page opens); leave out one of them")
     if args.until is not None:
         if not runs_headless:
             raise UsageError("--until needs --headless (the browser runs until you stop it)")
@@ -193,20 +202,39 @@ def check_options(args) -> None:
     if args.port is not None and not 1 <= args.port <= 65535:
         raise UsageError(f"--port must be a whole number from 1 to 65535 (got {args.port}); "
                          f"leave --port out for any free port")
-    outputs = [(flag, path) for flag, path in (("--csv", args.csv), ("--plot", args.plot)) if path]
-    if len(outputs) == 2 and files.same_file(outputs[0][1], outputs[1][1]):
-        raise UsageError(f"--csv and --plot both write {args.csv!r}: give them different files")
+    outputs = [(flag, getattr(args, attribute)) for flag, attribute in OUTPUT_FILES
+               if getattr(args, attribute) not in (None, files.STDOUT)]
+    for n, (flag, path) in enumerate(outputs):
+        for other, other_path in outputs[n + 1:]:
+            if files.same_file(path, other_path):
+                raise UsageError(f"{flag} and {other} both write {path!r}: give them different files")
+    printers = [f"{flag} -" for flag, attribute in PROGRAM_OPTIONS if getattr(args, attribute) == files.STDOUT]
+    if runs_headless:
+        printers.append("--json" if args.json else "--steps" if args.steps is not None else
+                        "--headless (its report)")
+    if len(printers) > 1:
+        raise UsageError(f"{printers[0]} and {printers[1]} would both print on standard output, one "
+                         f"after the other; write the program to a file instead")
 
 
-def run_headless(args, setup) -> int:
-    """The headless paths: the step table, the final state (text or JSON), the CSV file and the figure.
-
-    Output files are checked before anything runs, so a typo in a path costs no computing time.
-    """
+def build_model(args, setup):
+    """The scene's model, from its constants; UsageError if the physics cannot take them, or if
+    --integrator would do nothing (a scene that steps each mass with its own method)."""
     try:
         model = setup.build()
     except ValueError as problem:  # a combination of constants the physics cannot take
         raise UsageError(str(problem)) from None
+    if args.integrator is not None and model.integrators is not None:
+        raise UsageError(f"scene {setup.name!r} steps its masses with {', '.join(model.integrators)}, "
+                         f"one each, so --integrator {args.integrator} would do nothing; leave it out")
+    return model
+
+
+def run_headless(args, setup, model) -> int:
+    """The headless paths: the step table, the final state (text or JSON), the CSV file and the figure.
+
+    Output files are checked before anything runs, so a typo in a path costs no computing time.
+    """
     until = model.until if args.until is None else args.until
     every_step = args.csv is not None or args.plot is not None
     engine = model.simulation(args.integrator)   # the one that runs: its cost is measured once
@@ -219,11 +247,9 @@ def run_headless(args, setup) -> int:
         from reports import plotting
 
         plotting.check_format(args.plot)
-    method = model.methods(args.integrator)
-    for line in (headless.ignored_integrator_note(model, args.integrator),
-                 headless.stability_warning(model, method)):
-        if line:
-            print(line, file=sys.stderr)
+    warning = headless.stability_warning(model, model.methods(args.integrator))
+    if warning:
+        print(warning, file=sys.stderr)
 
     if args.steps is not None:
         table = headless.step_table(setup, model=model, integrator=args.integrator, steps=args.steps)
@@ -252,13 +278,22 @@ def run_headless(args, setup) -> int:
     return 0
 
 
-def write_programs(args, setup) -> None:
+def write_programs(args, setup, model, *, warn: bool) -> None:
     """--vpython FILE.py and --webvpython FILE.py: the scene as a program to hand out (export/).
 
     Every program is made and every path checked before any file is written, so bad input leaves
-    no file at all.
+    no file at all. With `warn`, a Δt the program's motion will grow or blow up at is said on
+    stderr (the program is still written: showing that may be the lesson).
     """
     import export
+
+    if warn:
+        try:
+            warning = headless.stability_warning(model, model.methods(args.integrator))
+        except BlowUpError as problem:
+            warning = f"warning: {problem}; the program is written as asked"
+        if warning:
+            print(warning, file=sys.stderr)
 
     try:
         texts = [(path, export.program(setup, integrator=args.integrator, web=web))
@@ -292,12 +327,14 @@ def main(argv=None) -> int:
             print(headless.constants_report(setup))
             print(presets_report(setup))
             return 0
+        model = build_model(args, setup)
+        runs_headless = args.headless or args.steps is not None or args.plot is not None
         if args.vpython is not None or args.webvpython is not None:
-            write_programs(args, setup)   # then a headless run too, if one is asked for
-            if not (args.headless or args.steps is not None or args.plot is not None):
+            write_programs(args, setup, model, warn=not runs_headless)   # then a headless run too, if asked
+            if not runs_headless:
                 return 0
-        if args.headless or args.steps is not None or args.plot is not None:
-            return run_headless(args, setup)
+        if runs_headless:
+            return run_headless(args, setup, model)
     except (ConstantError, UsageError, files.OutputError) as problem:
         print(f"error: {problem}", file=sys.stderr)
         return 2
@@ -308,14 +345,13 @@ def main(argv=None) -> int:
     from browser.view import show
 
     try:
-        model = setup.build()
         check_live_cost(model, args.integrator)
     except ValueError as problem:
         print(f"error: {problem}", file=sys.stderr)
         return 2
     # the page's integrator menu starts where a headless run would: the scene's own default (rk4 for
     # resonance), else the page's euler-cromer
-    integrator = args.integrator or model.default_integrator or DEFAULT_INTEGRATOR
+    integrator = model.methods(args.integrator)[0]
 
     preset = catalog.find_preset(setup, args.preset)[0] if args.preset else None
     if preset is None and args.scenario is not None:  # the page's preset menu names the scenario shown

@@ -201,14 +201,6 @@ def stop_note(model, *, until: float) -> str | None:
             f"the run stopped at {n}·dt = {number(stop)} s")
 
 
-def ignored_integrator_note(model, integrator: str | None) -> str | None:
-    """A note when the scene picks each mass's method itself, so --integrator has no effect."""
-    if integrator is None or model.integrators is None:
-        return None
-    return (f"note: this scene steps its masses with {', '.join(model.integrators)}; "
-            f"--integrator {integrator} is ignored")
-
-
 def stability_warning(model, methods) -> str | None:
     """Judge Δt before a run (physics.stability.judge): None if the motion will not grow.
 

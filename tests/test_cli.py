@@ -372,12 +372,17 @@ def test_plot_without_matplotlib_says_how_to_install_it(tmp_path):
     assert not path.exists()
 
 
-def test_scene_that_compares_integrators_reports_each_body_and_ignores_integrator():
-    done = cli("integrators", "--headless", "--json", "--integrator", "rk4")
+def test_scene_that_compares_integrators_reports_each_body_and_refuses_integrator():
+    done = cli("integrators", "--headless", "--json")
     assert done.returncode == 0, done.stderr
     out = json.loads(done.stdout)
     assert isinstance(out["integrator"], list) and len(out["bodies"]) == len(out["integrator"])
-    assert "--integrator rk4 is ignored" in done.stderr
+    for mode in (["--headless"], ["--vpython", "-"], ["--no-browser"]):   # a flag that would do nothing
+        refused = cli("integrators", *mode, "--integrator", "rk4")
+        assert refused.returncode == 2 and refused.stdout == ""
+        assert refused.stderr.splitlines() == [
+            "error: scene 'integrators' steps its masses with euler, euler-cromer, verlet, rk4, one each, "
+            "so --integrator rk4 would do nothing; leave it out"]
     errors = {name: body["exact"]["error"]["r"] for name, body in zip(out["integrator"], out["bodies"])}
     assert errors["rk4"] < errors["euler-cromer"] < errors["euler"]  # higher order, smaller error
 
@@ -714,3 +719,18 @@ def test_the_plot_draws_the_exact_solution_smooth_even_at_a_coarse_dt(tmp_path, 
     plotting.plot(result, str(tmp_path / "v.png"))
     exact = [a for a, k in drawn if k.get("label") == "exact"]
     assert len(exact) == 1 and len(exact[0][0]) >= 2000
+
+
+def test_a_program_past_the_stability_limit_is_written_with_a_warning(tmp_path):
+    """--headless refuses a Δt past the limit (exit 1); a program to hand out is still written,
+    since showing the blow-up may be the lesson, but stderr says what it will do."""
+    path = tmp_path / "v.py"
+    done = cli("vertical", "--set", "dt=1.5", "--vpython", str(path))
+    assert done.returncode == 0 and path.exists()
+    warning = done.stderr.splitlines()[0]
+    assert warning.startswith("warning: the run would blow up, past the stability limit: dt = 1.5 s")
+    assert warning.endswith("; the program is written as asked")
+    growing = cli("vertical", "--integrator", "euler", "--vpython", str(path))
+    assert growing.returncode == 0 and growing.stderr.startswith("warning: expect the motion to grow")
+    quiet = cli("vertical", "--vpython", str(path))
+    assert quiet.returncode == 0 and quiet.stderr == f"wrote {path}\n"
