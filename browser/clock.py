@@ -34,7 +34,7 @@ import numpy as np
 
 from physics.energy import series
 from physics.simulate import BlowUpError, time_grid
-from physics.stability import growing, judge, rates
+from physics.stability import judge, rates
 from physics.state import State
 
 
@@ -192,7 +192,7 @@ class LiveRun:
     Once it is farther than ``runaway_reach`` metres from its anchor the engine freezes it there
     (at rest) and names it in :attr:`runaways` as {mass index: (t in s, reason sentence)}, while
     the other masses run on; the whole run stops (:attr:`problem`) only if a mass not expected to
-    run away blows up. :attr:`may_run_away` lists the masses expected to (expected_runaways).
+    run away blows up. :attr:`may_run_away` lists the masses expected to (Model.expected_runaways).
     """
 
     def __init__(self, model, *, integrator: str, sample_every: float = 0.05,
@@ -204,7 +204,7 @@ class LiveRun:
         omega = float(np.max(rates(model.forces, model.state.m).omega))
         speed = float(np.max(np.linalg.norm(v0, axis=-1)))
         self.runaway_reach = 3.0 * (size + (speed / omega if omega else speed))
-        self.may_run_away = expected_runaways(model, model.methods(integrator))
+        self.may_run_away = model.expected_runaways(model.methods(integrator))
         self.engine = model.simulation(integrator, growth_limit=growth_limit,
                                        may_run_away=self.may_run_away)
         self.restart()
@@ -263,18 +263,6 @@ class LiveRun:
                             ignore=[j for j in range(len(r)) if j != i])
             engine.freeze(i, f"{name} ran away at t = {engine.t:.3g} s (its swing grew past "
                              f"{self.runaway_reach:.2g} m): {verdict.message}")
-
-
-def expected_runaways(model, methods=None) -> list[int]:
-    """The masses a scene expects may run away: those it names, and those stepped side by side with
-    their own integrator by one that is unstable at this Δt (euler at every Δt; the others beyond
-    their limit), judged by physics.stability."""
-    expected = set(model.may_run_away)
-    methods = model.methods() if methods is None else methods
-    if model.integrators:
-        grows = growing(model.forces, model.state.m, methods, model.dt)
-        expected |= {int(i) for i in np.flatnonzero(grows)}
-    return sorted(expected)
 
 
 class Trace:

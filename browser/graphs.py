@@ -23,7 +23,7 @@ from collections import deque
 import numpy as np
 
 from export.numbers import CSV_HEADER, ENERGY_KEYS, clean, clean_time
-from export.palette import (ENERGY_COLOURS, ENERGY_LABELS, EXACT_COLOUR, EXACT_WIDTH, LIVE_COLOUR, curve_colour,
+from export.palette import (ENERGY_COLOURS, EXACT_COLOUR, EXACT_WIDTH, LIVE_COLOUR, curve_colour, energy_label,
                             mass_colours, shade, simulation_width)
 from physics.energy import kinetic, potential, rest_potential
 from physics.state import State, velocity
@@ -160,7 +160,7 @@ class Graphs:
         else:
             for key, colour in ENERGY_COLOURS.items():
                 # E − W_nc comes last and thinner, so it shows on top of E when no work is done
-                label = ENERGY_LABELS[key] + (" − U_rest" if self.energy_offset and key != "K" else "")
+                label = energy_label(key, from_rest=bool(self.energy_offset))
                 self._curve(graph, label, vp.vector(*colour), ("energy", key), width=4 if key == "E" else 2)
         return graph
 

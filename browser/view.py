@@ -8,8 +8,8 @@ The page has three parts, each built by its constructor from the scene's model a
 
 :class:`SceneView` here owns the run (browser/clock.py's LiveRun, RealTimeClock and StepBudget):
 once per frame it carries out the clicks, asks the engine for the steps real time says are due,
-and tells the parts to draw. A scene's VIEW dict names what to draw (DEFAULT_VIEW below). What the
-page does for the teacher is in README.md.
+and tells the parts to draw. A scene's VIEW dict names what to draw (the keys and their defaults:
+scenes/_view.py's DEFAULT_VIEW). What the page does for the teacher is in README.md.
 
 Closing the tab, or Ctrl-C, makes vpython raise SystemExit(0) in this (main) thread; nothing here
 catches it, so the program ends with status 0.
@@ -20,6 +20,7 @@ import sys
 import time
 
 from scenes import catalog
+from scenes._view import DEFAULT_VIEW
 
 from .clock import LiveRun, RealTimeClock, StepBudget
 from .controls import (PRESET_PROMPT, SPEEDS, Controls, constants_text, csv_href, program_href,
@@ -32,12 +33,6 @@ __all__ = ["show", "SceneView", "DEFAULT_VIEW", "csv_text", "constants_text", "s
            "slider_names", "slider_range", "symbol", "time_decimals"]
 
 FRAME_RATE = 50           # frames per second the loop aims for
-# What a scene's VIEW may name, and what it is when it does not: support "ceiling" or "wall"; plot
-# the coordinate that moves ("x", "y", "z" or "xyz"); trail: each mass's path over the last 15 s;
-# exact: False hides the exact curve; sliders: the constants that get one (else m, k and the forces
-# switched on); coils: turns per helix; window: seconds the graphs show before they scroll.
-DEFAULT_VIEW = {"support": "ceiling", "plot": "y", "trail": False, "exact": True, "coils": 12,
-                "window": 30.0}
 # Larger text than vpython's default, for a projector at the back of a classroom.
 # A row of graphs that wraps leaves room under the x-axis titles for the next row's titles.
 PAGE_STYLE = ("<style>body { font-size: 17px; } button, select { font-size: 17px; }"
@@ -244,11 +239,15 @@ class SceneView:
             elif kind == "program":
                 self._offer_program()
             elif kind in ("preset", "scene"):
-                if kind == "preset" and command[1] != PRESET_PROMPT:
-                    setup, preset = self.setup.with_values(**changes).with_preset(command[1]), command[1]
-                elif kind == "scene" and command[1] != self.setup.name:
-                    setup, preset = catalog.configure(command[1]), None
-                else:
+                try:
+                    if kind == "preset" and command[1] != PRESET_PROMPT:
+                        setup, preset = self.setup.with_values(**changes).with_preset(command[1]), command[1]
+                    elif kind == "scene" and command[1] != self.setup.name:
+                        setup, preset = catalog.configure(command[1]), None
+                    else:
+                        continue
+                except ValueError as problem:  # a scene file a teacher broke: say so, keep this one
+                    self.controls.say(f"<b>Cannot open that:</b> {problem}")
                     continue
                 self.integrator = integrator or self.integrator
                 changes, integrator = {}, None

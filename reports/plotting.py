@@ -20,7 +20,6 @@ from export.files import OutputError, atomic_file
 from export.palette import (ENERGY_COLOURS, EXACT_COLOUR, curve_colour, energy_label, mass_colours, shade,
                             simulation_width)
 from physics.energy import kinetic, potential, rest_potential
-from physics.stability import growing
 from physics.state import State
 
 POINTS_PER_PX = 0.75 # matplotlib widths are in points: the page's px widths, scaled to this figure
@@ -101,16 +100,6 @@ def exact_curve(model, t):
     return r, v
 
 
-def expected_runaways(model, methods) -> set[int]:
-    """The masses expected to run away, judged as the page judges them (browser/clock.py's
-    expected_runaways, which reports/ may not import): those the scene names, and, where each mass
-    has its own integrator, those whose method makes the motion grow at this Δt (physics.stability)."""
-    runaways = set(model.may_run_away)
-    if model.integrators:
-        runaways |= {int(i) for i in np.flatnonzero(growing(model.forces, model.state.m, methods, model.dt))}
-    return runaways
-
-
 def fit_y(ax, values, *, margin: float = 0.05) -> tuple[float, float]:
     """Fix the y axis on `values`, with matplotlib's usual 5 % margin: other curves may leave it."""
     low, high = float(np.nanmin(values)), float(np.nanmax(values))
@@ -136,7 +125,7 @@ def energy_panel(ax, result) -> None:
         if from_rest:   # each mass's own U at rest
             U_rest = potential(model.state, model.forces)
             E, E_minus_W = E - U_rest, E_minus_W - U_rest
-        runaways = expected_runaways(model, result.methods)
+        runaways = model.expected_runaways(result.methods)
         steady = [i for i in range(len(model.labels)) if i not in runaways]
         low, high = fit_y(ax, [E[:, steady], E_minus_W[:, steady]]) if runaways and steady else (-np.inf, np.inf)
         colours = mass_colours(model, getattr(result.setup.module, "VIEW", {}))

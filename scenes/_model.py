@@ -6,8 +6,10 @@ from typing import Callable, Optional
 
 import numpy as np
 
+from physics.forces import Spring
 from physics.integrators import DEFAULT_INTEGRATOR, methods_for
 from physics.simulate import Simulation
+from physics.stability import growing
 from physics.state import State
 
 
@@ -45,11 +47,30 @@ class Model:
     default_integrator: Optional[str] = None
     may_run_away: tuple = ()
 
+    def __post_init__(self):
+        for force in self.forces:
+            if isinstance(force, Spring) and not force._zero_length:
+                _, length = force.stretch(self.state.r)
+                if np.any(length == 0):
+                    raise ValueError("a mass starts at its spring's anchor, where the spring's direction "
+                                     "L̂ is undefined: move r0 (or x0) off the anchor")
+
     def methods(self, integrator: Optional[str] = None) -> tuple:
         """The method of each mass: the scene's own list, else the chosen one, else its default."""
         if self.integrators is not None:
             return tuple(self.integrators)
         return methods_for(integrator or self.default_integrator or DEFAULT_INTEGRATOR, self.state.count)
+
+    def expected_runaways(self, methods: Optional[tuple] = None) -> list[int]:
+        """The masses expected to run away: those the scene names (may_run_away), and, where each
+        mass has its own integrator, those whose method makes the motion grow at this Δt (euler at
+        every Δt, the others beyond their limit), as physics.stability judges it. The page freezes
+        them where they leave the picture; --plot leaves them off its axis limits."""
+        expected = set(self.may_run_away)
+        if self.integrators:
+            methods = self.methods() if methods is None else methods
+            expected |= {int(i) for i in np.flatnonzero(growing(self.forces, self.state.m, methods, self.dt))}
+        return sorted(expected)
 
     def simulation(self, integrator: Optional[str] = None, **options) -> Simulation:
         """The engine for this model, ready at its initial state (physics/simulate.py)."""

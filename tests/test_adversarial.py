@@ -100,6 +100,9 @@ BAD = [
     ("resonance --headless --set b_ratio=1000 --set curves=5", 2, "more than the 1e+06 kg/s b may be"),
     ("regimes --headless --set k=1e-320", 2, "k must be 0 or at least 1e-9 N/m in size"),
     ("vertical --headless --set v0=0,1e-300,0", 2, "v0 must be 0 or at least 1e-9 m/s in size"),
+    ("driven --headless --set x0=-3", 2, "a mass starts at its spring's anchor"),
+    ("vertical --vpython x.py --set r0=0,0,0", 2, "a mass starts at its spring's anchor"),
+    ("pendulum --no-browser --set r0=0,0,0", 2, "a mass starts at its spring's anchor"),
     # ---- names, scenarios, presets ----
     ("vertical --headless --set kk=3", 2, "unknown constant 'kk'"),
     ("vertical --headless --set k", 2, "--set needs NAME=VALUE"),

@@ -214,11 +214,11 @@ def test_scene_in_the_browser(browser, scene):
 def check_resonance_graph(image):
     """The resonance graph draws each b's exact curve and measured dots in that b's colour (three b),
     and the row's live dots in orange."""
-    from scenes.resonance import CURVE_COLOURS, ROW_COLOUR
+    from export.palette import CURVE_COLOURS, LIVE_COLOUR
 
     values = catalog.configure("resonance").values
     assert values["curves"] == 3
-    for colour in CURVE_COLOURS[:3] + [ROW_COLOUR]:
+    for colour in CURVE_COLOURS[:3] + [LIVE_COLOUR]:
         rgb = tuple(round(255 * c) for c in colour)
         assert pixels_like(image, rgb) > 150, f"the resonance graph has no curve in colour {rgb}"
 

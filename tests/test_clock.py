@@ -14,7 +14,7 @@ from hypothesis import given, settings, strategies as st
 
 from physics.simulate import run
 from scenes import catalog
-from browser.clock import LiveRun, RealTimeClock, StepBudget, Trace, expected_runaways, window
+from browser.clock import LiveRun, RealTimeClock, StepBudget, Trace, window
 
 
 def run_frames(clock, frame_times, *, speed=1.0, running=lambda i: True, quiet=lambda i: 0.0,
@@ -256,7 +256,7 @@ def test_a_blow_up_stops_the_run_with_advice():
 def test_in_integrators_euler_runs_away_alone_and_the_others_run_on():
     """euler's mass is frozen where it ran away, with the time and the reason; the comparison goes on."""
     model, runner = live("integrators")
-    assert expected_runaways(model) == [0]            # euler, unstable at every Δt
+    assert model.expected_runaways() == [0]            # euler, unstable at every Δt
     for _ in range(500):                               # 30 s
         runner.advance(1)
     assert runner.problem is None and runner.state.t == pytest.approx(30.0)
@@ -274,7 +274,7 @@ def test_in_integrators_euler_runs_away_alone_and_the_others_run_on():
 
 def test_nothing_is_expected_to_run_away_with_one_stable_integrator():
     model, runner = live("vertical")
-    assert expected_runaways(model) == [] and runner.runaways == {}
+    assert model.expected_runaways() == [] and runner.runaways == {}
 
 
 def test_trace_keeps_a_bounded_window_over_a_long_run():

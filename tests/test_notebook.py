@@ -318,10 +318,10 @@ def test_another_scenes_cell_stops_the_one_before_and_runs(page, name, before):
     assert_mass_drawn(seen["canvas"], name)
     assert curve_pixels(seen["position"]) > 50, f"{name}: the position graph shows no curve"
     if own_graph:  # the exact curves for three values of b, and the row's live dots in orange
-        from scenes.resonance import CURVE_COLOURS, ROW_COLOUR
+        from export.palette import CURVE_COLOURS, LIVE_COLOUR
 
         assert catalog.configure("resonance").values["curves"] == 3
-        for colour in CURVE_COLOURS[:3] + [ROW_COLOUR]:
+        for colour in CURVE_COLOURS[:3] + [LIVE_COLOUR]:
             rgb = tuple(round(255 * c) for c in colour)
             assert pixels_like(seen["resonance"], rgb) > 150, f"the resonance graph has no curve in colour {rgb}"
     assert shown_time(old) == stopped, f"{before} went on after it stopped"

@@ -59,3 +59,20 @@ def test_the_page_clock_shows_every_step_time_as_the_csv_writes_it():
         for n in (1, 3, 7, 1001):
             shown = f"{n * dt:.{decimals}f}"
             assert float(shown) == clean_time(n * dt, dt), (dt, n, shown)
+
+
+def test_a_broken_scene_chosen_in_the_scene_menu_is_a_sentence_on_the_page(monkeypatch):
+    """A teacher's scene file with a typo is in the menu (found by its name); choosing it says why it
+    cannot open, and the scene shown keeps running (it raised out of the frame loop)."""
+    from scenes import ConstantError
+
+    def broken(name, **options):
+        raise ConstantError(f"scenes/{name}.py, line 13: invalid syntax")
+
+    said = []
+    view, done = view_with_clicks(("scene", "damped"))
+    view.controls.say = said.append
+    monkeypatch.setattr(catalog, "configure", broken)
+    view._apply_commands(now=0.0)
+    assert done == [] and view.setup.name == "vertical"
+    assert said == ["<b>Cannot open that:</b> scenes/damped.py, line 13: invalid syntax"]
