@@ -2,11 +2,12 @@
 
 The closed form follows the displacement x from equilibrium along the spring's line û,
 
-    m x'' + b x' + k x = F cos(ω t),   x(0) = x0,  x'(0) = v0 along û,
+    m x'' + b x' + k x = F cos(ω t),   x(0) = x_start,  x'(0) = v_start along û,
 
 as a transient in its damping regime (under-damped, critically damped, over-damped) plus the
 steady swing the driving force keeps up. The lines work the coefficients out from the program's
 own constants, so the curve still fits after a student edits m, k or b (within the same regime).
+The start values are x_start and v_start, not x0 and v0, which a scene's constants may name.
 """
 from __future__ import annotations
 
@@ -18,6 +19,7 @@ from physics.exact import damping_regime
 from physics.forces import Driving, Gravity, LinearDamping, Spring
 
 from .lines import commented, vector
+
 
 def on_line(model) -> bool:
     """Whether every mass moves on the line of its spring (what the closed form needs)."""
@@ -37,37 +39,38 @@ def on_line(model) -> bool:
     return True
 
 
-def exact_lines(model, values, forces, *, axis: str, m: str):
-    """(lines before the loop, lines giving x_exact at time t) of the closed form, or None.
+def exact_lines(model, constants, forces, *, axis: str, m: str):
+    """(lines before the loop, lines giving x at time t) of the closed form, or None.
 
     The closed form (physics/exact.py) follows the displacement x from equilibrium along the
-    spring's line û: m x'' + b x' + k x = F cos(ω t), started from x0 and v0 along û.
+    spring's line û: m x'' + b x' + k x = F cos(ω t), started from x_start and v_start along û.
+    `constants` spells the program's names (vpython_program._Constants): `b`, or `b_each[i]`.
     """
-    n = values.name
+    n = constants.name
     has = {type(force) for force in forces.forces}
-    linear = "L0" not in values.items     # L0 = 0: F = −k L, so each coordinate moves on its own
+    linear = not constants.has("L0")     # L0 = 0: F = −k L, so each coordinate moves on its own
     if model.exact is None or not (linear or on_line(model)):
         return None
     k_all = np.broadcast_to(next(f.k for f in forces.forces if isinstance(f, Spring)), (model.state.count, 1))[:, 0]
     damping = next((f.b for f in forces.forces if isinstance(f, LinearDamping)), 0.0)
     b_all = np.broadcast_to(damping, (model.state.count, 1))[:, 0]
     regimes = {damping_regime(m=mi, k=ki, b=bi) for mi, ki, bi in zip(model.state.m, k_all, b_all)}
-    L0 = n("L0") if "L0" in values.items else "0"
+    L0 = n("L0") if constants.has("L0") else "0"
     b = n("b") if LinearDamping in has else "0"
     before = [
         "# the exact solution (physics/exact.py): x = displacement from equilibrium along the spring"
-        + ("" if linear else " (good until the mass reaches its anchor)"),
+        + ("" if linear else ",")] + ([] if linear else ["# good until the mass reaches its anchor"]) + [
         commented(f"u = {vector(np.eye(3)['xyz'.index(axis)])}", "û: the plotted axis (L0 = 0: each axis on its own)")
         if linear else commented(f"u = norm({n('r0')} - {n('anchor')})", "direction of the spring, û"),
         commented(f"s_eq = {L0} + {m}*{n('g')}*(-u.y)/{n('k')}" if Gravity in has else f"s_eq = {L0}",
-                   "m: length of the spring at equilibrium"),
+                  "m: length of the spring at equilibrium"),
         commented(f"omega0 = sqrt({n('k')}/{m})", "rad/s: natural angular frequency √(k/m)"),
-        commented(f"x0 = {'dot' if linear else 'mag'}({n('r0')} - {n('anchor')}{', u' if linear else ''}) - s_eq",
-                   "m: start displacement"),
-        commented(f"vx0 = dot({n('v0')}, u)", "m/s: start velocity along û"),
     ]
     if LinearDamping in has:
         before.append(commented(f"gamma = {b}/(2*{m})", "1/s: decay rate b/2m"))
+    start = f"{'dot' if linear else 'mag'}({n('r0')} - {n('anchor')}{', u' if linear else ''}) - s_eq"
+    x_start = [commented(f"x_start = {start}", "m: start displacement"),
+               commented(f"v_start = dot({n('v0')}, u)", "m/s: start velocity along û")]
     steady = []
     if Driving in has:
         F0, w = n("F0"), n("omega")
@@ -80,32 +83,35 @@ def exact_lines(model, values, forces, *, axis: str, m: str):
         before.append(commented(f"Fu = {F0}*dot({n('drive_axis')}, u)", "N: driving amplitude along û"))
         if all(resonant):
             steady = [commented(f"x = x + Fu*t*sin(omega0*t)/(2*{m}*omega0)",
-                                 "resonance: the swing grows as F t/(2 m ω0)")]
+                                "resonance: the swing grows as F t/(2 m ω0)")]
         elif LinearDamping not in has:   # undamped: the steady swing is in step (or opposite)
-            before += [commented(f"amp = Fu/({n('k')} - {m}*{w}**2)", "m: steady-state amplitude (signed)"),
-                       "x0 = x0 - amp"]
+            before.append(commented(f"amp = Fu/({n('k')} - {m}*{w}**2)", "m: steady-state amplitude (signed)"))
+            x_start = [commented(f"x_start = {start} - amp", "m: start displacement, less the steady swing's"),
+                       x_start[1]]
             steady = [f"x = x + amp*cos({w}*t)"]
         else:
             before += [
                 commented(f"amp = Fu/sqrt(({n('k')} - {m}*{w}**2)**2 + ({b}*{w})**2)", "m: steady-state amplitude"),
                 commented(f"delta = atan2({b}*{w}, {n('k')} - {m}*{w}**2)", "rad: its phase lag"),
-                "x0 = x0 - amp*cos(delta)",
-                commented(f"vx0 = vx0 - amp*{w}*sin(delta)", "what is left for the free motion"),
             ]
+            x_start = [commented(f"x_start = {start} - amp*cos(delta)", "m: start displacement, less the steady swing's"),
+                       commented(f"v_start = dot({n('v0')}, u) - amp*{w}*sin(delta)", "m/s: the same for the velocity")]
             steady = [f"x = x + amp*cos({w}*t - delta)"]
+    before += x_start
     branches = {
         "under-damped": ([commented("omega_d = sqrt(omega0**2 - gamma**2)",
-                                     "under-damped: x = e^(−γt) (x0 cos ω_d t + c2 sin ω_d t)"),
-                          "c2 = (vx0 + gamma*x0)/omega_d"],
-                         ["x = exp(-gamma*t)*(x0*cos(omega_d*t) + c2*sin(omega_d*t))"]),
-        "critically damped": ([commented("c2 = vx0 + gamma*x0", "critically damped: x = e^(−γt) (x0 + c2 t)")],
-                              ["x = exp(-gamma*t)*(x0 + c2*t)"]),
+                                    "under-damped: x = e^(−γt) (x_start cos ω_d t + c2 sin ω_d t)"),
+                          "c2 = (v_start + gamma*x_start)/omega_d"],
+                         ["x = exp(-gamma*t)*(x_start*cos(omega_d*t) + c2*sin(omega_d*t))"]),
+        "critically damped": ([commented("c2 = v_start + gamma*x_start",
+                                         "critically damped: x = e^(−γt) (x_start + c2 t)")],
+                              ["x = exp(-gamma*t)*(x_start + c2*t)"]),
         "over-damped": ([commented("mu = sqrt(gamma**2 - omega0**2)", "over-damped: x = c1 e^(λ1 t) + c2 e^(λ2 t)"),
-                         "c1 = (vx0 + (gamma + mu)*x0)/(2*mu)", "c2 = x0 - c1"],
+                         "c1 = (v_start + (gamma + mu)*x_start)/(2*mu)", "c2 = x_start - c1"],
                         ["x = c1*exp((mu - gamma)*t) + c2*exp(-(gamma + mu)*t)"]),
     }
     if LinearDamping not in has:
-        return before, [commented("x = x0*cos(omega0*t) + vx0/omega0*sin(omega0*t)", "undamped")] + steady
+        return before, [commented("x = x_start*cos(omega0*t) + v_start/omega0*sin(omega0*t)", "undamped")] + steady
     if len(regimes) == 1:
         coefficients, now = branches[regimes.pop()]
         return before + coefficients, now + steady
@@ -116,4 +122,3 @@ def exact_lines(model, values, forces, *, axis: str, m: str):
         now.append(f"{keyword} {condition}:  # {regime}" if condition else f"else:  # {regime}")
         now += ["    " + line for line in branches[regime][0] + branches[regime][1]]
     return before, now + steady
-

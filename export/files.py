@@ -2,11 +2,17 @@
 the same folder and renamed over the target, so a failure part-way (a full disk, a file-size limit,
 Ctrl-C) leaves the old file as it was and no half-written one. The CSV file and the figure of the
 command line, and the VPython program of both front ends, are written this way.
+
+A symbolic link is followed: the file it points to is replaced, and the link stays a link. Only a
+regular file is replaced: an existing device (/dev/null, /dev/stdout), named pipe or socket is
+refused before anything opens it, since renaming over it would put a regular file in its place
+and opening a pipe waits for a reader.
 """
 from __future__ import annotations
 
 import contextlib
 import os
+import stat
 import tempfile
 
 STDOUT = "-"                   # the file name that means standard output
@@ -16,50 +22,86 @@ class OutputError(ValueError):
     """An output file that cannot be written: a one-line message, found before the run starts."""
 
 
+def _target(path: str, *, what: str) -> str:
+    """The file to replace for `path`: itself, or the file a symbolic link points to.
+
+    Raises OutputError if `path` exists and is not a regular file: a directory, a device
+    (/dev/null, /dev/stdout), a named pipe or a socket. Only os.stat looks at it, so nothing is
+    opened (opening a named pipe would wait for a reader).
+    """
+    try:
+        mode = os.stat(path).st_mode       # follows links as the system does, /dev/stdout too
+    except (FileNotFoundError, NotADirectoryError):   # a new file (a link to one), or no such folder
+        return os.path.realpath(path)
+    except OSError as problem:
+        raise OutputError(f"cannot write {what} {path!r}: {problem.strerror or problem}") from None
+    if stat.S_ISREG(mode) and not _is_a_standard_stream(path):
+        return os.path.realpath(path)
+    if stat.S_ISREG(mode):                 # /dev/stdout where the shell sends the output to a file
+        raise OutputError(f"cannot write {what} {path!r}: it is this program's own standard input, "
+                          f"output or error (to print the output, give - instead, where - is allowed)")
+    if stat.S_ISDIR(mode):
+        raise OutputError(f"cannot write {what} {path!r}: it is a directory")
+    kind = "a named pipe" if stat.S_ISFIFO(mode) else "a socket" if stat.S_ISSOCK(mode) else "a device"
+    raise OutputError(f"cannot write {what} {path!r}: it is {kind}, not a regular file")
+
+
+def _is_a_standard_stream(path: str) -> bool:
+    """Whether path is the very file this process reads or prints to (fd 0, 1 or 2)."""
+    for fd in (0, 1, 2):
+        try:
+            if os.path.samestat(os.stat(path), os.fstat(fd)):
+                return True
+        except OSError:
+            continue
+    return False
+
 
 def check_writable(path: str, *, what: str) -> None:
     """Raise OutputError if `path` cannot be written as a file (checked before a run starts).
 
     The check opens the file for writing, without changing one that exists and removing one it
     had to create, so it also catches what permission bits do not show (a read-only file system,
-    /proc, a file standing where a folder should be, or running as root). "-" (standard output)
-    is refused: the callers that can print to it handle it before asking.
+    /proc, a file standing where a folder should be, or running as root). A symbolic link is
+    checked as the file it points to; a device, named pipe or socket is refused before it is
+    opened (see _target). "-" (standard output) is refused: the callers that can print to it
+    handle it before asking.
     """
     if path == STDOUT:
         raise OutputError(f"cannot write {what} to '-' (standard output) here: give a file name, "
                           f"like run.csv")
     if not path:
         raise OutputError(f"cannot write {what} '': give a file name, like run.csv")
-    if os.path.isdir(path):
-        raise OutputError(f"cannot write {what} {path!r}: it is a directory")
-    folder = os.path.dirname(os.path.abspath(path))
+    target = _target(path, what=what)
+    folder = os.path.dirname(target)
     if not os.path.isdir(folder):
         raise OutputError(f"cannot write {what} {path!r}: folder {folder!r} does not exist")
-    existed = os.path.exists(path)
+    existed = os.path.exists(target)
     try:
-        with open(path, "ab"):
+        with open(target, "ab"):
             pass
     except OSError as problem:
         raise OutputError(f"cannot write {what} {path!r}: {problem.strerror or problem}") from None
     if not existed:
-        os.remove(path)
-    os.remove(_temporary_beside(path, what=what))  # the folder must take the temporary file too
+        os.remove(target)
+    os.remove(_temporary_beside(target, what=what, shown=path))  # the folder must take it too
 
 
-def _temporary_beside(path: str, *, what: str) -> str:
-    """A new empty file in path's folder, with the permissions `path` has or a new file would get."""
-    folder, name = os.path.split(os.path.abspath(path))
+def _temporary_beside(target: str, *, what: str, shown: str) -> str:
+    """A new empty file in target's folder, with the permissions `target` has or a new file would
+    get (`shown`: the path as the user gave it, for the message)."""
+    folder, name = os.path.split(target)
     try:
         handle, temporary = tempfile.mkstemp(prefix=f".{name}.", suffix=".part", dir=folder)
         os.close(handle)
-        if os.path.exists(path):  # keep the old file's permissions, not mkstemp's private 0600
-            os.chmod(temporary, os.stat(path).st_mode & 0o7777)
+        if os.path.exists(target):  # keep the old file's permissions, not mkstemp's private 0600
+            os.chmod(temporary, os.stat(target).st_mode & 0o7777)
         else:
             umask = os.umask(0)
             os.umask(umask)
             os.chmod(temporary, 0o666 & ~umask)
     except OSError as problem:
-        raise OutputError(f"cannot write {what} {path!r}: {problem.strerror or problem}") from None
+        raise OutputError(f"cannot write {what} {shown!r}: {problem.strerror or problem}") from None
     return temporary
 
 
@@ -69,12 +111,15 @@ def atomic_file(path: str, *, what: str):
 
     A rename within one folder is atomic, so `path` is always either the old file, untouched, or
     the complete new one: a full disk, a file-size limit, Ctrl-C or SIGTERM part-way leave no
-    half-written file (the temporary one is removed). An OSError becomes OutputError.
+    half-written file (the temporary one is removed). An OSError becomes OutputError. A symbolic
+    link is followed (the temporary file goes beside the file it points to, and replaces that);
+    a target that is not a regular file is refused (_target).
     """
-    temporary = _temporary_beside(path, what=what)
+    target = _target(path, what=what)
+    temporary = _temporary_beside(target, what=what, shown=path)
     try:
         yield temporary
-        os.replace(temporary, path)
+        os.replace(temporary, target)
     except OSError as problem:
         raise OutputError(f"cannot write {what} {path!r}: {problem.strerror or problem}") from None
     finally:

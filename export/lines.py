@@ -1,4 +1,4 @@
-"""How the program spells things: numbers that read back exactly, and comments lined up.
+"""How the program spells things: numbers that read back exactly, lists, and comments lined up.
 
 Every physics number goes into the program through :func:`number` (repr of the float, whole
 numbers without .0), so the program starts from exactly the model's values.
@@ -26,8 +26,15 @@ def vector(v) -> str:
     return "vector(" + ", ".join(number(c) for c in v) + ")"
 
 
+def unit_and_meaning(unit: str, meaning: str) -> str:
+    """A constant's comment, `N/m: spring constant`; a pure number (unit "1") gets no unit."""
+    return meaning if unit in ("", "1") else f"{unit}: {meaning}"
+
+
 COMMENT = "\0"             # marks where a line's comment starts, until align_comments lines them up
 COMMENT_COLUMN = 48
+CONSTANT_COLUMN = 24       # the constants block's comments start here, as in the scene files
+ONE_LINE = 72              # a list longer than this is written one item per line
 
 
 def commented(code: str, comment: str, width: int | None = None) -> str:
@@ -35,6 +42,14 @@ def commented(code: str, comment: str, width: int | None = None) -> str:
     if not comment:
         return code
     return f"{code:<{width}} # {comment}" if width else f"{code}{COMMENT}{comment}"
+
+
+def listed(name: str, items: list[str], comment: str) -> list[str]:
+    """`name = [a, b, c]` with its comment, or one item a line where that would be long."""
+    one_line = f"{name} = [{', '.join(items)}]"
+    if len(one_line) <= ONE_LINE:
+        return [commented(one_line, comment, width=CONSTANT_COLUMN)]
+    return [commented(f"{name} = [", comment, width=CONSTANT_COLUMN), *(f"    {item}," for item in items), "]"]
 
 
 def align_comments(lines: list[str]) -> list[str]:

@@ -3,7 +3,8 @@
 1. `main.py vertical --vpython FILE.py` is run as a student runs it, `python FILE.py`, with the real
    vpython (its own server, on a free port, no browser launched), and its page is opened in
    headless Chromium: the 3-D canvas shows the orange sphere, the helix and the support, and the
-   graph shows the blue position curve and the black exact curve. The screenshot goes to /tmp.
+   graph shows the position curve in the sphere's orange (export/palette.py, as on the page) and
+   the near-black exact curve. The screenshot goes to /tmp.
 2. The page's Download program button, after choosing a preset, hands over exactly the program
    `main.py SCENE --preset ... --vpython` writes.
 
@@ -41,11 +42,6 @@ def orange(rgb):
 
 def light_grey(rgb):
     return min(rgb) > 110 and max(rgb) - min(rgb) < 30
-
-
-def blue(rgb):
-    r, g, b = rgb
-    return b > 150 and r < 90 and g < 90
 
 
 def black(rgb):
@@ -94,7 +90,7 @@ def test_exported_program_draws_with_the_real_vpython(browser, tmp_path):
         plot = whole.crop((box["x"], bottom, box["x"] + box["width"], whole.height))   # the graph is below
         assert count(scene, orange) > 200, "the sphere"
         assert count(scene, light_grey) > 300, "the helix and the support"
-        assert count(plot, blue) > 200, "the position curve"
+        assert count(plot, orange) > 200, "the position curve, in the sphere's colour"
         assert count(plot, black) > 200, "the exact curve (and the axes)"
         final = [line for line in output if "r = <" in line][-1]
         assert final.startswith("t = 2.0 s:")
