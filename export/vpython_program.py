@@ -283,10 +283,6 @@ def program(setup, *, integrator: str | None = None, web: bool = False) -> str:
     view = {**DEFAULT_VIEW, **getattr(setup.module, "VIEW", {})}
     single = count == 1
 
-    starts = np.linalg.norm(model.state.r - np.broadcast_to(model.anchors, model.state.r.shape), axis=1)
-    if any(isinstance(f, Spring) and not f._zero_length for f in model.forces) and np.any(starts == 0):
-        raise ProgramError("a mass starts at its spring's anchor, where the spring's direction L̂ "
-                           "is undefined: move r0 off the anchor")
     constants = _Constants(setup, count)
     constants.add("m", model.state.m)
     forces = _Forces(model, constants)
