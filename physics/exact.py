@@ -10,7 +10,11 @@ With ω0 = √(k/m) and γ = b / 2m, its motion is a transient (the free motion)
 - critical      (b² = 4mk): x_h = e^(−γt) (c1 + c2 t)            fastest return, never crosses twice
 - over-damped   (b² > 4mk): x_h = A e^(λ₊t) + B e^(λ₋t),  λ± = −γ ± √(γ² − ω0²)
 - steady state: x_p = F0 cos(ω t − δ) / √((k − mω²)² + (bω)²),  tan δ = bω / (k − mω²)
-- undamped resonance (b = 0, ω = ω0): x_p = F0 t sin(ω0 t) / (2 m ω0), growing linearly in t.
+- undamped resonance (b = 0, ω = ω0): x_p = F0 t sin(ω0 t) / (2 m ω0), growing linearly in t, so
+  there is no steady-state amplitude (:func:`steady_state_amplitude` gives inf there).
+
+The free motion never gains energy (dE/dt = −b v² ≤ 0), which bounds the whole swing:
+:func:`displacement_bound`.
 
 Gravity only shifts the equilibrium of a spring by m g / k; :func:`single_mass_motion` applies that
 shift for a mass moving along one line, and gives None where no closed form holds (quadratic drag,
@@ -35,9 +39,43 @@ def critical_damping(*, m: float, k: float) -> float:
     return 2.0 * np.sqrt(m * k)
 
 
+def undamped_resonance(*, m, k, b, omega):
+    """Whether b = 0 and ω = ω0 = √(k/m) (to round-off), elementwise: undamped resonance."""
+    omega0 = np.sqrt(k / m)
+    return (np.asarray(b) == 0) & (np.abs(np.asarray(omega) - omega0) <= 1e-12 * omega0)
+
+
 def steady_state_amplitude(*, m, k, b, F0, omega):
-    """A = F0 / √((k − mω²)² + (bω)²), m. Works elementwise on arrays of ω (a resonance curve)."""
-    return F0 / np.sqrt((k - m * omega**2) ** 2 + (b * omega) ** 2)
+    """A = F0 / √((k − mω²)² + (bω)²), m. Works elementwise on arrays of b, F0 and ω (a resonance curve).
+
+    At undamped resonance (b = 0, ω = ω0) there is no steady state: the swing grows as
+    F0 t / (2 m ω0) for ever, and A is ±math.inf there (the sign of F0; 0 if F0 = 0). Whoever
+    shows A must say so in words.
+    """
+    F0 = np.asarray(F0, dtype=float)
+    unbounded = undamped_resonance(m=m, k=k, b=b, omega=omega)
+    with np.errstate(divide="ignore", invalid="ignore"):   # only where unbounded: settled just below
+        A = F0 / np.sqrt((k - m * omega**2) ** 2 + (b * omega) ** 2)
+    return np.where(unbounded, np.where(F0 == 0, 0.0, np.copysign(np.inf, F0)), A)[()]
+
+
+def displacement_bound(T, *, m, k, b, x0, v0, F0, omega):
+    """A size |x(t)| never exceeds for 0 ≤ t ≤ T, m, for the oscillator of :func:`oscillator`
+    (b ≥ 0, k > 0). Works elementwise on arrays of b, x0, v0, F0 and ω.
+
+    x = x_h + x_p. The free motion x_h loses energy to damping and never gains any
+    (dE/dt = −b v² ≤ 0 for E = ½ m v² + ½ k x²), so ½ k x_h² ≤ E(0): |x_h| ≤ √(x_h0² + (v_h0/ω0)²),
+    with x_h0 = x0 − x_p(0) and v_h0 = v0 − v_p(0). The steady state swings within |A|; at undamped
+    resonance it grows, |x_p| ≤ |F0| T / (2 m ω0).
+    """
+    omega0 = np.sqrt(k / m)
+    resonant = undamped_resonance(m=m, k=k, b=b, omega=omega)
+    A = np.where(resonant, 0.0, steady_state_amplitude(m=m, k=k, b=b, F0=F0, omega=omega))
+    delta = np.arctan2(b * omega, k - m * omega**2)
+    xp0, vp0 = A * np.cos(delta), A * omega * np.sin(delta)   # x_p(0), v_p(0); 0 at undamped resonance
+    free = np.sqrt((x0 - xp0) ** 2 + ((v0 - vp0) / omega0) ** 2)
+    forced = np.where(resonant, np.abs(F0) * T / (2.0 * m * omega0), np.abs(A))
+    return (free + forced)[()]
 
 
 def _steady_state(t, *, m, k, b, F0, omega):
@@ -46,7 +84,7 @@ def _steady_state(t, *, m, k, b, F0, omega):
         zero = np.zeros_like(t)
         return zero, zero
     omega0 = np.sqrt(k / m)
-    if b == 0 and np.isclose(omega, omega0, rtol=1e-12, atol=0):
+    if undamped_resonance(m=m, k=k, b=b, omega=omega):
         # Undamped resonance: x_p = F0 t sin(ω0 t) / (2 m ω0).
         growth = F0 / (2.0 * m * omega0)
         return (growth * t * np.sin(omega0 * t),

@@ -105,28 +105,61 @@ class Result:
         return tuple(self.model.labels)
 
     def exact_valid_until(self) -> float:
-        """When the closed form stops holding, s: math.inf if it holds up to the final time."""
+        """When the closed form stops holding (for a row, the first mass's), s: math.inf if it
+        holds up to the final time."""
         check = self.model.exact_valid_until
         return math.inf if check is None else check(float(self.trajectory.t[-1]))
+
+    def exact_valid_until_each(self) -> np.ndarray:
+        """When each mass's closed form stops holding, (N,) s: math.inf where it holds to the end.
+
+        A row of independent masses (scenes/_row.py) judges each mass on its own, through its
+        exact_valid_until's each(T); otherwise one time holds for every mass.
+        """
+        check, T = self.model.exact_valid_until, float(self.trajectory.t[-1])
+        count = len(self.trajectory.m)
+        if check is None:
+            return np.full(count, math.inf)
+        each = getattr(check, "each", None)
+        return np.asarray(each(T), dtype=float) if each is not None else np.full(count, check(T))
 
     def exact(self):
         """(r, v) of the closed form at the final time, shape (N, 3) each, or None where unknown.
 
-        None also where the closed form stopped holding before the final time (exact_note says why).
+        A mass whose closed form stopped holding before the final time gets NaN ("not known"),
+        as one with no closed form does (exact_notes says why); None if every mass's stopped.
         """
-        if self.model.exact is None or self.exact_valid_until() < self.trajectory.t[-1]:
-            return None
-        r, v = self.model.exact(np.array([self.trajectory.t[-1]]))
-        return np.asarray(r, dtype=float)[0], np.asarray(v, dtype=float)[0]
-
-    def exact_note(self) -> str | None:
-        """Why a scene with a closed form gives no exact value at the final time, or None."""
         if self.model.exact is None:
             return None
-        t_break = self.exact_valid_until()
-        if t_break >= self.trajectory.t[-1]:
+        stopped = self.exact_valid_until_each() < self.trajectory.t[-1]
+        if stopped.all():
             return None
-        return f"the closed form stops holding at t = {number(t_break, 4)} s, {self.model.exact_limit}"
+        r, v = (np.array(a, dtype=float)[0] for a in self.model.exact(np.array([self.trajectory.t[-1]])))
+        r[stopped], v[stopped] = np.nan, np.nan
+        return r, v
+
+    def exact_notes(self) -> list:
+        """For each mass, why it has no exact value at the final time though a closed form exists,
+        or None (it has one, or there is no closed form at all)."""
+        if self.model.exact is None:
+            return [None] * len(self.trajectory.m)
+        return [None if t_break >= self.trajectory.t[-1] else
+                f"the closed form stops holding at t = {number(t_break, 4)} s, {self.model.exact_limit}"
+                for t_break in self.exact_valid_until_each()]
+
+    def exact_note(self) -> str | None:
+        """Why a scene with a closed form gives no exact value at the final time, or None.
+
+        For several masses: how many of them have none, and from when (exact_notes, mass by mass).
+        """
+        notes = self.exact_notes()
+        stopped = [note for note in notes if note]
+        if not stopped:
+            return None
+        if len(notes) == 1:
+            return stopped[0]
+        return (f"the closed form stops holding for {len(stopped)} of {len(notes)} masses, the first at "
+                f"t = {number(self.exact_valid_until(), 4)} s, {self.model.exact_limit}")
 
 
 def step_count(engine, *, until: float, rows_per_step: float = 0.0) -> int:
@@ -242,7 +275,7 @@ def final_report(result: Result) -> str:
     t, r, p, m = traj.t[-1], traj.r[-1], traj.p[-1], traj.m
     v = velocity(p, m)
     F_net = net_force(model.forces, t, r, v, m)
-    exact = result.exact()
+    exact, notes = result.exact(), result.exact_notes()
     lines = [f"{result.setup.name}: {plural(result.steps, 'step')} of dt = {number(model.dt)} s "
              f"with {result.integrator}",
              f"t = {number(t)} s"]
@@ -260,7 +293,9 @@ def final_report(result: Result) -> str:
             lines += [f"{indent}exact: r = {vector(r_exact, 'm')}, v = {vector(v_exact, 'm/s')}",
                       f"{indent}error: |r − r_exact| = {number(np.linalg.norm(r[i] - r_exact), 4)} m, "
                       f"|v − v_exact| = {number(np.linalg.norm(v[i] - v_exact), 4)} m/s"]
-    if result.exact_note():
+        elif notes[i] and not single:
+            lines.append(f"{indent}exact: none at t = {number(t)} s: {notes[i]}")
+    if single and result.exact_note():
         lines.append(f"exact: none at t = {number(t)} s: {result.exact_note()}")
     if traj.energy is not None:
         e = {key: values[-1] for key, values in traj.energy.items()}
@@ -297,7 +332,9 @@ def as_json(result: Result) -> dict:
     Multi-mass scenes give r, p, v as one 3-vector per mass and add "bodies". "exact" holds the
     closed form at the final time and the size of the error, where a closed form exists. Where
     it stopped holding before the final time, "exact" is left out and "exact_note" says why, with
-    "exact_valid_until" the time it stopped holding, s. A scene
+    "exact_valid_until" the time it stopped holding, s. In a row each mass is judged on its own:
+    a body whose closed form stopped holding has no "exact" but its own "exact_note" and
+    "exact_valid_until", and the top-level ones count such masses and give the first time. A scene
     module may add its own keys with a function extra_json(result) -> dict.
     """
     traj, model, setup = result.trajectory, result.model, result.setup
@@ -321,9 +358,11 @@ def as_json(result: Result) -> dict:
         out["exact_note"] = result.exact_note()
         out["exact_valid_until"] = result.exact_valid_until()
     if not single:
+        notes, valid_until = result.exact_notes(), result.exact_valid_until_each()
         out["bodies"] = [
             {"label": label, "m": float(m[i]), "r": r[i].tolist(), "p": p[i].tolist(), "v": v[i].tolist(),
-             **({"exact": _exact_entry(r[i], v[i], exact[0][i], exact[1][i])} if known[i] else {})}
+             **({"exact": _exact_entry(r[i], v[i], exact[0][i], exact[1][i])} if known[i] else {}),
+             **({"exact_note": notes[i], "exact_valid_until": float(valid_until[i])} if notes[i] else {})}
             for i, label in enumerate(result.labels)]
     if traj.energy is not None:
         out["energy"] = {key: float(values[-1]) for key, values in traj.energy.items()}

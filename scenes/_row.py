@@ -4,7 +4,8 @@ rests, and their exact motion.
 Scenes that compare oscillators (the damping regimes, two drag laws, four integrators, a resonance
 sweep) give every mass its own spring and anchor. The masses never act on each other, so each one
 moves like the single mass of the page, and the row's exact motion is the single-mass closed form
-(physics.exact.single_mass_motion) for each mass, stacked.
+(physics.exact.single_mass_motion) for each mass, stacked. With L0 > 0 each mass's closed form
+holds until that mass reaches its own anchor (:class:`EachMassValidity`).
 
 Each spring points from its anchor along a unit vector û (straight down for a hanging spring,
 along +x for a spring on a wall). With gravity g along −y, the spring's length at equilibrium is
@@ -15,9 +16,13 @@ and a mass started at s_eq + x0 along û, with its velocity along û, stays on t
 """
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
-from physics.exact import single_mass_motion
+from physics.exact import displacement_bound, single_mass_motion
+
+from ._single_mass import ANCHOR_LIMIT, AnchorCrossing
 
 DOWN = (0.0, -1.0, 0.0)
 GRAVITY_DIRECTION = np.array([0.0, -1.0, 0.0])
@@ -33,11 +38,12 @@ def anchors_in_a_row(*, count: int, spacing: float, along=(1.0, 0.0, 0.0)) -> np
 def rest_length(*, L0, m, k, g, direction=DOWN) -> float:
     """s_eq = L0 + m g (ĝ·û) / k: the spring's length where the mass hangs still, m.
 
-    With k = 0 there is no spring to balance gravity, and the start is measured from L0.
+    direction û may be one unit vector or one per mass, (N, 3) (then s_eq is (N,)). With k = 0
+    there is no spring to balance gravity, and the start is measured from L0.
     """
     if k == 0:
         return L0
-    return L0 + m * g * float(GRAVITY_DIRECTION @ np.asarray(direction, dtype=float)) / k
+    return L0 + m * g * (np.asarray(direction, dtype=float) @ GRAVITY_DIRECTION) / k
 
 
 def start_positions(*, anchors, direction=DOWN, L0, m, k, g, x0) -> np.ndarray:
@@ -50,25 +56,86 @@ def start_positions(*, anchors, direction=DOWN, L0, m, k, g, x0) -> np.ndarray:
     return np.asarray(anchors, dtype=float) + np.reshape(s, (-1, 1)) * u[None, :]
 
 
-def exact_row(*, anchors, r0, m, k, L0, g, b=0.0, F0=0.0, omega=0.0, drive_axis=DOWN):
-    """t -> (r, v) of shape (len(t), N, 3) for the row, from the single-mass closed form.
+class EachMassValidity:
+    """When each mass's closed form stops holding: the first time, up to a horizon T, at which its
+    exact motion reaches its spring's anchor (scenes/_single_mass.py's AnchorCrossing, mass by mass).
 
-    Every parameter may be one number or one value per mass. The masses start at rest at r0.
-    Returns None if any mass has no closed form.
+    Called with T, it gives the earliest of them (math.inf if every mass stays on its side up to T):
+    Model.exact_valid_until's answer, where the page and --plot stop drawing every exact curve.
+    each(T) gives one time per mass, (N,) s, for reports that judge each mass on its own: a mass
+    whose closed form still holds keeps its exact answer though another's stopped.
+
+    Searching the motion for the anchor costs thousands of samples per mass, so it is done only
+    for the masses that could get there: may_reach(T) says which, from a bound on the swing
+    (physics.exact.displacement_bound); the rest stay on their side up to T.
+    """
+
+    def __init__(self, *, crossing_of, may_reach):
+        self._crossing_of = crossing_of  # i -> AnchorCrossing of mass i, or None (no closed form)
+        self._may_reach = may_reach      # T -> (N,) bool
+        self._crossings = {}             # made when first needed, kept: each remembers how far it looked
+
+    def each(self, T: float) -> np.ndarray:
+        may_reach = self._may_reach(T)
+        times = np.full(len(may_reach), math.inf)
+        for i in np.flatnonzero(may_reach):
+            if i not in self._crossings:
+                self._crossings[i] = self._crossing_of(i)
+            if self._crossings[i] is not None:
+                times[i] = self._crossings[i](T)
+        return times
+
+    def __call__(self, T: float) -> float:
+        return float(self.each(T).min())
+
+
+def exact_row(*, anchors, r0, m, k, L0, g, b=0.0, C=0.0, F0=0.0, omega=0.0, drive_axis=DOWN) -> dict:
+    """The row's closed form, as the Model takes it: exact, exact_valid_until and exact_limit.
+
+    exact is t -> (r, v) of shape (len(t), N, 3), from the single-mass closed form of each mass,
+    NaN ("not known") for a mass that has none (quadratic drag, C ≠ 0); None if no mass has one.
+    Every parameter but m, k, L0 and g may be one number or one value per mass. The masses start
+    at rest at r0. With L0 > 0 each mass's closed form holds until it reaches its anchor
+    (:class:`EachMassValidity`); with L0 = 0 the spring is linear in 3-D and it always holds.
     """
     anchors, r0 = np.asarray(anchors, dtype=float), np.asarray(r0, dtype=float)
     count = len(anchors)
-    b, F0, omega = (np.broadcast_to(np.asarray(x, dtype=float), (count,)) for x in (b, F0, omega))
+    b, C, F0, omega = (np.broadcast_to(np.asarray(x, dtype=float), (count,)) for x in (b, C, F0, omega))
+
     def motion(i):
-        return single_mass_motion(m=m, k=k, L0=L0, g=g, b=b[i], C=0.0, F0=F0[i], omega=omega[i],
+        return single_mass_motion(m=m, k=k, L0=L0, g=g, b=b[i], C=C[i], F0=F0[i], omega=omega[i],
                                   drive_axis=drive_axis, anchor=anchors[i], r0=r0[i], v0=(0, 0, 0))
-    if motion(0) is None:      # the same forces for every mass: one without a closed form, all
-        return None
+    # The masses of a row differ in b, C, F0 and ω; of these only C decides whether there is a
+    # closed form, so if the mass with the least drag has none, no mass has.
+    if motion(int(np.argmin(np.abs(C)))) is None:
+        return {"exact": None}
     motions = []
 
     def exact(t):
         if not motions:        # worked out when first asked for: a big batch may never need it
             motions.extend(motion(i) for i in range(count))
-        rs, vs = zip(*(each(t) for each in motions))
+        unknown = np.full((np.size(t), 3), np.nan)
+        rs, vs = zip(*((unknown, unknown) if each is None else each(t) for each in motions))
         return np.stack(rs, axis=1), np.stack(vs, axis=1)
-    return exact
+
+    if L0 == 0:
+        return {"exact": exact}
+
+    def crossing(i):
+        each = motion(i)
+        if each is None:
+            return None
+        rate = max(math.sqrt(k / m), omega[i] if F0[i] else 0.0, b[i] / m)
+        return AnchorCrossing(each, anchor=anchors[i], r0=r0[i], rate=rate)
+
+    # Along each spring's line û: the start s0 from the anchor, the equilibrium s_eq, the drive's part.
+    s0 = np.linalg.norm(r0 - anchors, axis=1)
+    u = (r0 - anchors) / s0[:, None]
+    s_eq = rest_length(L0=L0, m=m, k=k, g=g, direction=u)
+    drive_u = F0 * (u @ (np.asarray(drive_axis, dtype=float) / np.linalg.norm(drive_axis)))
+
+    def may_reach(T):
+        # s = s_eq + x reaches the anchor (s = 0) only if |x| can grow to s_eq by T
+        return displacement_bound(T, m=m, k=k, b=b, x0=s0 - s_eq, v0=0.0, F0=drive_u, omega=omega) >= s_eq
+    return {"exact": exact, "exact_valid_until": EachMassValidity(crossing_of=crossing, may_reach=may_reach),
+            "exact_limit": ANCHOR_LIMIT}

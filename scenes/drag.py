@@ -53,18 +53,6 @@ def matched_b(*, m, k, C, A, rho, x0) -> float:
     return 8.0 / (3.0 * np.pi) * 0.5 * C * A * rho * np.sqrt(k / m) * x0
 
 
-def _linear_only(linear):
-    """The row's exact motion: the linear ball's closed form, and NaN for the quadratic one."""
-    if linear is None:
-        return None
-
-    def exact(t):
-        r, v = linear(t)
-        unknown = np.full_like(r, np.nan)
-        return np.concatenate([r, unknown], axis=1), np.concatenate([v, unknown], axis=1)
-    return exact
-
-
 def build(*, m, k, L0, g, b, C, A, rho, x0, spacing, dt, until):
     """Two hanging balls: linear damping on the left, quadratic drag on the right."""
     anchors = anchors_in_a_row(count=2, spacing=spacing)
@@ -81,7 +69,7 @@ def build(*, m, k, L0, g, b, C, A, rho, x0, spacing, dt, until):
         forces=tuple(forces),
         dt=float(dt),
         until=float(until),
-        exact=_linear_only(exact_row(anchors=anchors[:1], r0=r0[:1], m=m, k=k, L0=L0, g=g, b=b)),
+        **exact_row(anchors=anchors, r0=r0, m=m, k=k, L0=L0, g=g, b=[b, 0.0], C=[0.0, C * A * rho]),
         anchors=anchors,
         labels=(f"linear, b = {b:.3g} kg/s", f"quadratic, ½CAρ = {0.5 * C * A * rho:.3g} kg/m"),
     )

@@ -43,7 +43,7 @@ def build(*, m, k, L0, x0, spacing, dt, until):
         forces=(Spring(k=k, L0=L0, anchor=anchors),),
         dt=float(dt),
         until=float(until),
-        exact=exact_row(anchors=anchors, r0=r0, m=m, k=k, L0=L0, g=0.0),
+        **exact_row(anchors=anchors, r0=r0, m=m, k=k, L0=L0, g=0.0),
         anchors=anchors,
         labels=METHODS,
         integrators=METHODS,

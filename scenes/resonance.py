@@ -23,9 +23,9 @@ import numpy as np
 from physics.exact import critical_damping, steady_state_amplitude
 from physics.forces import Driving, Gravity, LinearDamping, Spring
 from physics.simulate import time_grid, trajectory
-from physics.state import make_state
+from physics.state import make_state, velocity
 
-from ._constants import DECLARED, ConstantError
+from ._constants import DECLARED, SMALLEST, ConstantError
 from ._model import Model
 from ._row import anchors_in_a_row, exact_row, start_positions
 
@@ -99,7 +99,21 @@ def damping_values(*, m, k, b, b_ratio, curves) -> np.ndarray:
         raise ConstantError(f"b_ratio = {b_ratio:g} over {curves:g} curves makes the last b = "
                             f"{values[-1]:.3g} kg/s, more than the {largest:g} kg/s b may be; "
                             f"use a smaller b_ratio or fewer curves")
+    if b != 0 and not values[-1] >= SMALLEST:  # nor shrink below what any nonzero b may be
+        # b·ratio^(curves − 1) ≥ SMALLEST: ratio ≥ (SMALLEST/b)^(1/(curves − 1)), or fewer curves
+        least_ratio = _rounded_up((SMALLEST / b) ** (1.0 / (len(values) - 1)))
+        most_curves = 1 + int(np.floor(np.log(SMALLEST / b) / np.log(b_ratio)))
+        raise ConstantError(f"b = {b:.3g} kg/s with b_ratio = {b_ratio:g} over {curves:g} curves makes "
+                            f"the last b = {values[-1]:.3g} kg/s, less than the {SMALLEST:g} kg/s a "
+                            f"nonzero b may be; use b_ratio = {least_ratio:g} or more, or at most "
+                            f"{most_curves} curves")
     return values
+
+
+def _rounded_up(x: float) -> float:
+    """x rounded up to 3 significant figures, so that the value printed still works."""
+    scale = 10.0 ** (np.floor(np.log10(x)) - 2)
+    return float(np.ceil(x / scale * (1 - 1e-12)) * scale)
 
 
 def _grid(*, m, k, b, b_ratio, curves, omega_min, omega_max, count):
@@ -129,8 +143,8 @@ def build(*, m, k, L0, g, F0, b, b_ratio, curves, omega_min, omega_max, count, s
         forces=tuple(forces),
         dt=float(dt),
         until=float(until),
-        exact=exact_row(anchors=anchors, r0=r0, m=m, k=k, L0=L0, g=g, b=b_all, F0=F0, omega=omega_all,
-                        drive_axis=DRIVE_AXIS),
+        **exact_row(anchors=anchors, r0=r0, m=m, k=k, L0=L0, g=g, b=b_all, F0=F0, omega=omega_all,
+                    drive_axis=DRIVE_AXIS),
         anchors=anchors,
         labels=tuple(f"b = {b_j:.3g} kg/s, ω = {w:.3g} rad/s" for b_j, w in zip(b_all, omega_all)),
         default_integrator=DEFAULT_INTEGRATOR,
@@ -150,7 +164,7 @@ def amplitude_now(model, state) -> np.ndarray:
     """
     omega = model.forces[2].omega[:, 0]
     x = state.r[..., 1] - model.state.r[:, 1]
-    v = state.p[..., 1] / model.state.m
+    v = velocity(state.p, model.state.m)[..., 1]
     return np.sqrt(x**2 + (v / omega) ** 2)
 
 
@@ -187,7 +201,9 @@ def extra_json(result) -> dict:
     """The resonance curves for headless --json, measured from the run itself: the ω grid, and
     measured and exact amplitudes per b. The exact curves are also given on a fine grid
     ("smooth_..."), for drawing them as lines. Where the run stopped before the measuring window
-    ended, the measured amplitudes are null and "amplitude_note" says why.
+    ended, the measured amplitudes are null and "amplitude_note" says why. Where b = 0 and ω = ω0
+    there is no steady state (the swing grows without bound): the exact amplitude is null there,
+    and "exact_amplitude_note" says so.
     """
     v = result.setup.values
     measured = amplitudes(result.setup, result.model, result.trajectory)
@@ -199,16 +215,31 @@ def extra_json(result) -> dict:
         "omega_rad_per_s": omega.tolist(),
         "b_kg_per_s": b_each.tolist(),
         "amplitude_m": None if measured is None else measured.amplitude.tolist(),
-        "exact_amplitude_m": exact.reshape(len(b_each), len(omega)).tolist(),
+        "exact_amplitude_m": _null_if_unbounded(exact.reshape(len(b_each), len(omega))),
         "smooth_omega_rad_per_s": smooth.tolist(),
-        "smooth_exact_amplitude_m": [steady_state_amplitude(m=v["m"], k=v["k"], b=b_j, F0=v["F0"],
-                                                            omega=smooth).tolist() for b_j in b_each],
+        "smooth_exact_amplitude_m": [_null_if_unbounded(steady_state_amplitude(
+            m=v["m"], k=v["k"], b=b_j, F0=v["F0"], omega=smooth)) for b_j in b_each],
     }
+    if any(None in line for line in out["exact_amplitude_m"] + out["smooth_exact_amplitude_m"]):
+        out["exact_amplitude_note"] = f"null where {_unbounded_words(v)}"
     if measured is None:
         start, end = measure_window(v)
         out["amplitude_note"] = (f"the amplitudes are measured from t = {start:g} s to {end:.4g} s; "
                                  f"run until at least {end:.4g} s (--until or --set until=...)")
     return {"resonance": out}
+
+
+def _unbounded_words(v) -> str:
+    """Why A(ω) has no value at undamped resonance, in words, for the constants v."""
+    omega0 = np.sqrt(v["k"] / v["m"])
+    return (f"b = 0 and ω = ω0 = √(k/m) = {omega0:.4g} rad/s: undamped resonance has no steady state, "
+            f"the swing grows by F0/(2 m ω0) = {abs(v['F0']) / (2 * v['m'] * omega0):.3g} m every second "
+            f"without bound")
+
+
+def _null_if_unbounded(A) -> list:
+    """A as (nested) lists, with None (JSON null) where it is unbounded (undamped resonance)."""
+    return np.where(np.isfinite(A), A, None).tolist()
 
 
 def rows(model) -> np.ndarray:
@@ -226,16 +257,23 @@ def view_graph(setup) -> dict:
     batch shown in 3-D: its A = √(x² + (v/ω)²) at this instant, as dots that wobble while the
     start-up transient lasts and settle onto their b's line as it dies away (like e^(−bt/2m)).
     Nothing is run twice: the dots are the very springs the page steps.
+
+    With b = 0 there is no steady state at ω0 (the swing grows without bound): that b's line runs
+    up to the top of the graph there, and its label says why.
     """
     v = setup.values
     omega, b_each, *_ = _grid(**{key: v[key] for key in (
         "m", "k", "b", "b_ratio", "curves", "omega_min", "omega_max", "count")})
     smooth = np.linspace(v["omega_min"], v["omega_max"], SMOOTH_POINTS)
+    exacts = [steady_state_amplitude(m=v["m"], k=v["k"], b=b_j, F0=v["F0"], omega=smooth) for b_j in b_each]
+    top = 1.15 * float(max(np.max(A, initial=0.0, where=np.isfinite(A)) for A in exacts))
     lines = []
-    for j, b_j in enumerate(b_each):
-        exact = steady_state_amplitude(m=v["m"], k=v["k"], b=b_j, F0=v["F0"], omega=smooth)
-        lines.append((f"b = {b_j:.3g} kg/s", smooth, exact, j))
-    top = float(max(np.max(line[2]) for line in lines))
+    for j, (b_j, exact) in enumerate(zip(b_each, exacts)):
+        label = f"b = {b_j:.3g} kg/s"
+        if not np.all(np.isfinite(exact)):
+            label += f" (unbounded at ω0 = {np.sqrt(v['k'] / v['m']):.3g} rad/s: no steady state)"
+            exact = np.where(np.isfinite(exact), exact, top)
+        lines.append((label, smooth, exact, j))
     omega_all = np.tile(omega, len(b_each))
 
     def live(model, state):
@@ -243,7 +281,7 @@ def view_graph(setup) -> dict:
 
     return {"title": "Amplitude: lines exact, dots the springs now",
             "xtitle": "driving angular frequency ω (rad/s)", "ytitle": "amplitude A (m)",
-            "xmin": float(v["omega_min"]), "xmax": float(v["omega_max"]), "ymin": 0.0, "ymax": 1.15 * top,
+            "xmin": float(v["omega_min"]), "xmax": float(v["omega_max"]), "ymin": 0.0, "ymax": top,
             "lines": lines, "dots": [],
             "live": live, "live_label": "springs now"}
 

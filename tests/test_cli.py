@@ -734,3 +734,61 @@ def test_a_program_past_the_stability_limit_is_written_with_a_warning(tmp_path):
     assert growing.returncode == 0 and growing.stderr.startswith("warning: expect the motion to grow")
     quiet = cli("vertical", "--vpython", str(path))
     assert quiet.returncode == 0 and quiet.stderr == f"wrote {path}\n"
+
+
+# ---- rows: no exact answer for a mass past its anchor; no numpy warnings ----
+
+def test_integrators_past_the_anchor_print_no_exact_answer_and_no_error():
+    # x0 = 2 m beyond L0 = 1 m: s = 1 + 2 cos(5t) reaches the wall at cos(5t) = −1/2, t = 2π/15 s,
+    # for every method's mass (the same closed form). Past it the 1-D closed form says nothing
+    # about the 3-D spring, so no "exact" and no "error" of 1 m for rk4 at Δt = 1 ms.
+    args = ("integrators", "--set", "x0=2", "--set", "dt=0.001")
+    text = cli(*args, "--headless")
+    assert text.returncode == 0, text.stderr
+    assert "r_exact" not in text.stdout and "exact: r" not in text.stdout
+    t_break = 2 * math.pi / 15
+    assert text.stdout.count(f"exact: none at t = 3 s: the closed form stops holding at t = {t_break:.4g} s") == 4
+    out = cli_json(*args)
+    for body in out["bodies"]:
+        assert "exact" not in body and "anchor" in body["exact_note"]
+        assert body["exact_valid_until"] == pytest.approx(t_break, abs=1e-9)
+    assert out["exact_valid_until"] == pytest.approx(t_break, abs=1e-9) and "4 of 4" in out["exact_note"]
+    default = cli_json("integrators")
+    assert all("exact" in body and "exact_note" not in body for body in default["bodies"])
+    assert "exact_note" not in default
+
+
+def test_resonance_without_damping_only_the_spring_at_omega0_loses_its_exact_answer():
+    # b = 0: at ω = ω0 = 5 rad/s, x = −t sin(5t)/10 along the spring (the drive pushes up), which
+    # first reaches the anchor, s = s_eq + x = 1.392 m + x = 0, near t = 14 s. The others beat
+    # within ±0.42 m and keep theirs. A(ω0) has no finite value: null, with a note saying why.
+    args = ("resonance", "--set", "b=0", "--set", "curves=1")
+    done = cli(*args, "--headless", "--json")
+    assert done.returncode == 0 and done.stderr == "", done.stderr      # no RuntimeWarning
+    out = json.loads(done.stdout)
+    stopped = [i for i, body in enumerate(out["bodies"]) if "exact" not in body]
+    assert stopped == [6] and all("exact_note" not in out["bodies"][i] for i in range(13) if i != 6)
+    body = out["bodies"][6]
+    assert body["label"] == "b = 0 kg/s, ω = 5 rad/s" and "anchor" in body["exact_note"]
+    t_break = body["exact_valid_until"]
+    s_eq = 1.0 + 9.8 / 25.0
+    assert s_eq - t_break * math.sin(5 * t_break) / 10 == pytest.approx(0.0, abs=1e-9)
+    grid = np.linspace(0.0, t_break, 100_001)[:-1]
+    assert 13 < t_break < 15 and np.all(s_eq - grid * np.sin(5 * grid) / 10 > 0)
+    curve = out["resonance"]
+    assert curve["exact_amplitude_m"][0][6] is None and None not in curve["exact_amplitude_m"][0][:6]
+    assert curve["smooth_exact_amplitude_m"][0].count(None) == 1
+    assert "undamped resonance has no steady state" in curve["exact_amplitude_note"]
+    assert "notes" not in out                                            # no null without its reason
+    text = cli(*args, "--headless")
+    assert text.returncode == 0 and text.stderr == "", text.stderr
+    block = text.stdout.split("ω = 5 rad/s")[1].split("ω = 5.5 rad/s")[0]
+    assert "exact: none at t = 50 s" in block and "r_exact" not in block
+    assert text.stdout.count("|r − r_exact|") == 12
+
+
+def test_resonance_refuses_a_vanishing_b_in_one_line_without_warnings():
+    done = cli("resonance", "--headless", "--set", "b_ratio=1e-3", "--set", "curves=100")
+    assert done.returncode == 2 and done.stdout == ""
+    assert len(done.stderr.strip().splitlines()) == 1 and "Warning" not in done.stderr
+    assert done.stderr.startswith("error: b = 0.5 kg/s with b_ratio = 0.001 over 100 curves")

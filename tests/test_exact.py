@@ -204,3 +204,36 @@ def test_single_mass_motion_matches_a_fine_rk4_run(case):
     r, v = motion(trajectory.t)
     np.testing.assert_allclose(trajectory.r[:, 0], r, atol=1e-8)
     np.testing.assert_allclose(trajectory.v[:, 0], v, atol=1e-8)
+
+
+# ---- undamped resonance: no steady state, and no numpy warning on the way ----
+
+def test_steady_state_amplitude_is_unbounded_at_undamped_resonance_without_a_warning():
+    import warnings
+
+    omega = np.array([4.0, 5.0, 6.0])                 # ω0 = √(25/1) = 5 rad/s
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")                # a RuntimeWarning (divide by zero) fails
+        A = exact.steady_state_amplitude(m=1.0, k=25.0, b=0.0, F0=1.0, omega=omega)
+        assert A[1] == np.inf
+        np.testing.assert_allclose(A[[0, 2]], [1 / 9, 1 / 11])    # F0 / |k − mω²|
+        assert exact.steady_state_amplitude(m=1.0, k=25.0, b=0.0, F0=-2.0, omega=5.0) == -np.inf
+        assert exact.steady_state_amplitude(m=1.0, k=25.0, b=0.0, F0=0.0, omega=5.0) == 0.0  # no drive
+        # the closed form itself: x = F0 t sin(ω0 t) / (2 m ω0) from rest at equilibrium
+        t = np.linspace(0.0, 10.0, 101)
+        x, _ = exact.oscillator(t, m=1.0, k=25.0, b=0.0, F0=1.0, omega=5.0)
+        np.testing.assert_allclose(x, t * np.sin(5 * t) / 10, atol=1e-12)
+
+
+@FAST
+@given(b=st.floats(min_value=0.0, max_value=20.0), omega=st.sampled_from([0.5, 2.0, 4.0, 4.5, 6.0]),
+       x0=st.floats(min_value=-2.0, max_value=2.0), v0=st.floats(min_value=-5.0, max_value=5.0),
+       F0=st.floats(min_value=-3.0, max_value=3.0), undamped=st.booleans())
+def test_displacement_bound_is_never_exceeded(b, omega, x0, v0, F0, undamped):
+    # m = 1 kg, k = 16 N/m: ω0 = 4 rad/s, so ω = 4 with b = 0 is undamped resonance
+    b = 0.0 if undamped else b
+    T = 20.0
+    t = np.linspace(0.0, T, 20_001)
+    x, _ = exact.oscillator(t, m=1.0, k=16.0, b=b, x0=x0, v0=v0, F0=F0, omega=omega)
+    bound = exact.displacement_bound(T, m=1.0, k=16.0, b=b, x0=x0, v0=v0, F0=F0, omega=omega)
+    assert np.max(np.abs(x)) <= bound * (1 + 1e-9) + 1e-12

@@ -405,3 +405,82 @@ def test_the_figure_stops_drawing_the_exact_curve_where_it_stops_holding():
     r, v = exact_curve(model, t)
     holds = t <= np.pi / 5
     assert np.all(np.isfinite(r[holds])) and np.all(np.isnan(r[~holds])) and np.all(np.isnan(v[~holds]))
+
+
+# ---- rows: each mass's closed form holds until that mass reaches its own anchor ----------------
+
+def test_a_row_judges_each_mass_against_its_own_anchor():
+    # regimes with x0 = 3 m: equilibrium s_eq = L0 + mg/k = 1.6125 m below each anchor. The
+    # under-damped mass (b = 0.8 kg/s) swings 3 m the other way, past its anchor; the critically
+    # and over-damped ones never cross equilibrium, so they stay below theirs.
+    from reports import headless
+
+    setup = configure("regimes").with_values(x0=3.0)
+    model = setup.build()
+    each = model.exact_valid_until.each(8.0)
+    s_eq = rest_length(L0=1.0, m=1.0, k=16.0, g=9.8)
+    assert np.isfinite(each[0]) and list(each[1:]) == [np.inf, np.inf]
+    assert model.exact_valid_until(8.0) == each[0]
+    x, _ = oscillator(np.array([each[0]]), m=1.0, k=16.0, b=0.8, x0=3.0)
+    assert s_eq + x[0] == pytest.approx(0.0, abs=1e-9)           # s = 0: at the anchor
+    x_before, _ = oscillator(np.linspace(0.0, each[0], 10_001)[:-1], m=1.0, k=16.0, b=0.8, x0=3.0)
+    assert np.all(s_eq + x_before > 0)                             # and the first time there
+
+    result = headless.simulate(setup, progress=None)
+    out = headless.as_json(result)
+    under, critical, over = out["bodies"]
+    assert "exact" not in under and "anchor" in under["exact_note"]
+    assert under["exact_valid_until"] == pytest.approx(each[0])
+    for body in (critical, over):
+        assert body["exact"]["error"]["r"] < 1e-3 and "exact_note" not in body
+    assert "1 of 3 masses" in out["exact_note"] and out["exact_valid_until"] == pytest.approx(each[0])
+    text = headless.final_report(result).split("critically damped")
+    assert f"exact: none at t = 8 s: the closed form stops holding at t = {each[0]:.4g} s" in text[0]
+    assert "|r − r_exact|" not in text[0] and text[1].count("|r − r_exact|") == 2
+
+
+@pytest.mark.parametrize("name", ["regimes", "drag", "integrators", "resonance"])
+def test_the_row_scenes_defaults_stay_on_their_side_of_the_anchor(name):
+    model = build(name)
+    assert model.exact_valid_until.each(model.until).tolist() == [np.inf] * model.state.count
+    r, _ = model.exact(np.array([0.0, model.until]))
+    known = np.isfinite(r[0, :, 0])
+    assert known.all() if name != "drag" else known.tolist() == [True, False]  # quadratic drag: no closed form
+
+
+def test_resonance_refuses_a_derived_b_below_the_smallest_nonzero_value():
+    # b = 0.5 kg/s · 0.001^99 = 5e-298 kg/s: round-off, not a damping constant (any nonzero value
+    # given must be at least 1e-9 in size). 0.5 · 0.001² = 5e-7 still is one, 0.5 · 0.001³ is not.
+    with pytest.raises(ConstantError) as refused:
+        build("resonance", b_ratio=1e-3, curves=100)
+    message = str(refused.value)
+    assert "\n" not in message
+    for part in ("b = 0.5 kg/s", "b_ratio = 0.001", "100 curves", "5e-298 kg/s", "1e-09 kg/s",
+                 "use b_ratio = 0.817 or more, or at most 3 curves"):
+        assert part in message, message
+    for works in ({"b_ratio": 0.817, "curves": 100}, {"b_ratio": 1e-3, "curves": 3},
+                  {"b": 0.0, "b_ratio": 1e-3, "curves": 100}):
+        build("resonance", count=2, **works)
+    for refused_too in ({"b_ratio": 0.816, "curves": 100}, {"b_ratio": 1e-3, "curves": 4}):
+        with pytest.raises(ConstantError, match="less than the 1e-09 kg/s a nonzero b may be"):
+            build("resonance", count=2, **refused_too)
+
+
+def test_resonance_measures_v_with_the_one_v_equals_p_over_m(monkeypatch):
+    from physics import state as state_module
+    from scenes import resonance
+
+    calls = []
+    monkeypatch.setattr(resonance, "velocity", lambda p, m: calls.append(p.shape) or state_module.velocity(p, m))
+    model = build("resonance", count=2)
+    assert resonance.amplitude_now(model, model.state).shape == (6,) and calls == [(6, 3)]
+
+
+def test_the_resonance_graph_says_b_zero_has_no_steady_state_at_omega0():
+    # b = 0, ω = ω0 = 5 rad/s lies on the smooth grid (2 to 8 rad/s in 401 points): no finite A there
+    setup = configure("resonance").with_values(b=0.0, curves=1)
+    graph = setup.module.view_graph(setup)
+    (label, xs, ys, _), = graph["lines"]
+    assert np.all(np.isfinite(ys)) and np.isfinite(graph["ymax"])
+    assert ys[xs == 5.0] == pytest.approx(graph["ymax"])      # the line runs to the top of the graph
+    assert label == "b = 0 kg/s (unbounded at ω0 = 5 rad/s: no steady state)"
