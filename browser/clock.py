@@ -36,9 +36,9 @@ from physics.energy import series
 from physics.simulate import BlowUpError, time_grid
 from physics.stability import judge, rates
 from physics.state import State
+from scenes._view import MAX_DRAWN_MASSES
 
 
-MAX_DRAWN_MASSES = 2000      # a sphere and a helix each: more would stall the page on a school laptop
 SLOWEST = 1 / 60             # the page must manage at least 1 s of simulated time per minute
 
 

@@ -48,7 +48,7 @@ from physics.forces import Driving, Gravity, LinearDamping, QuadraticDrag, Sprin
 from physics.integrators import INTEGRATORS
 from physics.simulate import steps_to_reach
 from scenes import DECLARED, ConstantError, catalog, summary
-from scenes._view import DEFAULT_VIEW
+from scenes._view import DEFAULT_VIEW, MAX_DRAWN_MASSES
 
 from .exact_curve import exact_lines
 from .lines import (CONSTANT_COLUMN, ProgramError, align_comments, commented, listed, number,
@@ -73,7 +73,6 @@ MEANINGS = {
     "r0": "start position", "v0": "start velocity",
     "dt": "time step Δt of the momentum update", "until": "when to stop",
 }
-MOST_MASSES = 2000         # a sphere and a helix each: as many as the page draws (browser/clock.py)
 LABELLED = 6               # more masses than this: no labels on their curves (as the page's legend)
 ROUND_OFF = 1e-15          # relative: a rule's list may differ from the model's by this (a few units
                            # in the last place: numpy's linspace sets its last value to the end exactly)
@@ -275,9 +274,9 @@ def program(setup, *, integrator: str | None = None, web: bool = False) -> str:
     """
     model = setup.build()
     count = model.state.count
-    if count > MOST_MASSES:
+    if count > MAX_DRAWN_MASSES:
         whole = [name for name in setup.constants if DECLARED[name].whole]
-        raise ProgramError(f"{count:,} masses are more than the {MOST_MASSES:,} a program (like the page) "
+        raise ProgramError(f"{count:,} masses are more than the {MAX_DRAWN_MASSES:,} a program (like the page) "
                            f"can draw" + (f"; make {' or '.join(whole)} smaller" if whole else ""))
     methods = model.methods(integrator)
     view = {**DEFAULT_VIEW, **getattr(setup.module, "VIEW", {})}
