@@ -207,10 +207,8 @@ class Graphs:
         self._record(samples)
         t = np.array([s.t for s in samples])
         r = np.array([s.r for s in samples]) if samples else np.zeros((0,) + live.state.r.shape)
-        exact = live.model.exact(t)[0] if (self.show_exact and len(t)) else None
-        if exact is not None:  # past the anchor the closed form no longer describes the mass
-            keep = t <= exact_valid_until(live.model, float(t[-1]))
-            exact = exact[keep] if not keep.all() else exact
+        # NaN where the closed form no longer describes a mass (past its anchor): no point there
+        exact = live.model.exact_where_valid(t)[0] if (self.show_exact and len(t)) else None
         energies = self._energies(samples, live)
         for curve, trace, what in self.curves:
             if what[0] == "r":
@@ -222,7 +220,7 @@ class Graphs:
                     values = exact[:, what[1], what[2]]
             else:
                 values = energies[what[1]]
-            points = [[float(a), float(b)] for a, b in zip(t, values)]  # zip stops where exact does
+            points = [[float(a), float(b)] for a, b in zip(t, values) if math.isfinite(b)]
             if what[0] in ("r", "mass_energy") and what[1] in live.runaways:
                 frozen = live.runaways[what[1]][0]  # the curve ends where the mass ran away
                 points = [point for point in points if point[0] <= frozen]
@@ -230,7 +228,7 @@ class Graphs:
                 replace_points(curve, list(trace.points))
             elif points:
                 curve.plot(points)
-        if exact is not None and len(exact):
+        if exact is not None and np.isfinite(exact[..., self.axes]).any():
             _fit(self.position_graph, self.position_fit, exact[..., self.axes].ravel())
         elif len(t):
             _fit(self.position_graph, self.position_fit, r[:, matter][..., self.axes].ravel())
@@ -283,25 +281,25 @@ class Graphs:
         if not self.show_exact:
             return ""
         model, state = live.model, live.state
-        valid_until = exact_valid_until(model, state.t)
-        if state.t > valid_until:
-            return (f"no exact value after t = {valid_until:.3g} s: the closed form "
+        until = model.exact_valid_until_each(state.t)
+        known = [i for i in matter if state.t <= until[i]]
+        if not known:
+            first = float(np.min(until[matter])) if len(matter) else float(np.min(until))
+            return (f"no exact value after t = {first:.3g} s: the closed form "
                     f"stops holding {model.exact_limit}")
-        exact = model.exact(np.array([state.t]))[0][0]
-        errors = state.r[matter][:, self.axes] - exact[matter][:, self.axes]
-        worst = float(np.max(np.abs(errors)))
+        exact = model.exact_where_valid([state.t])[0][0]
+        errors = state.r[known][:, self.axes] - exact[known][:, self.axes]
+        known_errors = errors[np.isfinite(errors)]
+        if not known_errors.size:
+            return ""
         if errors.size == 1:
             name = "xyz"[self.axes[0]]
             return f"error {name} − {name}<sub>exact</sub> = {float(errors.flat[0]):+.3g} m"
-        others = (f" ({', '.join(model.labels[i] for i in live.may_run_away)} left out)"
-                  if live.may_run_away else "")
-        return f"largest |error| against the exact solutions = {worst:.3g} m{others}"
-
-
-def exact_valid_until(model, t_end: float) -> float:
-    """The time, s, after which the model's closed form stops holding (math.inf if it holds to t_end)."""
-    check = model.exact_valid_until
-    return math.inf if check is None else check(t_end)
+        left_out = [model.labels[i] for i in live.may_run_away]
+        past = [model.labels[i] for i in matter if i not in known]
+        others = (f" ({', '.join(left_out)} left out)" if left_out else "") + \
+                 (f" ({', '.join(past)}: past the anchor, no exact value)" if past else "")
+        return f"largest |error| against the exact solutions = {float(np.max(np.abs(known_errors))):.3g} m{others}"
 
 
 def csv_text(samples, *, m, labels, dt) -> str:

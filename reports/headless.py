@@ -111,17 +111,8 @@ class Result:
         return math.inf if check is None else check(float(self.trajectory.t[-1]))
 
     def exact_valid_until_each(self) -> np.ndarray:
-        """When each mass's closed form stops holding, (N,) s: math.inf where it holds to the end.
-
-        A row of independent masses (scenes/_row.py) judges each mass on its own, through its
-        exact_valid_until's each(T); otherwise one time holds for every mass.
-        """
-        check, T = self.model.exact_valid_until, float(self.trajectory.t[-1])
-        count = len(self.trajectory.m)
-        if check is None:
-            return np.full(count, math.inf)
-        each = getattr(check, "each", None)
-        return np.asarray(each(T), dtype=float) if each is not None else np.full(count, check(T))
+        """When each mass's closed form stops holding, (N,) s: math.inf where it holds to the end."""
+        return self.model.exact_valid_until_each(float(self.trajectory.t[-1]))
 
     def exact(self):
         """(r, v) of the closed form at the final time, shape (N, 3) each, or None where unknown.
@@ -129,14 +120,10 @@ class Result:
         A mass whose closed form stopped holding before the final time gets NaN ("not known"),
         as one with no closed form does (exact_notes says why); None if every mass's stopped.
         """
-        if self.model.exact is None:
+        exact = self.model.exact_where_valid([self.trajectory.t[-1]])
+        if exact is None or (self.exact_valid_until_each() < self.trajectory.t[-1]).all():
             return None
-        stopped = self.exact_valid_until_each() < self.trajectory.t[-1]
-        if stopped.all():
-            return None
-        r, v = (np.array(a, dtype=float)[0] for a in self.model.exact(np.array([self.trajectory.t[-1]])))
-        r[stopped], v[stopped] = np.nan, np.nan
-        return r, v
+        return exact[0][0], exact[1][0]
 
     def exact_notes(self) -> list:
         """For each mass, why it has no exact value at the final time though a closed form exists,

@@ -89,17 +89,6 @@ def resonance_panel(ax, curve: dict) -> None:
     ax.grid(alpha=0.3)
 
 
-def exact_curve(model, t):
-    """The closed form's (r, v) at times t, NaN (a gap in the curve) where it does not hold; or None."""
-    if model.exact is None:
-        return None
-    r, v = (np.array(a, dtype=float) for a in model.exact(t))
-    if model.exact_valid_until is not None:
-        after = t > model.exact_valid_until(float(t[-1]))
-        r[after], v[after] = np.nan, np.nan
-    return r, v
-
-
 def fit_y(ax, values, *, margin: float = 0.05) -> tuple[float, float]:
     """Fix the y axis on `values`, with matplotlib's usual 5 % margin: other curves may leave it."""
     low, high = float(np.nanmin(values)), float(np.nanmax(values))
@@ -160,7 +149,7 @@ def plot(result, path: str) -> None:
     axes_shown = moving_axes(traj.r, preferred if isinstance(preferred, str) else None)
     # closed forms drawn smooth, whatever Δt is: at least 50 points a second, 2,000 in all
     smooth_t = np.linspace(traj.t[0], traj.t[-1], max(2000, int(50 * (traj.t[-1] - traj.t[0]))))
-    exact = exact_curve(model, smooth_t)
+    exact = model.exact_where_valid(smooth_t)   # NaN, a gap in the curve, where it does not hold
     extra = getattr(result.setup.module, "extra_json", None)
     curve = extra(result).get("resonance") if extra is not None else None
     fig, axes = plt.subplots(3 if curve else 2, 1, figsize=(8, 10 if curve else 7))

@@ -1,6 +1,7 @@
 """What a scene's build function returns: a model ready to run, and what the view needs to draw it."""
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 from typing import Callable, Optional
 
@@ -60,6 +61,29 @@ class Model:
         if self.integrators is not None:
             return tuple(self.integrators)
         return methods_for(integrator or self.default_integrator or DEFAULT_INTEGRATOR, self.state.count)
+
+    def exact_valid_until_each(self, T: float) -> np.ndarray:
+        """When each mass's closed form stops holding, up to the horizon T, (N,) s: math.inf where
+        it holds to T. A row of independent masses (scenes/_row.py) judges each mass on its own,
+        through its exact_valid_until's each(T); otherwise one time holds for every mass."""
+        check, count = self.exact_valid_until, self.state.count
+        if check is None:
+            return np.full(count, math.inf)
+        each = getattr(check, "each", None)
+        return np.asarray(each(T), dtype=float) if each is not None else np.full(count, float(check(T)))
+
+    def exact_where_valid(self, t) -> Optional[tuple]:
+        """The closed form's (r, v) at the times t, each (len(t), N, 3), NaN ("not known") for a mass
+        at the times its closed form no longer describes it (past its anchor) or where it has none;
+        None where the scene has no closed form. The one rule the report, --plot and the page use."""
+        if self.exact is None:
+            return None
+        t = np.asarray(t, dtype=float)
+        r, v = (np.array(a, dtype=float) for a in self.exact(t))
+        if len(t):
+            after = t[:, None] > self.exact_valid_until_each(float(t[-1]))[None, :]
+            r[after], v[after] = np.nan, np.nan
+        return r, v
 
     def expected_runaways(self, methods: Optional[tuple] = None) -> list[int]:
         """The masses expected to run away: those the scene names (may_run_away), and, where each

@@ -61,7 +61,7 @@ class EachMassValidity:
     exact motion reaches its spring's anchor (scenes/_single_mass.py's AnchorCrossing, mass by mass).
 
     Called with T, it gives the earliest of them (math.inf if every mass stays on its side up to T):
-    Model.exact_valid_until's answer, where the page and --plot stop drawing every exact curve.
+    Model.exact_valid_until's answer.
     each(T) gives one time per mass, (N,) s, for reports that judge each mass on its own: a mass
     whose closed form still holds keeps its exact answer though another's stopped.
 
