@@ -123,6 +123,18 @@ def _grid(*, m, k, b, b_ratio, curves, omega_min, omega_max, count):
     return omega, b_each, np.tile(omega, len(b_each)), np.repeat(b_each, len(omega))
 
 
+def _grid_of(values):
+    """_grid for a scene's constants."""
+    return _grid(**{key: values[key] for key in (
+        "m", "k", "b", "b_ratio", "curves", "omega_min", "omega_max", "count")})
+
+
+def curve_amplitude(values, *, b, omega):
+    """The steady-state amplitude |A| = |F0| / √((k − mω²)² + (bω)²) of the scene's springs, m: a
+    size, like the measured A = √(x² + (v/ω)²), whatever the sign of F0 (inf at undamped resonance)."""
+    return np.abs(steady_state_amplitude(m=values["m"], k=values["k"], b=b, F0=values["F0"], omega=omega))
+
+
 def build(*, m, k, L0, g, F0, b, b_ratio, curves, omega_min, omega_max, count, spacing, settle,
           periods, dt, until):
     """One driven, damped spring per (b, ω) pair: a row of `count` springs for each b, one row
@@ -181,10 +193,9 @@ def amplitudes(setup, model, trajectory) -> Sweep | None:
     State = type(model.state)
     measured = amplitude_now(model, State(t=trajectory.t[inside], r=trajectory.r[inside],
                                           p=trajectory.p[inside], m=trajectory.m)).max(axis=0)
-    omega, b_each, omega_all, b_all = _grid(**{key: v[key] for key in (
-        "m", "k", "b", "b_ratio", "curves", "omega_min", "omega_max", "count")})
+    omega, b_each, omega_all, b_all = _grid_of(v)
     shape = (len(b_each), len(omega))
-    exact = steady_state_amplitude(m=v["m"], k=v["k"], b=b_all, F0=v["F0"], omega=omega_all)
+    exact = curve_amplitude(v, b=b_all, omega=omega_all)
     return Sweep(omega=omega, b=b_each, amplitude=measured.reshape(shape), exact=exact.reshape(shape))
 
 
@@ -207,9 +218,8 @@ def extra_json(result) -> dict:
     """
     v = result.setup.values
     measured = amplitudes(result.setup, result.model, result.trajectory)
-    omega, b_each, omega_all, b_all = _grid(**{key: v[key] for key in (
-        "m", "k", "b", "b_ratio", "curves", "omega_min", "omega_max", "count")})
-    exact = steady_state_amplitude(m=v["m"], k=v["k"], b=b_all, F0=v["F0"], omega=omega_all)
+    omega, b_each, omega_all, b_all = _grid_of(v)
+    exact = curve_amplitude(v, b=b_all, omega=omega_all)
     smooth = np.linspace(v["omega_min"], v["omega_max"], SMOOTH_POINTS)
     out = {
         "omega_rad_per_s": omega.tolist(),
@@ -217,8 +227,8 @@ def extra_json(result) -> dict:
         "amplitude_m": None if measured is None else measured.amplitude.tolist(),
         "exact_amplitude_m": _null_if_unbounded(exact.reshape(len(b_each), len(omega))),
         "smooth_omega_rad_per_s": smooth.tolist(),
-        "smooth_exact_amplitude_m": [_null_if_unbounded(steady_state_amplitude(
-            m=v["m"], k=v["k"], b=b_j, F0=v["F0"], omega=smooth)) for b_j in b_each],
+        "smooth_exact_amplitude_m": [_null_if_unbounded(curve_amplitude(v, b=b_j, omega=smooth))
+                                     for b_j in b_each],
     }
     if any(None in line for line in out["exact_amplitude_m"] + out["smooth_exact_amplitude_m"]):
         out["exact_amplitude_note"] = f"null where {_unbounded_words(v)}"
@@ -262,10 +272,9 @@ def view_graph(setup) -> dict:
     up to the top of the graph there, and its label says why.
     """
     v = setup.values
-    omega, b_each, *_ = _grid(**{key: v[key] for key in (
-        "m", "k", "b", "b_ratio", "curves", "omega_min", "omega_max", "count")})
+    omega, b_each, *_ = _grid_of(v)
     smooth = np.linspace(v["omega_min"], v["omega_max"], SMOOTH_POINTS)
-    exacts = [steady_state_amplitude(m=v["m"], k=v["k"], b=b_j, F0=v["F0"], omega=smooth) for b_j in b_each]
+    exacts = [curve_amplitude(v, b=b_j, omega=smooth) for b_j in b_each]
     top = 1.15 * float(max(np.max(A, initial=0.0, where=np.isfinite(A)) for A in exacts))
     lines = []
     for j, (b_j, exact) in enumerate(zip(b_each, exacts)):

@@ -482,3 +482,15 @@ def test_the_resonance_graph_says_b_zero_has_no_steady_state_at_omega0():
     assert np.all(np.isfinite(ys)) and np.isfinite(graph["ymax"])
     assert ys[xs == 5.0] == pytest.approx(graph["ymax"])      # the line runs to the top of the graph
     assert label == "b = 0 kg/s (unbounded at ω0 = 5 rad/s: no steady state)"
+
+
+def test_the_resonance_curve_is_a_size_whatever_the_sign_of_F0():
+    """A = √(x² + (v/ω)²) measured from the springs is a size; the exact curve is |F0|/√(...), so a
+    drive of F0 = −1 N gives the same curve as +1 N (it was drawn upside down, below 0)."""
+    from scenes import resonance
+
+    values = {**configure("resonance").values, "count": 5}
+    omega = np.linspace(2.0, 8.0, 9)
+    down = resonance.curve_amplitude({**values, "F0": -1.0}, b=0.5, omega=omega)
+    up = resonance.curve_amplitude({**values, "F0": 1.0}, b=0.5, omega=omega)
+    assert np.all(down > 0) and np.array_equal(down, up)
