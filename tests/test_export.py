@@ -589,3 +589,16 @@ def test_colours_and_widths_are_the_pages(args, stand_in, tmp_path):
     for i in exact:
         assert drawn[i]["width"] == EXACT_WIDTH < min(c["width"] for c in simulated)
         assert i > max(drawn.index(c) for c in simulated)
+
+
+def test_the_readmes_excerpt_of_a_program_is_what_the_program_writer_writes():
+    """Every line the README quotes from `main.py damped --vpython damped.py` is a line of it."""
+    readme = (ROOT / "README.md").read_text(encoding="utf-8")
+    start = readme.index("`python main.py damped --vpython damped.py` writes, in part:")
+    block = readme[start:].split("\n\n")[1]
+    quoted = [line[4:] for line in block.splitlines() if line.strip() and line.strip() != "..."]
+    written = main_py("damped", "--vpython", "-")
+    assert written.returncode == 0, written.stderr
+    lines = written.stdout.splitlines()
+    assert len(quoted) >= 15 and all(line in lines for line in quoted), \
+        [line for line in quoted if line not in lines]
