@@ -14,7 +14,7 @@ from browser.clock import LiveRun
 from browser.graphs import Graphs
 from browser.view import DEFAULT_VIEW
 from scenes import catalog
-from test_trail import Shape, stand_in_vpython
+from test_trail import stand_in_vpython
 
 
 def regimes_past_the_anchor():
@@ -38,15 +38,7 @@ def test_only_the_mass_that_reached_its_anchor_loses_its_exact_motion_and_only_f
 def test_the_page_keeps_the_other_masses_exact_curves_and_error_after_one_mass_crosses():
     setup, model = regimes_past_the_anchor()
 
-    class Series(Shape):
-        def delete(self):
-            self.points.clear()
-
-        def plot(self, points):
-            self.points.extend(points)
-
     vp = stand_in_vpython()
-    vp.graph, vp.gcurve, vp.gdots = Shape, Series, Series
     graphs = Graphs(vp, setup=setup, model=model, view={**DEFAULT_VIEW, **setup.module.VIEW})
     live = LiveRun(model, integrator="rk4", sample_every=0.05)
     matter = list(range(model.state.count))

@@ -150,17 +150,9 @@ def resonance_page():
     from browser.scene3d import Scene3D
     from browser.view import DEFAULT_VIEW
     from scenes import catalog
-    from test_trail import Shape, stand_in_vpython
-
-    class Series(Shape):
-        def delete(self):
-            self.points.clear()
-
-        def plot(self, points):
-            self.points.extend(points)
+    from test_trail import stand_in_vpython
 
     vp = stand_in_vpython()
-    vp.graph, vp.gcurve, vp.gdots = Shape, Series, Series
     setup = catalog.configure("resonance")
     model = setup.build()
     view = {**DEFAULT_VIEW, **setup.module.VIEW}

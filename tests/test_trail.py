@@ -36,10 +36,23 @@ class Vec(np.ndarray):
     z = property(lambda self: float(self[2]))
 
 
+class Series(Shape):
+    """A graph's curve or dots: plot() adds points, delete() empties it."""
+
+    def delete(self):
+        self.points.clear()
+
+    def plot(self, points):
+        self.points.extend(points)
+
+
 def stand_in_vpython():
+    """What the page's parts (browser/scene3d.py, browser/graphs.py) call, as objects that only keep
+    what they are given: enough to draw a scene with no browser and no server."""
     vector = lambda x, y, z: np.array([x, y, z], dtype=float).view(Vec)     # noqa: E731
     return SimpleNamespace(scene=SimpleNamespace(), vector=vector, box=Shape, helix=Shape, sphere=Shape,
-                           curve=Shape, label=Shape, color=SimpleNamespace(white=vector(1, 1, 1)))
+                           curve=Shape, label=Shape, color=SimpleNamespace(white=vector(1, 1, 1)),
+                           graph=Shape, gcurve=Series, gdots=Series)
 
 
 def test_the_trail_gets_every_graph_sample_however_few_frames_the_page_draws():
