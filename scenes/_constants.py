@@ -233,6 +233,10 @@ def read_constants(module) -> dict[str, Constant]:
         problem = value_problem(name, value)
         if problem:
             refuse(problem)
+        try:
+            check_value(name, value, unit)  # in its declared range: named here, with its file and line
+        except ConstantError as out_of_range:
+            raise ConstantError(f"{where}, line {node.lineno}: {out_of_range}") from None
         constants[name] = Constant(name, value, unit, meaning)
     return constants
 

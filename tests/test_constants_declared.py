@@ -204,3 +204,10 @@ def test_a_scene_file_saved_as_latin_1_names_the_line_that_is_not_utf_8(tmp_path
     assert done.returncode == 2
     assert one_error_line(done) == (f"error: {tmp_path}{os.sep}novel.py, line 2: the file is not UTF-8 text "
                                     f"(byte 0xe9); save it as UTF-8")
+
+
+def test_a_value_out_of_its_range_in_the_file_names_the_file_and_the_line():
+    """`k = -40` in a teacher's edit: the range message, with where to mend it."""
+    with pytest.raises(ConstantError) as error:
+        read_constants(scene_from(BLOCK.format(line="k = -40.0   # N/m: spring constant")))
+    assert str(error.value) == "scenes/a_teachers_edit.py, line 2: k must be from 0 to 1e6 N/m (got -40 N/m)"
