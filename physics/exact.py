@@ -55,7 +55,7 @@ def steady_state_amplitude(*, m, k, b, F0, omega):
     F0 = np.asarray(F0, dtype=float)
     unbounded = undamped_resonance(m=m, k=k, b=b, omega=omega)
     with np.errstate(divide="ignore", invalid="ignore"):   # only where unbounded: settled just below
-        A = F0 / np.sqrt((k - m * omega**2) ** 2 + (b * omega) ** 2)
+        A = F0 / np.hypot(k - m * omega**2, b * omega)   # hypot: no underflow of (bω)² for a tiny b
     return np.where(unbounded, np.where(F0 == 0, 0.0, np.copysign(np.inf, F0)), A)[()]
 
 
@@ -73,7 +73,7 @@ def displacement_bound(T, *, m, k, b, x0, v0, F0, omega):
     A = np.where(resonant, 0.0, steady_state_amplitude(m=m, k=k, b=b, F0=F0, omega=omega))
     delta = np.arctan2(b * omega, k - m * omega**2)
     xp0, vp0 = A * np.cos(delta), A * omega * np.sin(delta)   # x_p(0), v_p(0); 0 at undamped resonance
-    free = np.sqrt((x0 - xp0) ** 2 + ((v0 - vp0) / omega0) ** 2)
+    free = np.hypot(x0 - xp0, (v0 - vp0) / omega0)
     forced = np.where(resonant, np.abs(F0) * T / (2.0 * m * omega0), np.abs(A))
     return (free + forced)[()]
 
