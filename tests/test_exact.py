@@ -226,11 +226,13 @@ def test_steady_state_amplitude_is_unbounded_at_undamped_resonance_without_a_war
 
 
 @FAST
-@given(b=st.floats(min_value=0.0, max_value=20.0), omega=st.sampled_from([0.5, 2.0, 4.0, 4.5, 6.0]),
+@given(b=st.floats(min_value=1e-9, max_value=20.0), omega=st.sampled_from([0.5, 2.0, 4.0, 4.5, 6.0]),
        x0=st.floats(min_value=-2.0, max_value=2.0), v0=st.floats(min_value=-5.0, max_value=5.0),
        F0=st.floats(min_value=-3.0, max_value=3.0), undamped=st.booleans())
 def test_displacement_bound_is_never_exceeded(b, omega, x0, v0, F0, undamped):
-    # m = 1 kg, k = 16 N/m: ω0 = 4 rad/s, so ω = 4 with b = 0 is undamped resonance
+    # m = 1 kg, k = 16 N/m: ω0 = 4 rad/s, so ω = 4 with b = 0 is undamped resonance. b is 0 or at
+    # least 1e-9 kg/s, as every b the program takes (scenes/_constants.py): at b = 5e-324 near
+    # resonance the closed form itself is inf − inf in floating point.
     b = 0.0 if undamped else b
     T = 20.0
     t = np.linspace(0.0, T, 20_001)
