@@ -150,6 +150,11 @@ PROGRAM_OPTIONS = (("--vpython", "vpython"), ("--webvpython", "webvpython"))
 OUTPUT_FILES = (("--csv", "csv"), ("--plot", "plot"), *PROGRAM_OPTIONS)
 
 
+def headless_run(args) -> bool:
+    """Whether the command runs without the browser: --headless, and --steps and --plot, which imply it."""
+    return args.headless or args.steps is not None or args.plot is not None
+
+
 def _given(args, attribute) -> bool:
     value = getattr(args, attribute)
     return value is not None and value is not False and value != []  # --port 0 is given
@@ -157,7 +162,7 @@ def _given(args, attribute) -> bool:
 
 def check_options(args) -> None:
     """Combinations and ranges argparse cannot check by itself: each flag must do something."""
-    runs_headless = args.headless or args.steps is not None or args.plot is not None
+    runs_headless = headless_run(args)
     if args.list:
         others = [flag for flag, attribute in (("--constants", "constants"), ("--set", "assignments"),
                                                ("--scenario", "scenario"), ("--preset", "preset"),
@@ -328,7 +333,7 @@ def main(argv=None) -> int:
             print(presets_report(setup))
             return 0
         model = build_model(args, setup)
-        runs_headless = args.headless or args.steps is not None or args.plot is not None
+        runs_headless = headless_run(args)
         if args.vpython is not None or args.webvpython is not None:
             write_programs(args, setup, model, warn=not runs_headless)   # then a headless run too, if asked
             if not runs_headless:
@@ -357,7 +362,7 @@ def main(argv=None) -> int:
     if preset is None and args.scenario is not None:  # the page's preset menu names the scenario shown
         preset = next((label for label, _ in catalog.presets(setup)
                        if label.startswith(f"scenario {args.scenario}:")), None)
-    sys.exit(show(setup, integrator=integrator, port=args.port,
+    sys.exit(show(setup, model, integrator=integrator, port=args.port,
                   open_browser=not args.no_browser, preset=preset))
 
 

@@ -11,8 +11,9 @@ once per frame it carries out the clicks, asks the engine for the steps real tim
 and tells the parts to draw. A scene's VIEW dict names what to draw (the keys and their defaults:
 scenes/_view.py's DEFAULT_VIEW). What the page does for the teacher is in README.md.
 
-Closing the tab, or Ctrl-C, makes vpython raise SystemExit(0) in this (main) thread; nothing here
-catches it, so the program ends with status 0.
+Closing the tab, or Ctrl-C, makes vpython raise SystemExit(0) in this (main) thread. Closing the
+tab ends the program with status 0; show() turns a Ctrl-C into KeyboardInterrupt, which the
+command line reports with status 130.
 """
 from __future__ import annotations
 
@@ -39,21 +40,17 @@ PAGE_STYLE = ("<style>body { font-size: 17px; } button, select { font-size: 17px
               " .glowscript-graph { margin-bottom: 36px; }</style>")
 
 
-def show(setup, *, integrator: str, port: int | None, open_browser: bool, preset: str | None = None) -> int:
+def show(setup, model, *, integrator: str, port: int | None, open_browser: bool,
+         preset: str | None = None) -> int:
     """Show a scene in the browser and run it in real time until the page is closed.
 
+    model   the scene's model, built from `setup` (the command line has built and checked it)
     preset  the label of the preset already applied to `setup` (--preset), shown in the menu.
 
-    Returns 2 (after a one-line message) if the model or the server cannot start. Otherwise the
-    program ends through SystemExit(0) when the tab closes, and Ctrl-C (while waiting for a
-    browser or while running) raises KeyboardInterrupt, which the command line reports as one
-    line and status 130.
+    Returns 2 (after a one-line message) if the server cannot start. Otherwise the program ends
+    through SystemExit(0) when the tab closes, and Ctrl-C (while waiting for a browser or while
+    running) raises KeyboardInterrupt, which the command line reports as one line and status 130.
     """
-    try:
-        model = setup.build()
-    except ValueError as problem:
-        print(f"error: {problem}", file=sys.stderr)
-        return 2
     from .loopback_server import ServerError, interrupted, start
 
     try:

@@ -107,8 +107,7 @@ class Result:
     def exact_valid_until(self) -> float:
         """When the closed form stops holding (for a row, the first mass's), s: math.inf if it
         holds up to the final time."""
-        check = self.model.exact_valid_until
-        return math.inf if check is None else check(float(self.trajectory.t[-1]))
+        return float(np.min(self.exact_valid_until_each()))
 
     def exact_valid_until_each(self) -> np.ndarray:
         """When each mass's closed form stops holding, (N,) s: math.inf where it holds to the end."""

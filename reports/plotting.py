@@ -97,8 +97,9 @@ def fit_y(ax, values, *, margin: float = 0.05) -> tuple[float, float]:
     return low - pad, high + pad
 
 
-def energy_panel(ax, result) -> None:
-    """Energy against time, as the page's energy graph shows it (browser/graphs.py).
+def energy_panel(ax, result, *, colours) -> None:
+    """Energy against time, as the page's energy graph shows it (browser/graphs.py); colours: each
+    mass's (export/palette.py mass_colours), as on the position panel.
 
     Where the masses start at rest at equilibrium, every energy but K is measured from there
     (U − U_rest, …): the oscillation's energy, not a constant m g h of hundreds of joules that
@@ -117,7 +118,6 @@ def energy_panel(ax, result) -> None:
         runaways = model.expected_runaways(result.methods)
         steady = [i for i in range(len(model.labels)) if i not in runaways]
         low, high = fit_y(ax, [E[:, steady], E_minus_W[:, steady]]) if runaways and steady else (-np.inf, np.inf)
-        colours = mass_colours(model, getattr(result.setup.module, "VIEW", {}))
         for i, label in enumerate(model.labels):
             name = f"{label}: {energy_label('E', from_rest=from_rest)}"
             if np.nanmax(E[:, i]) > high or np.nanmin(E[:, i]) < low:
@@ -175,7 +175,7 @@ def plot(result, path: str) -> None:
     if len(ax_r.lines) <= MAX_LEGEND:
         ax_r.legend(loc="best", fontsize="small")
     ax_r.grid(alpha=0.3)
-    energy_panel(ax_e, result)
+    energy_panel(ax_e, result, colours=colours)
     fig.tight_layout()
     try:
         # A temporary file renamed into place: a failure part-way leaves the old figure as it was.

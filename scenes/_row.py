@@ -125,8 +125,7 @@ def exact_row(*, anchors, r0, m, k, L0, g, b=0.0, C=0.0, F0=0.0, omega=0.0, driv
         each = motion(i)
         if each is None:
             return None
-        rate = max(math.sqrt(k / m), omega[i] if F0[i] else 0.0, b[i] / m)
-        return AnchorCrossing(each, anchor=anchors[i], r0=r0[i], rate=rate)
+        return AnchorCrossing(each, anchor=anchors[i], r0=r0[i], m=m, k=k, b=b[i], F0=F0[i], omega=omega[i])
 
     # Along each spring's line û: the start s0 from the anchor, the equilibrium s_eq, the drive's part.
     s0 = np.linalg.norm(r0 - anchors, axis=1)

@@ -56,7 +56,8 @@ class AnchorCrossing:
     MAX_SAMPLES = 10_000_000   # per call: a very long horizon is sampled more coarsely
     CHUNK = 100_000
 
-    def __init__(self, motion, *, anchor, r0, rate: float):
+    def __init__(self, motion, *, anchor, r0, m, k, b, F0, omega):
+        rate = max(math.sqrt(k / m), omega if F0 else 0.0, b / m)   # the fastest in the motion, 1/s
         anchor = np.asarray(anchor, dtype=float)
         u = np.asarray(r0, dtype=float) - anchor
         u = u / np.linalg.norm(u)
@@ -107,8 +108,7 @@ def build_single_mass(*, m, k, L0, g, b, C, A, rho, F0, omega, drive_axis, ancho
 
     crossing = None
     if motion and L0 > 0:
-        rate = max(math.sqrt(k / m), omega if F0 else 0.0, b / m)
-        crossing = AnchorCrossing(motion, anchor=anchor, r0=r0, rate=rate)
+        crossing = AnchorCrossing(motion, anchor=anchor, r0=r0, m=m, k=k, b=b, F0=F0, omega=omega)
 
     return Model(
         state=make_state(r=r0, v=v0, m=m),
