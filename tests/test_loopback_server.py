@@ -603,3 +603,26 @@ def test_a_fetch_of_the_page_that_no_page_follows_does_not_delay_the_end(run_dri
     page.close()
     elapsed = assert_clean_exit(driver, timeout=40, since=closed_at)  # generous: it was 20 s
     assert elapsed < 2, f"took {elapsed:.1f} s to end after the page closed"
+
+
+def test_every_patch_is_undone_once_vpython_has_started_or_failed_to():
+    import asyncio.base_events
+    import http.server
+
+    from browser.server.patches import patched
+    from browser.server.start import reserve
+    from browser.server.state import ServerState
+
+    patch_points = lambda: (http.server.HTTPServer, asyncio.base_events.BaseEventLoop.create_server,
+                            threading.Thread, signal.signal)
+    before = patch_points()
+    state = ServerState.on(reserve(None), open_browser=False)
+    try:
+        with pytest.raises(ZeroDivisionError):
+            with patched(state):
+                assert all(now is not then for now, then in zip(patch_points(), before))
+                assert not threading.Thread(target=print).daemon  # not vpython's: unchanged
+                1 / 0
+    finally:
+        state.reservation.close()
+    assert patch_points() == before

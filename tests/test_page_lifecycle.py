@@ -6,6 +6,8 @@ Chromium (Playwright):
 - reloading the tab (F5) shows the scene again, running from t = 0, and the program keeps
   running; closing the reloaded tab then ends it within 2 s;
 - a second tab shows "already open in another tab", and closing it leaves the first tab running;
+- closing the tab soon after something else fetched the page (curl, a prefetch: no tab follows)
+  still ends the program within 2 s;
 - a page reached through another host name that resolves to 127.0.0.1 (what a DNS-rebinding
   attack does) gets status 421 and no scene.
 
