@@ -22,7 +22,8 @@ for vpython's websocket factory       Origin; *any* closed connection (a     Ori
                                       process, so any web page can stop it   ``lifecycle.py``)
 ``threading.Thread``, for threads     its server threads are not daemons     makes them daemons
 running vpython's or our server       (except on Windows), so a Ctrl-C
-                                      before the page connects hangs at exit
+                                      before the page connects would hang
+                                      at exit
 ``signal.signal``, for vpython's      its handler stops both servers, which  a plain SystemExit(0) until the page has
 SIGINT handler                        may be half made before the page       connected (``sigint_handler``)
                                       connects (NameError, or a shutdown()
