@@ -163,10 +163,10 @@ def run_driver(sandbox):
 
 # ---------------------------------------------------------------------------------- helpers
 
-def raw_get(port: int, path: str, timeout: float = 5) -> tuple[int, bytes]:
-    """GET with the path sent byte for byte (no client-side normalising)."""
+def raw_get(port: int, path: str, timeout: float = 5, headers: str = "") -> tuple[int, bytes]:
+    """GET with the path sent byte for byte (no client-side normalising), and more headers."""
     with socket.create_connection(("127.0.0.1", port), timeout=timeout) as sock:
-        sock.sendall(f"GET {path} HTTP/1.0\r\nHost: 127.0.0.1:{port}\r\n\r\n".encode("latin-1"))
+        sock.sendall(f"GET {path} HTTP/1.0\r\nHost: 127.0.0.1:{port}\r\n{headers}\r\n".encode("latin-1"))
         data = b""
         while chunk := sock.recv(65536):
             data += chunk
@@ -566,10 +566,12 @@ def test_a_reload_reconnects_and_the_program_keeps_running(run_driver):
     page, status_line = ws_handshake(ws_port, origin)
     assert b" 101 " in status_line
     driver.expect(r"^CONNECTED ", timeout=5)
-    # A reload: the browser fetches the page again, then the old page's websocket closes, and
-    # the new page connects once its scripts have loaded (seconds, on a slow machine).
+    # A reload: the browser fetches the page again, then the old page's websocket closes, the new
+    # page's first script says it is loading, and the page connects once its scripts have loaded
+    # (seconds, on a slow machine).
     assert raw_get(http_port, "/")[0] == 200
     page.close()
+    raw_get(http_port, "/loading")
     time.sleep(3.0)
     assert driver.proc.poll() is None
     page, status_line = ws_handshake(ws_port, origin)
@@ -583,3 +585,44 @@ def test_a_reload_reconnects_and_the_program_keeps_running(run_driver):
     closed_at = time.monotonic()
     page.close()
     assert assert_clean_exit(driver, timeout=5, since=closed_at) < 2
+
+
+@pytest.mark.parametrize("headers", ["", "Sec-Fetch-Mode: navigate\r\nSec-Purpose: prefetch\r\n"],
+                         ids=["bare", "prefetch"])
+def test_a_fetch_of_the_page_that_no_page_follows_does_not_delay_the_end(run_driver, headers):
+    # Something fetches "/" (curl, a browser's prefetch) while the page is open, and then the
+    # page closes: no new page is loading, so this is not a reload to wait for.
+    driver = run_driver()
+    http_port = driver.http_port()
+    wait_for_listeners(driver.proc.pid, 2)
+    page, status_line = ws_handshake(websocket_port(http_port), f"http://127.0.0.1:{http_port}")
+    assert b" 101 " in status_line
+    driver.expect(r"^CONNECTED ", timeout=5)
+    assert raw_get(http_port, "/", headers=headers)[0] == 200
+    closed_at = time.monotonic()
+    page.close()
+    elapsed = assert_clean_exit(driver, timeout=40, since=closed_at)  # generous: it was 20 s
+    assert elapsed < 2, f"took {elapsed:.1f} s to end after the page closed"
+
+
+def test_every_patch_is_undone_once_vpython_has_started_or_failed_to():
+    import asyncio.base_events
+    import http.server
+
+    from browser.server.patches import patched
+    from browser.server.start import reserve
+    from browser.server.state import ServerState
+
+    patch_points = lambda: (http.server.HTTPServer, asyncio.base_events.BaseEventLoop.create_server,
+                            threading.Thread, signal.signal)
+    before = patch_points()
+    state = ServerState.on(reserve(None), open_browser=False)
+    try:
+        with pytest.raises(ZeroDivisionError):
+            with patched(state):
+                assert all(now is not then for now, then in zip(patch_points(), before))
+                assert not threading.Thread(target=print).daemon  # not vpython's: unchanged
+                1 / 0
+    finally:
+        state.reservation.close()
+    assert patch_points() == before

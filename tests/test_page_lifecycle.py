@@ -6,6 +6,8 @@ Chromium (Playwright):
 - reloading the tab (F5) shows the scene again, running from t = 0, and the program keeps
   running; closing the reloaded tab then ends it within 2 s;
 - a second tab shows "already open in another tab", and closing it leaves the first tab running;
+- closing the tab soon after something else fetched the page (curl, a prefetch: no tab follows)
+  still ends the program within 2 s;
 - a page reached through another host name that resolves to 127.0.0.1 (what a DNS-rebinding
   attack does) gets status 421 and no scene.
 
@@ -21,6 +23,7 @@ import sys
 import tempfile
 import threading
 import time
+import urllib.request
 from pathlib import Path
 
 import pytest
@@ -174,3 +177,24 @@ def test_ctrl_c_while_the_page_runs_is_one_line_and_status_130(browser, program)
     lines = [line for line in program.errors if line.strip()]
     assert lines == ["stopped: interrupted (Ctrl-C); no file was left half-written\n"], lines
     page.close()
+
+
+def fetch_page(url: str) -> None:
+    """GET the page once, as a program or a browser's prefetch might, without loading it."""
+    with urllib.request.urlopen(url, timeout=10) as reply:
+        assert reply.status == 200 and b"glowscript" in reply.read()
+
+
+def test_closing_the_tab_soon_after_another_fetch_of_the_page_still_ends_within_2_s(browser, program):
+    """A fetch of "/" that no page follows (curl, a prefetch) is not a reload to wait 20 s for."""
+    page = browser.new_page()
+    page.goto(program.url)
+    running_past(page, 0.5)
+    fetch_page(program.url)
+    closed_at = time.monotonic()
+    page.close()
+    program.wait(timeout=40)  # generous: the bug made it 20 s
+    elapsed = time.monotonic() - closed_at
+    assert elapsed < 2, f"took {elapsed:.1f} s to end after the tab closed"
+    assert program.returncode == 0
+    assert "Traceback" not in "".join(program.errors)
