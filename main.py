@@ -260,7 +260,7 @@ def run_headless(args, setup, model) -> int:
         table = headless.step_table(setup, model=model, integrator=args.integrator, steps=args.steps)
         if args.json:
             rows = table.pop("rows")
-            print(headless.to_json({**table, "steps": args.steps, "step_table": rows}))
+            print(headless.to_json(headless.with_warning({**table, "steps": args.steps, "step_table": rows}, warning)))
         else:
             print(headless.format_step_table(table))
         if args.csv is None and args.plot is None:
@@ -278,7 +278,7 @@ def run_headless(args, setup, model) -> int:
 
         plotting.plot(result, args.plot)
     if args.steps is None:
-        print(headless.to_json(headless.as_json(result)) if args.json
+        print(headless.to_json(headless.with_warning(headless.as_json(result), warning)) if args.json
               else headless.final_report(result))
     return 0
 
