@@ -130,16 +130,18 @@ def presets_report(setup) -> str:
         return "presets: none for this scene"
     width = max(len(label) for label, _ in options)
     lines = ["presets (--preset NAME):"]
+    named = dict(catalog.presets(setup, whole=False))   # a scenario's own changes; it sets its whole case
     for label, overrides in options:
         changes = []
-        for name, value in overrides.items():
+        for name, value in named[label].items():
             unit = setup.constants[name].unit
             if value is None:  # critical damping, from the m and k set now
                 value = catalog.resolve({**setup.values, name: None})[name]
                 changes.append(f"{name} = 2√(mk) = {format_value(value, unit)}")
             else:
                 changes.append(f"{name} = {format_value(value, unit)}")
-        lines.append(f"  {label:<{width}}   {', '.join(changes)}")
+        rest = "; m, k and the rest of its case from the scene file" if len(overrides) > len(named[label]) else ""
+        lines.append(f"  {label:<{width}}   {', '.join(changes)}{rest}")
     return "\n".join(lines)
 
 
