@@ -17,6 +17,8 @@ from physics.integrators import INTEGRATORS
 from export.numbers import time_decimals as file_time_decimals
 from scenes import DECLARED, catalog, format_value
 
+from .axes import PLAIN_TICKS
+
 SPEEDS = {"¼×": 0.25, "½×": 0.5, "1×": 1.0, "2×": 2.0, "4×": 4.0}
 SLIDER_CHOICES = ("m", "k", "b", "F0", "omega")
 PRESET_PROMPT = "choose a preset"
@@ -101,6 +103,7 @@ class Controls:
             self.slider_texts[name] = vp.wtext(text="")
         if self.sliders:
             vp.wtext(text="").text = PRIME_SLIDERS  # set, not made with it: the setter runs scripts
+        vp.wtext(text="").text = PLAIN_TICKS  # every graph's tick labels in plain decimals (browser/axes.py)
         caption("\n\n")
         self.constants_text = vp.wtext(text="")
         caption("\n<i>Moving a slider, choosing another integrator or a preset restarts "
