@@ -11,7 +11,7 @@ from pathlib import Path
 import pytest
 
 from browser.axes import PLAIN_TICKS, nice_range
-from tests.browser_support import launched, require_browser
+from browser_support import launched, require_browser
 
 pytestmark = pytest.mark.browser
 sync_api, _ = require_browser()
