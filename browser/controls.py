@@ -139,10 +139,10 @@ class Controls:
 
     def show_status(self, *, problem: str | None, runaways, slow_dt: float | None,
                     advice: str | None = None) -> None:
-        """The status line: why the run stopped, which masses ran away, that Δt is stable but
+        """The status line: why the run stopped, or which masses ran away and that Δt is stable but
         inaccurate (advice, physics/accuracy.py), or that it runs slower than real time (slow_dt:
         the Δt that is small for this computer, None if keeping up)."""
-        status = problem or "\n".join(wrap(reason) for reason in runaways) or (wrap(advice) if advice else "")
+        status = problem or "\n".join([wrap(reason) for reason in runaways] + ([wrap(advice)] if advice else []))
         if slow_dt is not None and not status:
             status = (f"Running slower than real time (Δt = {slow_dt:g} s is small for "
                       f"this computer at this speed).")

@@ -67,7 +67,7 @@ def test_resonance_tick_labels_stay_plain_after_critical_damping(browser):
     try:
         wait_for(lambda: shown_time(page) >= 1.0, timeout=90.0, what="t to reach 1 s")
         menu(page, "critical damping").select_option("critical damping")
-        wait_for(lambda: any("b = 10 kg/s" in line for line in caption_lines(page)), timeout=30.0,
+        wait_for(lambda: any("b = 10 kg/s" in line for line in caption_lines(page)), timeout=120.0,
                  what="the critical damping preset")
         wait_for(lambda: shown_time(page) >= 2.0, timeout=90.0, what="t to reach 2 s")
         graphs = page.locator(".glowscript-graph")
