@@ -25,10 +25,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from physics.accuracy import judge_dt
 from physics.forces import net_force
 from physics.integrators import INTEGRATORS, describe
 from physics.simulate import BlowUpError, RunTooLong, check_cost, every, steps_to_reach, time_grid, trajectory
-from physics.accuracy import judge_dt
 from physics.stability import judge
 from physics.state import velocity
 from export.files import STDOUT, atomic_file
