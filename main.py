@@ -130,16 +130,18 @@ def presets_report(setup) -> str:
         return "presets: none for this scene"
     width = max(len(label) for label, _ in options)
     lines = ["presets (--preset NAME):"]
+    named = dict(catalog.presets(setup, whole=False))   # a scenario's own changes; it sets its whole case
     for label, overrides in options:
         changes = []
-        for name, value in overrides.items():
+        for name, value in named[label].items():
             unit = setup.constants[name].unit
             if value is None:  # critical damping, from the m and k set now
                 value = catalog.resolve({**setup.values, name: None})[name]
                 changes.append(f"{name} = 2√(mk) = {format_value(value, unit)}")
             else:
                 changes.append(f"{name} = {format_value(value, unit)}")
-        lines.append(f"  {label:<{width}}   {', '.join(changes)}")
+        rest = "; m, k and the rest of its case from the scene file" if len(overrides) > len(named[label]) else ""
+        lines.append(f"  {label:<{width}}   {', '.join(changes)}{rest}")
     return "\n".join(lines)
 
 
@@ -260,7 +262,7 @@ def run_headless(args, setup, model) -> int:
         table = headless.step_table(setup, model=model, integrator=args.integrator, steps=args.steps)
         if args.json:
             rows = table.pop("rows")
-            print(headless.to_json({**table, "steps": args.steps, "step_table": rows}))
+            print(headless.to_json(headless.with_warning({**table, "steps": args.steps, "step_table": rows}, warning)))
         else:
             print(headless.format_step_table(table))
         if args.csv is None and args.plot is None:
@@ -278,7 +280,7 @@ def run_headless(args, setup, model) -> int:
 
         plotting.plot(result, args.plot)
     if args.steps is None:
-        print(headless.to_json(headless.as_json(result)) if args.json
+        print(headless.to_json(headless.with_warning(headless.as_json(result), warning)) if args.json
               else headless.final_report(result))
     return 0
 

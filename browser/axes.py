@@ -5,13 +5,42 @@ length in pixels, and one of the spacings they may choose is 2.5 × 10ⁿ, which
 rounded (`-1.3, -1.5, -1.8`). So the view sets each axis's ends itself, to whole steps of a round
 spacing, widened by whole steps until flot's own rule picks a round spacing too.
 
-Nothing here imports vpython: tests/test_axes.py checks the rule on many ranges.
+The labels under those ticks are plain decimals, one line each at any scale (`0.04`, not vpython's
+`4e-2`, which the page broke over two lines as `4e-` / `2`): PLAIN_TICKS, a script the page runs
+once, has flot print every graph's ticks with the decimals of the tick spacing.
+
+Nothing here imports vpython: tests/test_axes.py checks the rule on many ranges, and
+tests/test_tick_labels.py runs PLAIN_TICKS in Chromium's flot from 10⁻⁶ to 10⁶.
 """
 from __future__ import annotations
 
 import math
 
 ROUND = (1.0, 2.0, 5.0)
+
+# vpython's graphs hand flot their own tick formatter, which writes a small axis in e-notation
+# (format_number in glow.min.js: ticks 0.02 apart below 0.1 read 2e-2, 4e-2). Every graph is drawn
+# by a call to jQuery's $.plot, so the page wraps that call once and gives every axis this one:
+# the tick value with as many decimals as the spacing needs (0.0005 → 4, 2.5 → 1, 200 → 0), "0"
+# at zero, never an exponent (toFixed writes plain digits below 10²¹).
+PLAIN_TICKS = """<script>(function () {
+  var jq = window.jQuery; if (!jq || !jq.plot || jq.plot.plainTicks) return;
+  function plain(value, axis) {
+    var step = Math.abs(axis.tickSize) || Math.abs(value) || 1;
+    var decimals = Math.max(0, -Math.floor(Math.log10(step) + 1e-9));
+    while (decimals < 20 && Math.abs(Math.round(step * Math.pow(10, decimals)) - step * Math.pow(10, decimals)) > 1e-6) decimals++;
+    if (Math.abs(value) < step / 2) return "0";
+    return value.toFixed(decimals);
+  }
+  var original = jq.plot;
+  jq.plot = function (placeholder, data, options) {
+    options = options || {};
+    ["xaxis", "yaxis"].forEach(function (name) { options[name] = options[name] || {}; options[name].tickFormatter = plain; });
+    return original(placeholder, data, options);
+  };
+  for (var key in original) jq.plot[key] = original[key];
+  jq.plot.plainTicks = plain;
+})();</script>"""
 
 
 def flot_tick_step(span: float, pixels: float) -> float:

@@ -32,6 +32,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from physics.accuracy import judge_dt
 from physics.energy import series
 from physics.simulate import BlowUpError, time_grid
 from physics.stability import judge, rates
@@ -184,7 +185,8 @@ class LiveRun:
 
     The engine owns the state, W_nc and the blow-up check; this adds the view's pieces: a sample
     for the graphs every ``sample_every`` seconds of simulation time, and :attr:`problem`, the
-    sentence that stopped the run. Reset is reassignment: :meth:`restart` puts back the model's
+    sentence that stopped the run, and :attr:`advice`, the line saying that Δt is stable but
+    inaccurate (None when it is fine). Reset is reassignment: :meth:`restart` puts back the model's
     exact initial state.
 
     Runaways: where masses are stepped by different integrators side by side (the `integrators`
@@ -207,6 +209,9 @@ class LiveRun:
         self.may_run_away = model.expected_runaways(model.methods(integrator))
         self.engine = model.simulation(integrator, growth_limit=growth_limit,
                                        may_run_away=self.may_run_away)
+        # Δt judged once per run (stability and accuracy, physics/accuracy.py): the page's one line
+        self.advice = judge_dt(model.state, model.forces, self.engine.methods, model.dt,
+                               ignore=self.may_run_away).advice
         self.restart()
 
     @property

@@ -17,6 +17,8 @@ from physics.integrators import INTEGRATORS
 from export.numbers import time_decimals as file_time_decimals
 from scenes import DECLARED, catalog, format_value
 
+from .axes import PLAIN_TICKS
+
 SPEEDS = {"¼×": 0.25, "½×": 0.5, "1×": 1.0, "2×": 2.0, "4×": 4.0}
 SLIDER_CHOICES = ("m", "k", "b", "F0", "omega")
 PRESET_PROMPT = "choose a preset"
@@ -88,13 +90,20 @@ class Controls:
         caption("\n")
         self.sliders, self.slider_texts = {}, {}
         for name in slider_names(setup, view):
-            low, high, step = slider_range(name, float(setup.values[name]), defaults.get(name))
             caption("\n")
-            self.sliders[name] = vp.slider(min=low, max=high, step=step, value=setup.values[name],
-                                           length=320, bind=lambda s, name=name: put(("set", name, s.value)))
+            values = round_slider_values(name, float(setup.values[name]), defaults.get(name))
+            if values:   # the slider picks a place in the list of round values
+                self.sliders[name] = vp.slider(
+                    min=0, max=len(values) - 1, step=1, value=values.index(float(setup.values[name])),
+                    length=320, bind=lambda s, name=name, values=values: put(("set", name, values[round(s.value)])))
+            else:
+                low, high, step = slider_range(name, float(setup.values[name]), defaults.get(name))
+                self.sliders[name] = vp.slider(min=low, max=high, step=step, value=setup.values[name],
+                                               length=320, bind=lambda s, name=name: put(("set", name, s.value)))
             self.slider_texts[name] = vp.wtext(text="")
         if self.sliders:
             vp.wtext(text="").text = PRIME_SLIDERS  # set, not made with it: the setter runs scripts
+        vp.wtext(text="").text = PLAIN_TICKS  # every graph's tick labels in plain decimals (browser/axes.py)
         caption("\n\n")
         self.constants_text = vp.wtext(text="")
         caption("\n<i>Moving a slider, choosing another integrator or a preset restarts "
@@ -128,10 +137,12 @@ class Controls:
         self.run_button.text = "Pause" if running else "Run"
         self.error_text.text = error
 
-    def show_status(self, *, problem: str | None, runaways, slow_dt: float | None) -> None:
-        """The status line: why the run stopped, which masses ran away, or that it runs slower
-        than real time (slow_dt: the Δt that is small for this computer, None if keeping up)."""
-        status = problem or "\n".join(wrap(reason) for reason in runaways)
+    def show_status(self, *, problem: str | None, runaways, slow_dt: float | None,
+                    advice: str | None = None) -> None:
+        """The status line: why the run stopped, or which masses ran away and that Δt is stable but
+        inaccurate (advice, physics/accuracy.py), or that it runs slower than real time (slow_dt:
+        the Δt that is small for this computer, None if keeping up)."""
+        status = problem or "\n".join([wrap(reason) for reason in runaways] + ([wrap(advice)] if advice else []))
         if slow_dt is not None and not status:
             status = (f"Running slower than real time (Δt = {slow_dt:g} s is small for "
                       f"this computer at this speed).")
@@ -203,6 +214,30 @@ def slider_range(name: str, value: float, default: float | None = None) -> tuple
     high = max(high, 1.5 * value)
     step = 10 ** math.floor(math.log10((high - low) / 200))
     return low, high, step
+
+
+def round_slider_values(name: str, value: float, default: float | None = None) -> list[float]:
+    """The values a slider with round steps offers (slider_round in scenes/_constants.py: Δt), in
+    order; [] for a constant whose slider is continuous.
+
+    Every 1, 2 or 5 × 10ⁿ from slider_range's span (a tenth to three times the default), rounded
+    out to such values at both ends, plus the scene's default and the value now (a preset's or
+    --set's), so the slider can stand where the run is: Δt = 0.06 s gives 0.005, 0.01, 0.02,
+    0.05, 0.06, 0.1, 0.2 s.
+    """
+    declared = DECLARED.get(name)
+    if declared is None or not declared.slider_round or not value > 0:
+        return []
+    default = float(default) if isinstance(default, (int, float)) and default > 0 else value
+    low, high, _ = slider_range(name, value, default)
+    low = max(low, declared.low)
+    rounds = [float(f"{mantissa * 10.0 ** power:.12g}")
+              for power in range(math.floor(math.log10(low)), math.ceil(math.log10(high)) + 1)
+              for mantissa in (1, 2, 5)]
+    first = max(x for x in rounds if x <= low)       # the span, widened to round values at both ends
+    last = min(x for x in rounds if x >= high)
+    return sorted({x for x in rounds if first <= x <= last and declared.low <= x <= declared.high} |
+                  {default, value})
 
 
 def symbol(name: str) -> str:

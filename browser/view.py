@@ -297,7 +297,8 @@ class SceneView:
         self.controls.show_time(live.state.t, decimals=self.decimals, running=self.running,
                                 error=self.graphs.error_readout(live, matter=self.matter))
         self.controls.show_status(problem=live.problem, runaways=[reason for _, reason in live.runaways.values()],
-                                  slow_dt=live.model.dt if self.clock.dropped > 0.01 else None)
+                                  slow_dt=live.model.dt if self.clock.dropped > 0.01 else None,
+                                  advice=live.advice)
 
     # ---- downloads ----
 

@@ -25,6 +25,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from physics.accuracy import judge_dt
 from physics.forces import net_force
 from physics.integrators import INTEGRATORS, describe
 from physics.simulate import BlowUpError, RunTooLong, check_cost, every, steps_to_reach, time_grid, trajectory
@@ -221,22 +222,31 @@ def stop_note(model, *, until: float) -> str | None:
 
 
 def stability_warning(model, methods) -> str | None:
-    """Judge Δt before a run (physics.stability.judge): None if the motion will not grow.
+    """Judge Δt before a run (physics.accuracy.judge_dt, stability and accuracy at once): None if
+    the motion will neither grow nor stray far from the real one.
 
     Past a method's stability limit (a smaller Δt would be stable) the run would only print
     nonsense, so this raises BlowUpError with the reason, and the command line exits with status
     1. A method that grows at every Δt (euler on an undamped spring) gets a warning and runs: that
     growth is what the page shows it for. Only where the motion really grows: euler on a spring
-    damped strongly enough decays, and gets no warning.
+    damped strongly enough decays, and gets no such warning. A stable Δt that is inaccurate gets
+    the accuracy verdict's one line, naming a Δt that would do.
     """
-    for verdict in (judge(model.forces, model.state.m, methods, model.dt, v=model.state.v,
-                          ignore=model.may_run_away),
+    judgement = judge_dt(model.state, model.forces, methods, model.dt, ignore=model.may_run_away)
+    for verdict in (judgement.stability,
                     judge(model.forces, model.state.m, methods, model.dt, v=model.state.v)):
         if verdict.past_limit:
             raise BlowUpError(f"the run would blow up, past the stability limit: {verdict.message}")
         if not verdict.stable:
             return f"warning: expect the motion to grow: {verdict.message}"
-    return None
+    return f"warning: {judgement.advice}" if judgement.advice else None
+
+
+def with_warning(out: dict, warning: str | None) -> dict:
+    """The JSON `out` with the run's warning (stability_warning) added to its "notes" list."""
+    if warning:
+        out.setdefault("notes", []).append(warning.removeprefix("warning: "))
+    return out
 
 
 def plural(count: int, noun: str) -> str:

@@ -15,7 +15,11 @@ ones that make sense for it:
 - "Moon gravity", "Earth gravity", "Jupiter gravity" (g = 1.62, 9.8, 24.79 m/s²), where gravity is
   switched on (a horizontal scene on a table has g = 0 and gets none);
 - "critical damping", b = 2√(mk) for the m and k of the moment, where the scene has b and k;
-- "scenario N: ..." for each of the scene's numbered SCENARIOS (the page's driven examples);
+- "scenario N: ..." for each of the scene's numbered SCENARIOS (the page's driven examples). A
+  scenario is a whole case, as the book gives it: it sets every constant of the scene, the scene
+  file's value where the scenario names none (m and k too, so a slider moved before it does not
+  carry over), except how the run is computed (Δt and the question time: `numerical` in
+  scenes/_constants.py);
 - then the scene's own PRESETS, which may also replace one of the above by using its label.
 
 In a preset, b = None means "critical": :func:`resolve` turns it into 2√(mk) once m and k are known.
@@ -184,17 +188,23 @@ def scenarios(module) -> list:
     return list(getattr(module, "SCENARIOS", []))
 
 
-def presets(scene) -> list[tuple[str, dict]]:
-    """The scene's presets in menu order, as (label, overrides); `scene` is a module or a Setup."""
+def presets(scene, *, whole: bool = True) -> list[tuple[str, dict]]:
+    """The scene's presets in menu order, as (label, overrides); `scene` is a module or a Setup.
+
+    A scenario's overrides are its whole case (the scene file's constants, then its own changes);
+    whole=False gives only the changes it names, as its label reads.
+    """
     module = getattr(scene, "module", scene)
     defaults = {name: constant.value for name, constant in read_constants(module).items()}
+    case = {name: value for name, value in defaults.items()
+            if not (name in DECLARED and DECLARED[name].numerical)}
     found = {}
     if defaults.get("g"):  # gravity is switched on, so its strength matters
         found.update(GRAVITY_PRESETS)
     if "b" in defaults and "k" in defaults:
         found[CRITICAL_DAMPING] = {"b": None}
     for number, (label, overrides) in enumerate(scenarios(module), start=1):
-        found[f"scenario {number}: {label}"] = overrides
+        found[f"scenario {number}: {label}"] = {**case, **overrides} if whole else overrides
     found.update(getattr(module, "PRESETS", {}))
     return [(label, dict(overrides)) for label, overrides in found.items()]
 

@@ -48,6 +48,10 @@ class Declared:
     none      what None means, where a scene file may write it instead of a number ("" if it may not)
     slider_from_zero  a slider for it starts at 0, where 0 switches its force off (b, F0, ω, ...);
               otherwise at a tenth of its default (m, k, Δt must stay positive)
+    slider_round  a slider for it gives only round values, 1, 2 or 5 × 10ⁿ, and the scene's
+              default (Δt: so that t reads 0.1, 0.2, 0.3 s, not 8.4645 s)
+    numerical  how a run is computed (Δt, the question time), not the physical case: a scenario
+              preset, which sets its whole case, leaves it as chosen
     """
 
     unit: str
@@ -61,6 +65,8 @@ class Declared:
     note: str = ""
     none: str = ""
     slider_from_zero: bool = False
+    slider_round: bool = False
+    numerical: bool = False
 
     def allows(self, value) -> bool:
         numbers = value if isinstance(value, tuple) else (value,)
@@ -120,8 +126,8 @@ DECLARED = {
     "omega_max": Declared("rad/s", 0, 1e4, symbol="ω_max", above_low=True),
     "settle": Declared("s", 0, 1e6),
     "periods": Declared("1", 0, 1e4, above_low=True),
-    "dt": Declared("s", 1e-6, 1e3, symbol="Δt"),
-    "until": Declared("s", 0, 1e6),
+    "dt": Declared("s", 1e-6, 1e3, symbol="Δt", slider_round=True, numerical=True),
+    "until": Declared("s", 0, 1e6, numerical=True),
 }
 
 

@@ -50,7 +50,8 @@ def test_every_preset_names_real_constants_and_builds(name):
     for label, overrides in catalog.presets(setup):
         assert set(overrides) <= set(setup.constants), label
         changed = setup.with_preset(label)
-        assert all(changed.values[key] is not None for key in overrides)  # critical b worked out
+        assert all(changed.values[key] is not None for key in overrides   # critical b worked out
+                   if setup.values[key] is not None)        # (a scenario's r0: derived, as in the file)
         changed.build()
 
 
@@ -75,8 +76,13 @@ def test_critical_damping_where_the_scene_has_b_and_k():
 def test_driven_offers_the_pages_five_scenarios_as_presets():
     module = catalog.load("driven")
     options = catalog.presets(module)
-    scenario_presets = [(label, overrides) for label, overrides in options if label.startswith("scenario")]
-    assert [overrides for _, overrides in scenario_presets] == [overrides for _, overrides in module.SCENARIOS]
+    named = [(label, overrides) for label, overrides in catalog.presets(module, whole=False)
+             if label.startswith("scenario")]
+    assert [overrides for _, overrides in named] == [overrides for _, overrides in module.SCENARIOS]
+    whole = dict(options)
+    for label, overrides in named:              # each sets its whole case: the file's m, k, ... too
+        assert whole[label]["m"] == 4.0 and whole[label]["k"] == 100.0 and "dt" not in whole[label]
+        assert whole[label] == {**whole[label], **overrides}
     assert catalog.find_preset(module, "scenario 5")[1]["omega"] == 4.0
 
 
