@@ -44,13 +44,13 @@ import re
 
 import numpy as np
 
-from physics.forces import Driving, Gravity, LinearDamping, QuadraticDrag, Spring
 from physics.integrators import INTEGRATORS
 from physics.simulate import steps_to_reach
 from scenes import DECLARED, ConstantError, catalog, summary
 from scenes._view import DEFAULT_VIEW, MAX_DRAWN_MASSES
 
 from .exact_curve import exact_lines
+from .program_forces import ProgramForces, update
 from .lines import (CONSTANT_COLUMN, ProgramError, align_comments, commented, listed, number,
                     unit_and_meaning, vector)
 from .numbers import clean
@@ -60,19 +60,6 @@ from .palette import (CURVE_COLOURS, EXACT_COLOUR, EXACT_WIDTH, MASS_COLOURS, ma
 WEB_FIRST_LINE = "Web VPython 3.2"
 IMPORTS = ["from vpython import *"]
 
-# The meaning of each name the program may use where the scene's constants block has no constant
-# of that name with that value (the units are DECLARED's).
-MEANINGS = {
-    "m": "mass", "k": "spring constant", "L0": "relaxed length of the spring",
-    "anchor": "fixed end of the spring", "g": "strength of gravity, along −y",
-    "b": "linear damping constant in F = −b v", "C": "drag coefficient",
-    "A": "cross-section area, for drag", "rho": "air density, for drag",
-    "F0": "driving force amplitude in F = F0 cos(ω t)",
-    "omega": "driving angular frequency ω (rad/s, not Hz)",
-    "drive_axis": "direction of the driving force (a unit vector)",
-    "r0": "start position", "v0": "start velocity",
-    "dt": "time step Δt of the momentum update", "until": "when to stop",
-}
 LABELLED = 6               # more masses than this: no labels on their curves (as the page's legend)
 ROUND_OFF = 1e-15          # relative: a rule's list may differ from the model's by this (a few units
                            # in the last place: numpy's linspace sets its last value to the end exactly)
@@ -84,7 +71,7 @@ class _Constants:
     """The program's named values, from the model's numbers: one value, or one per mass.
 
     A name that is one of the scene's constants, with the scene's value, keeps the comment of the
-    scene's constants block; otherwise its unit is DECLARED's and its meaning MEANINGS'.
+    scene's constants block; otherwise its unit and meaning are DECLARED's.
     """
 
     def __init__(self, setup, count: int):
@@ -107,6 +94,13 @@ class _Constants:
     def has(self, name: str) -> bool:
         return name in self.single or name in self.per_mass
 
+    def each(self, name: str) -> np.ndarray:
+        """The value of `name` for each mass: (count,), or (count, 3) for a vector."""
+        if name in self.per_mass:
+            return self.per_mass[name]
+        value = np.asarray(self.single[name], dtype=float)
+        return np.broadcast_to(value, (self.count,) + value.shape)
+
     def list_name(self, name: str) -> str:
         """The name of a list with one value per mass: `anchor`, or `b_each` where the scene has a b."""
         return f"{name}_each" if name in self.setup.constants else name
@@ -121,7 +115,7 @@ class _Constants:
         same = (constant is not None and not per_mass and self.setup.values.get(name) is not None
                 and np.array_equal(np.asarray(self.setup.values[name], dtype=float),
                                    np.asarray(self.single.get(name, self.setup.values[name]), dtype=float)))
-        meaning = _without_none(constant.meaning) if same else MEANINGS.get(name, name)
+        meaning = _without_none(constant.meaning) if same else (DECLARED[name].meaning if name in DECLARED else "") or name
         return unit_and_meaning(DECLARED[name].unit if name in DECLARED else "",
                                 meaning + (", one per mass" if per_mass else ""))
 
@@ -142,122 +136,6 @@ def _as_written(value):
         return np.asarray(value, dtype=float)
     text = number(value)
     return int(text) if re.fullmatch(r"-?\d+", text) else float(text)
-
-
-# ---- the forces, written out ----
-
-class _Forces:
-    """The scene's forces as lines of the program, in the order physics.forces.net_force adds them."""
-
-    def __init__(self, model, constants: _Constants):
-        self.constants = constants
-        self.forces = list(model.forces)
-        for force in self.forces:
-            if isinstance(force, Spring):
-                constants.add("k", force.k)
-                if not force._zero_length:
-                    constants.add("L0", force.L0)
-                constants.add("anchor", force.anchor, is_vector=True)
-            elif isinstance(force, Gravity):
-                if not np.allclose(force.direction, (0.0, -1.0, 0.0), rtol=0, atol=0):
-                    raise ProgramError("the program writes gravity along −y only")
-                constants.add("g", force.g)
-            elif isinstance(force, LinearDamping):
-                constants.add("b", force.b)
-            elif isinstance(force, QuadraticDrag):
-                for name in ("C", "A", "rho"):
-                    constants.add(name, getattr(force, name))
-            elif isinstance(force, Driving):
-                constants.add("F0", force.F0)
-                constants.add("omega", force.omega)
-                constants.add("drive_axis", force.axis, is_vector=True)
-            else:
-                raise ProgramError(f"the program cannot write the force {type(force).__name__}")
-        self.uses_velocity = any(force.uses_velocity for force in self.forces)
-
-    def lines(self, *, t: str, r: str, v: str, m: str, laws: bool) -> list[str]:
-        """Fnet at time t, position r and velocity v: one line per force, then their sum."""
-        n = self.constants.name
-        out, terms = [], []
-        for force in self.forces:
-            if isinstance(force, Spring):
-                out.append((f"L = {r} - {n('anchor')}", "the spring, from its fixed end to the mass"))
-                if force._zero_length:
-                    out.append((f"Fspring = -{n('k')}*L", "Hooke's law with L0 = 0: F = −k L"))
-                else:
-                    out.append((f"Fspring = {n('k')}*({n('L0')}/mag(L) - 1)*L",
-                                "Hooke's law: F = −k (|L| − L0) L̂, written k (L0/|L| − 1) L"))
-                terms.append("Fspring")
-            elif isinstance(force, Gravity):
-                out.append((f"Fgravity = {m}*vector(0, -{n('g')}, 0)", "gravity: F = m g, down (−y)"))
-                terms.append("Fgravity")
-            elif isinstance(force, LinearDamping):
-                out.append((f"Fdamping = -{n('b')}*{v}", "linear damping: F = −b v"))
-                terms.append("Fdamping")
-            elif isinstance(force, QuadraticDrag):
-                out.append((f"Fdrag = -0.5*{n('C')}*{n('A')}*{n('rho')}*mag({v})*{v}",
-                            "air drag: F = −½ C A ρ |v|² v̂ = −½ C A ρ |v| v"))
-                terms.append("Fdrag")
-            elif isinstance(force, Driving):
-                out.append((f"Fdrive = {n('F0')}*cos({n('omega')}*{t})*{n('drive_axis')}",
-                            "driving: F = F0 cos(ω t) along drive_axis"))
-                terms.append("Fdrive")
-        out.append(("Fnet = " + (" + ".join(terms) or "vector(0, 0, 0)"), "net force: the sum of the forces"))
-        return [commented(code, comment if laws else "") for code, comment in out]
-
-
-# ---- the integrators, written out ----
-
-def _update(method: str, forces: _Forces, *, r: str, p: str, m: str) -> list[str]:
-    """The lines of one step of `method` for one mass (position r, momentum p, mass m), before t moves on."""
-    def F(t, at, v, laws=False):
-        return forces.lines(t=t, r=at, v=v, m=m, laws=laws)
-
-    if method == "euler-cromer":
-        # physics.integrators.euler_cromer works out v_i only if a force reads it
-        lines = [commented(f"v = {p}/{m}", "velocity from momentum: v = p/m")] if forces.uses_velocity else []
-        return lines + F("t", r, "v", laws=True) + [
-            commented(f"{p} = {p} + Fnet*dt", "momentum principle: p_f = p_i + F_net Δt"),
-            commented(f"{r} = {r} + {p}/{m}*dt", "r_f = r_i + v_f Δt, with v_f = p_f/m"),
-        ]
-    if method == "euler":
-        return [commented(f"v = {p}/{m}", "velocity from momentum: v_i = p_i/m")] + F("t", r, "v", laws=True) + [
-            commented(f"{r} = {r} + v*dt", "r_f = r_i + v_i Δt: the OLD velocity (why euler gains energy)"),
-            commented(f"{p} = {p} + Fnet*dt", "momentum principle: p_f = p_i + F_net Δt"),
-        ]
-    if method == "verlet":
-        lines = ["# velocity Verlet: half a kick, a drift, half a kick"]
-        if forces.uses_velocity:
-            lines.append(commented(f"v = {p}/{m}", "velocity at the start of the step"))
-        lines += F("t", r, "v", laws=True)
-        lines += [commented(f"{p} = {p} + Fnet*(dt/2)", "half a kick: p_½ = p_i + F_i Δt/2"),
-                  commented(f"{r} = {r} + {p}/{m}*dt", "drift: r_f = r_i + (p_½/m) Δt")]
-        if forces.uses_velocity:   # physics.integrators.verlet's guess of v_f, then the force with it
-            lines += [f"v = {p}/{m}",
-                      commented("for guess in range(2):", "F needs v_f, not known yet: guess it, then use it")]
-            lines += ["    " + line for line in F("(t + dt)", r, "v")]
-            lines.append(commented(f"    v = ({p} + Fnet*(dt/2))/{m}", "v_f ≈ (p_½ + F Δt/2)/m"))
-        else:
-            lines += F("(t + dt)", r, "v")
-        lines.append(commented(f"{p} = {p} + Fnet*(dt/2)", "half a kick with the force at the end"))
-        return lines
-    if method == "rk4":
-        return [
-            commented("dr = []", "rk4: the slopes dr/dt = v and dp/dt = F_net at four points of the step"),
-            "dp = []",
-            "v = vector(0, 0, 0)",
-            "Fnet = vector(0, 0, 0)",
-            commented("for h in [0, dt/2, dt/2, dt]:", "each point: h ahead along the slope before"),
-            f"    r_s = {r} + v*h",
-            f"    p_s = {p} + Fnet*h",
-            f"    v = p_s/{m}",
-            *("    " + line for line in F("(t + h)", "r_s", "v", laws=True)),
-            "    dr.append(v)",
-            "    dp.append(Fnet)",
-            commented(f"{r} = {r} + (dr[0] + 2*dr[1] + 2*dr[2] + dr[3])*(dt/6)", "the slopes' weighted average"),
-            f"{p} = {p} + (dp[0] + 2*dp[1] + 2*dp[2] + dp[3])*(dt/6)",
-        ]
-    raise ProgramError(f"unknown integrator {method!r} (known: {', '.join(INTEGRATORS)})")
 
 
 # ---- the program ----
@@ -284,7 +162,7 @@ def program(setup, *, integrator: str | None = None, web: bool = False) -> str:
 
     constants = _Constants(setup, count)
     constants.add("m", model.state.m)
-    forces = _Forces(model, constants)
+    forces = ProgramForces(model, constants)
     constants.add("r0", model.state.r, is_vector=True)
     constants.add("v0", _start_velocity(setup, model), is_vector=True)
     constants.add("dt", model.dt)
@@ -324,9 +202,9 @@ def program(setup, *, integrator: str | None = None, web: bool = False) -> str:
         for name in INTEGRATORS:
             if name in methods:
                 body.append(f"{'elif' if body else 'if'} method[i] == \"{name}\":")
-                body += ["    " + line for line in _update(name, forces, r="pos[i]", p="p[i]", m=m)]
+                body += ["    " + line for line in update(name, forces, r="pos[i]", p="p[i]", m=m)]
     else:
-        body = _update(methods[0], forces, r=f"pos{i}", p=f"p{i}", m=m)
+        body = update(methods[0], forces, r=f"pos{i}", p=f"p{i}", m=m)
     if single:
         lines += ["    " + line for line in body]
     else:
