@@ -125,7 +125,8 @@ def _terms(forces, m, speed) -> tuple:
     k, damping, drag = np.zeros(count), np.zeros(count), np.zeros(count)
     joints = []
     for force in forces:
-        terms = force.rates(m, speed)
+        declared = getattr(force, "rates", None)     # a bare function of (t, r, v, m) declares none
+        terms = declared(m, speed) if declared else {}
         k = k + terms.get("stiffness", 0.0)
         damping = damping + terms.get("damping", 0.0)
         drag = drag + terms.get("drag", 0.0)
