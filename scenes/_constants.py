@@ -18,7 +18,6 @@ import io
 import math
 import numbers
 import os
-import re
 import tokenize
 from collections.abc import Mapping
 from dataclasses import dataclass
