@@ -38,7 +38,7 @@ def objects(model, view, constants, single: bool) -> list[str]:
              commented(box, "the support")]
     colour = _colour(MASS_COLOURS[0])
     if single:
-        curves = [f"gcurve(color={_colour(shade(MASS_COLOURS[0], k))}, width={number(simulation_width(0, 1))}, "
+        axis_curves = [f"gcurve(color={_colour(shade(MASS_COLOURS[0], k))}, width={number(simulation_width(0, 1))}, "
                   f"label=\"{axis}\")" for k, axis in enumerate(axes)]
         lines += [f"spring = helix(pos=anchor, axis=r0 - anchor, radius=0.45*radius, thickness=0.12*radius, "
                   f"coils={view['coils']})",
@@ -48,10 +48,10 @@ def objects(model, view, constants, single: bool) -> list[str]:
                   commented(f"p = {n('m')}*v0", "kg·m/s: its momentum"),
                   graph]
         if len(axes) > 1:
-            lines += [f"position = [{curves[0]},"] + [f"            {curve}," for curve in curves[1:-1]] + [
-                      f"            {curves[-1]}]"]
+            lines += [f"position = [{axis_curves[0]},"] + [f"            {curve}," for curve in axis_curves[1:-1]] + [
+                      f"            {axis_curves[-1]}]"]
         else:
-            lines.append(commented(f"position = {curves[0]}", "the simulation: thick"))
+            lines.append(commented(f"position = {axis_curves[0]}", "the simulation: thick"))
         return lines
     count = model.state.count
     coils = max(4, min(view["coils"], round(4 * view["coils"] / count)))
@@ -83,10 +83,11 @@ def _palette(setup, model, view) -> tuple[list, str, str]:
     export/palette.py's mass_colours colours the masses on the page: mass i in MASS_COLOURS[i], or
     (resonance) each row of springs in its b's CURVE_COLOURS[row]; the palettes repeat past their end."""
     wanted = [tuple(c) for c in mass_colours(model, view)]
-    count, per_row = len(wanted), setup.values.get("count")
+    row = model.per_mass.per_row if model.per_mass is not None else ""   # a row's length, by name
+    count, per_row = len(wanted), setup.values.get(row) if row else None
     choices = [(MASS_COLOURS, "i", count, "per mass")]
     if _whole(per_row) and count % int(per_row) == 0:
-        choices.append((CURVE_COLOURS, "i // count", count // int(per_row), "per row of b"))
+        choices.append((CURVE_COLOURS, f"i // {row}", count // int(per_row), "per row of b"))
     for palette, index, groups, which in choices:
         group = (lambda i: i) if index == "i" else (lambda i: i // int(per_row))
         if [palette[group(i) % len(palette)] for i in range(count)] == wanted:

@@ -70,15 +70,17 @@ class MassLoop:
     loop     the for line(s), `for i in range(3):` or a row per b and a column per ω
     index    the loop's index inside, for a mass's place in its row (`i`, `col`)
     lists    the MassList of each quantity, in the order they are made
+    per_row  where there are rows: the constant that gives a row's length (`count`)
     """
 
     loop: tuple
     index: str
     lists: tuple
+    per_row: str = ""
 
     def then(self, *lists: MassList) -> "MassLoop":
         """The same loop with more lists (a scene's own, after the row's)."""
-        return MassLoop(self.loop, self.index, self.lists + tuple(lists))
+        return MassLoop(self.loop, self.index, self.lists + tuple(lists), self.per_row)
 
 
 def row_loop(*, count: int, count_name: str = "", rows_name: str = "") -> MassLoop:
@@ -86,7 +88,8 @@ def row_loop(*, count: int, count_name: str = "", rows_name: str = "") -> MassLo
     row per value of the constant rows_name (`for row in range(curves): for col in range(count)`)."""
     counted = count_name or str(count)
     if rows_name:
-        return MassLoop((f"for row in range({rows_name}):", f"    for col in range({counted}):"), "col", ())
+        return MassLoop((f"for row in range({rows_name}):", f"    for col in range({counted}):"), "col", (),
+                        per_row=count_name)
     return MassLoop((f"for i in range({counted}):",), "i", ())
 
 

@@ -85,7 +85,7 @@ def test_a_rule_no_scene_of_ours_has_is_written_as_the_rule(folder, stand_in, tm
     written = main_py(folder, "--vpython", str(path))
     assert written.returncode == 0, written.stderr
     text = path.read_text(encoding="utf-8")
-    assert re.search(r"^        b_each\.append\(b\*\(i \+ 1\)\) +# kg/s: each b more than the one before$", text, re.M)
+    assert re.search(r"^    b_each\.append\(b\*\(i \+ 1\)\) +# kg/s: each b more than the one before$", text, re.M)
     assert re.search(r"^b = 0\.75 +# kg/s: damping of the first mass", text, re.M)
     assert "a = vector((i - 1.5)*spacing, 0, 0)" in text and "s_eq = L0 + m*g/k" in text
     headless = main_py(folder, "--headless", "--json")
