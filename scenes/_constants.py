@@ -58,7 +58,11 @@ class _Declarations(Mapping):
     scene brings (tests/test_new_force.py) declares its constants as ours do."""
 
     def _table(self) -> dict[str, Declared]:
-        return {**declared_constants(), **SCENE_CONSTANTS}
+        forces = declared_constants()
+        both = sorted(forces.keys() & SCENE_CONSTANTS.keys())
+        if both:
+            raise ValueError(f"{both[0]} is declared twice, by a force and in SCENE_CONSTANTS: keep one")
+        return {**forces, **SCENE_CONSTANTS}
 
     def __getitem__(self, name: str) -> Declared:
         return self._table()[name]
