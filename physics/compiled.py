@@ -74,7 +74,7 @@ def untraced_reason(problem: Exception) -> str:
     culprit = "the step"
     for frame, _ in traceback.walk_tb(problem.__traceback__):
         owner = frame.f_locals.get("self")
-        if isinstance(owner, Force):
+        if isinstance(owner, Force) or (frame.f_code.co_name == "__call__" and not isinstance(owner, Traced)):
             culprit = f"the force {type(owner).__name__} (in {frame.f_code.co_name})"
     what = " ".join(f"{type(problem).__name__}: {problem}".split())
     return f"{culprit} cannot be traced for the fast loop ({what})"
