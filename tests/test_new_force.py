@@ -8,7 +8,8 @@ A teacher's folder (SPRING_SCENES) holds two new files and nothing else in the p
     brake.py    a scene that builds a Model with a spring, gravity and the brake
 
 The brake then works headless, in --csv, in the exported program (run under the stand-in vpython
-of tests/test_export.py, it reaches the engine's final state), and in the stability judgement.
+of tests/test_export.py, it reaches the engine's final state), in the stability judgement, and in
+the page's parts (its slider, caption and live run; no browser is started, which keeps it cheap).
 The physics is checked by hand: with no spring and no gravity, Euler-Cromer's momentum across the
 field shrinks by exactly (1 − βΔt/m) each step and the part along the field stays as it was.
 """
@@ -109,7 +110,7 @@ def build(*, m, k, L0, g, beta, field_axis, anchor, r0, v0, dt, until):
                  anchors=[anchor], labels=("block",))
 
 
-VIEW = {"support": "ceiling", "plot": "y"}
+VIEW = {"support": "ceiling", "plot": "y", "sliders": ["m", "k", "beta"]}
 '''
 
 
@@ -203,3 +204,33 @@ def test_the_brakes_constants_are_declared_by_the_force(folder):
     assert bad.returncode == 2
     (line,) = bad.stderr.strip().splitlines()
     assert "beta must be from 0 to 1e6 kg/s" in line
+
+
+PAGE = '''
+import json
+from browser.clock import LiveRun
+from browser.controls import constants_text, slider_names, slider_range, symbol
+from scenes import catalog
+
+setup = catalog.configure("brake", assignments=["until=1"])
+model = setup.build()
+live = LiveRun(model, integrator="euler-cromer")
+live.advance(100)
+print(json.dumps({"sliders": slider_names(setup, setup.module.VIEW), "beta": slider_range("beta", 1.5), "symbol": symbol("beta"),
+                  "caption": constants_text(setup), "r": live.state.r[0].tolist(), "t": live.state.t}))
+'''
+
+
+def test_the_pages_parts_read_the_brakes_declaration(folder):
+    """The page's sliders, caption and live run (browser/controls.py, browser/clock.py; no browser
+    started): β's slider starts at 0 (slider_from_zero, declared by the force), the caption shows
+    β with its unit, and the live run is the headless run."""
+    env = {**os.environ, "SPRING_SCENES": str(folder)}
+    done = subprocess.run([sys.executable, "-c", PAGE], cwd=ROOT, env=env, capture_output=True, text=True,
+                          timeout=120)
+    assert done.returncode == 0, done.stderr
+    page = json.loads(done.stdout)
+    assert "beta" in page["sliders"] and page["beta"][0] == 0.0 and page["symbol"] == "β"
+    assert "β = 1.5 kg/s" in page["caption"]
+    headless = json.loads(main_py(folder, "--set", "until=1", "--headless", "--json").stdout)
+    assert page["t"] == pytest.approx(headless["t"]) and page["r"] == pytest.approx(headless["r"], rel=1e-12)
