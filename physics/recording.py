@@ -67,13 +67,31 @@ class Samples:
 
 
 class Recorder:
-    """The steps recorded during one advance: flat rows of floats, packed into arrays a chunk at a time."""
+    """The steps recorded during one advance: which step is due next (`mark`, from the schedule),
+    and the recorded rows of floats, packed into arrays a block at a time.
 
-    def __init__(self, engine):
+    schedule  step number done -> the next step number to record (every(n), time_grid(...)), or None
+    target    the step number the advance ends at; with `final` it is recorded too
+    """
+
+    def __init__(self, engine, schedule=None, *, target: float = math.inf, final: bool = True):
         self.engine = engine
+        self.schedule = schedule if schedule is not None else (lambda done: math.inf)
+        self.target, self.final = target, final
         self.steps: list[int] = []
-        self.rows: list = []           # this chunk's rows: every component of r, p, P_nc, W_nc
+        self.rows: list = []           # this block's rows: every component of r, p, P_nc, W_nc
         self.blocks: list[np.ndarray] = []
+        self.mark = self._next(engine.steps)
+
+    def _next(self, done: int):
+        mark = self.schedule(done)
+        return min(mark, self.target) if self.final else mark
+
+    def record(self, done, *, values=None, arrays=None):
+        """Keep step number `done` (its values flattened, or its arrays); returns the next mark."""
+        self.add(done, values=values, arrays=arrays)
+        self.mark = self._next(done)
+        return self.mark
 
     def add(self, done, *, values=None, arrays=None):
         self.steps.append(done)

@@ -163,35 +163,22 @@ class Simulation:
         """
         steps = int(steps)
         target = self.steps + steps
-        rows = Recorder(self)
-        schedule = record if record is not None else (lambda done: math.inf)
-        mark = self._next_mark(schedule, self.steps, target, final)
-        reported, last = time.monotonic(), None
-
-        def on_record(done, values=None, arrays=None):
-            rows.add(done, values=values, arrays=arrays)
-            return self._next_mark(schedule, done, target, final)
-
+        recorder = Recorder(self, record, target=target, final=final)
+        report = _Progress(progress, total=steps, first=self.steps)
         with np.errstate(over="ignore", invalid="ignore"):
-            while self.steps < target:
-                if self._cancelled:
-                    self._cancelled = False
-                    raise Cancelled(f"cancelled at t = {self.t:g} s")
-                stop = min(target, self.steps + CHUNK)
-                mark = self._ticks(stop, mark, on_record, compile_ok=steps >= COMPILE_FROM_STEPS)
-                rows.flush()
+            while self.steps < target:         # a chunk of steps at a time, then the checks
+                self._stop_if_cancelled()
+                self._ticks(min(target, self.steps + CHUNK), recorder, compile_ok=steps >= COMPILE_FROM_STEPS)
+                recorder.flush()
                 self._check()
-                if progress is not None and time.monotonic() - reported >= PROGRESS_EVERY:
-                    progress(self.steps - (target - steps), steps, self.t)
-                    reported, last = time.monotonic(), self.steps
-        if progress is not None and last is not None and last != target:   # end where it ended
-            progress(steps, steps, self.t)
-        return rows.samples()
+                report.now(self.steps, self.t)
+        report.end(self.steps, self.t)
+        return recorder.samples()
 
-    @staticmethod
-    def _next_mark(schedule, done: int, target: int, final: bool):
-        mark = schedule(done)
-        return min(mark, target) if final else mark
+    def _stop_if_cancelled(self) -> None:
+        if self._cancelled:
+            self._cancelled = False
+            raise Cancelled(f"cancelled at t = {self.t:g} s")
 
     def _arrays(self) -> list:
         return [self._r, self._p, self._power, self.work]
@@ -212,16 +199,16 @@ class Simulation:
         power_next = nonconservative_power(State(t=t_next, r=new.r, p=new.p, m=self.start.m), self.forces)
         return new.r, new.p, power_next, work_step(work, power, power_next, self.dt)
 
-    def _ticks(self, stop: int, mark, on_record, *, compile_ok: bool):
-        """Tick up to step number `stop`, recording at the marks; returns the next mark."""
+    def _ticks(self, stop: int, recorder: Recorder, *, compile_ok: bool) -> None:
+        """Tick up to step number `stop`, recording the steps the recorder marks."""
         if self.compiled and compile_ok and self._loop is None and not self._loop_failed:
             self._loop = compile_loop(self.tick, self._arrays(), t0=self.start.t, dt=self.dt)
             self._loop_failed = self._loop is None
         loop = self._loop
         while self.steps < stop:
             if loop is not None and loop.ready:
-                done, mark, arrays = loop.advance(self._arrays(), self.steps, stop, mark,
-                                                  lambda done, values: on_record(done, values=values))
+                done, _, arrays = loop.advance(self._arrays(), self.steps, stop, recorder.mark,
+                                               lambda done, values: recorder.record(done, values=values))
                 self._set(arrays)
                 self.steps = done
                 if done == stop:
@@ -229,11 +216,10 @@ class Simulation:
             # One numpy tick: the loop stopped short (a guard), or there is none.
             self._set(self.tick(self.time_of(self.steps), self.time_of(self.steps + 1), *self._arrays()))
             self.steps += 1
-            if self.steps == mark:
-                mark = on_record(self.steps, arrays=self._arrays())
+            if self.steps == recorder.mark:
+                recorder.record(self.steps, arrays=self._arrays())
             if loop is not None and loop.traces < MAX_TRACES:
                 loop.retrace(self._arrays(), step=self.steps)
-        return mark
 
     def _check(self) -> None:
         """Freeze or stop masses that blew up: non-finite, or beyond the limit from their anchor."""
@@ -281,6 +267,24 @@ class Simulation:
                                                 batch=CHUNK if compiles else 1,
                                                 gives_up=(BlowUpError, ArithmeticError))
         return self._seconds_per_step
+
+
+class _Progress:
+    """Calls progress(done, total, t) about every PROGRESS_EVERY seconds of a long advance, and at
+    its end if it reported on the way (so the last report is where it ended)."""
+
+    def __init__(self, progress, *, total: int, first: int):
+        self.progress, self.total, self.first = progress, total, first
+        self.reported, self.last = time.monotonic(), None
+
+    def now(self, steps: int, t: float) -> None:
+        if self.progress is not None and time.monotonic() - self.reported >= PROGRESS_EVERY:
+            self.progress(steps - self.first, self.total, t)
+            self.reported, self.last = time.monotonic(), steps
+
+    def end(self, steps: int, t: float) -> None:
+        if self.progress is not None and self.last is not None and self.last != steps:
+            self.progress(self.total, self.total, t)
 
 
 def _stepper(methods, *, frozen):
