@@ -22,6 +22,7 @@ import argparse
 import os
 import signal
 import sys
+import warnings
 
 
 def _stop_while_loading(signum, frame):
@@ -376,6 +377,11 @@ def _terminate(signum, frame):
     raise Terminated()
 
 
+def _one_line_warning(message, category, filename, lineno, file=None, line=None):
+    """A warning from the physics (a force the fast loop cannot trace) as one line on stderr."""
+    print(f"warning: {' '.join(str(message).split())}", file=file or sys.stderr)
+
+
 def run(argv=None) -> int:
     """main() as a user meets it: whatever happens, at most one line on stderr and never a traceback.
 
@@ -384,6 +390,7 @@ def run(argv=None) -> int:
     unforeseen is a bug of ours: one line naming it, and exit status 1.
     """
     previous = signal.signal(signal.SIGINT, signal.default_int_handler), signal.signal(signal.SIGTERM, _terminate)
+    shown, warnings.showwarning = warnings.showwarning, _one_line_warning
     try:
         return main(argv)
     except KeyboardInterrupt:
@@ -406,6 +413,7 @@ def run(argv=None) -> int:
     finally:
         signal.signal(signal.SIGINT, previous[0])
         signal.signal(signal.SIGTERM, previous[1])
+        warnings.showwarning = shown
 
 
 if __name__ == "__main__":

@@ -16,12 +16,16 @@ import math
 import numpy as np
 
 from physics.exact import damping_regime
-from physics.forces import Driving, Gravity, LinearDamping, Spring
 
 from .lines import commented, vector
 
+# The constants of the closed form m x'' + b x' + k x = F0 cos(ω t) (physics/exact.py), under gravity:
+# a force with any other constant is one it does not describe.
+CLOSED_FORM = {"k", "L0", "anchor", "g", "b", "F0", "omega", "drive_axis"}
+DOWN = (0.0, -1.0, 0.0)        # the program writes gravity along −y
 
-def on_line(model) -> bool:
+
+def on_line(model, constants) -> bool:
     """Whether every mass moves on the line of its spring (what the closed form needs)."""
     anchors = np.broadcast_to(model.anchors, model.state.r.shape)
     offsets = model.state.r - anchors
@@ -30,8 +34,8 @@ def on_line(model) -> bool:
         return False
     u = offsets / lengths[:, None]
     along = [model.state.v]
-    along += [np.broadcast_to(f.direction, u.shape) for f in model.forces if isinstance(f, Gravity)]
-    along += [np.broadcast_to(f.axis, u.shape) for f in model.forces if isinstance(f, Driving)]
+    along += [np.broadcast_to(DOWN, u.shape)] if constants.has("g") else []
+    along += [np.reshape(constants.each("drive_axis"), (-1, 3))] if constants.has("F0") else []
     for vectors in along:
         off = vectors - np.sum(vectors * u, axis=1)[:, None] * u
         if np.any(np.linalg.norm(off, axis=1) > 1e-12 * np.maximum(1.0, np.linalg.norm(vectors, axis=1))):
@@ -44,38 +48,38 @@ def exact_lines(model, constants, forces, *, axis: str, m: str):
 
     The closed form (physics/exact.py) follows the displacement x from equilibrium along the
     spring's line û: m x'' + b x' + k x = F cos(ω t), started from x_start and v_start along û.
-    `constants` spells the program's names (vpython_program._Constants): `b`, or `b_each[i]`.
+    `constants` spells the program's names (the program's constants): `b`, or `b_each[i]`.
     """
     n = constants.name
-    has = {type(force) for force in forces.forces}
-    linear = not constants.has("L0")     # L0 = 0: F = −k L, so each coordinate moves on its own
-    if model.exact is None or not (linear or on_line(model)):
+    if any(set(force.CONSTANTS) - CLOSED_FORM for force in forces.forces) or not constants.has("k"):
         return None
-    k_all = np.broadcast_to(next(f.k for f in forces.forces if isinstance(f, Spring)), (model.state.count, 1))[:, 0]
-    damping = next((f.b for f in forces.forces if isinstance(f, LinearDamping)), 0.0)
-    b_all = np.broadcast_to(damping, (model.state.count, 1))[:, 0]
+    damped, gravity, driven = constants.has("b"), constants.has("g"), constants.has("F0")
+    linear = not constants.has("L0")     # L0 = 0: F = −k L, so each coordinate moves on its own
+    if model.exact is None or not (linear or on_line(model, constants)):
+        return None
+    k_all = constants.each("k")
+    b_all = constants.each("b") if damped else np.zeros(model.state.count)
     regimes = {damping_regime(m=mi, k=ki, b=bi) for mi, ki, bi in zip(model.state.m, k_all, b_all)}
     L0 = n("L0") if constants.has("L0") else "0"
-    b = n("b") if LinearDamping in has else "0"
+    b = n("b") if damped else "0"
     before = [
         "# the exact solution (physics/exact.py): x = displacement from equilibrium along the spring"
         + ("" if linear else ",")] + ([] if linear else ["# good until the mass reaches its anchor"]) + [
         commented(f"u = {vector(np.eye(3)['xyz'.index(axis)])}", "û: the plotted axis (L0 = 0: each axis on its own)")
         if linear else commented(f"u = norm({n('r0')} - {n('anchor')})", "direction of the spring, û"),
-        commented(f"s_eq = {L0} + {m}*{n('g')}*(-u.y)/{n('k')}" if Gravity in has else f"s_eq = {L0}",
+        commented(f"s_eq = {L0} + {m}*{n('g')}*(-u.y)/{n('k')}" if gravity else f"s_eq = {L0}",
                   "m: length of the spring at equilibrium"),
         commented(f"omega0 = sqrt({n('k')}/{m})", "rad/s: natural angular frequency √(k/m)"),
     ]
-    if LinearDamping in has:
+    if damped:
         before.append(commented(f"gamma = {b}/(2*{m})", "1/s: decay rate b/2m"))
     start = f"{'dot' if linear else 'mag'}({n('r0')} - {n('anchor')}{', u' if linear else ''}) - s_eq"
     x_start = [commented(f"x_start = {start}", "m: start displacement"),
                commented(f"v_start = dot({n('v0')}, u)", "m/s: start velocity along û")]
     steady = []
-    if Driving in has:
+    if driven:
         F0, w = n("F0"), n("omega")
-        omega_all = np.broadcast_to(next(f.omega for f in forces.forces if isinstance(f, Driving)),
-                                    (model.state.count, 1))[:, 0]
+        omega_all = constants.each("omega")
         resonant = [bi == 0 and np.isclose(wi, math.sqrt(ki / mi), rtol=1e-12, atol=0)
                     for bi, wi, ki, mi in zip(b_all, omega_all, k_all, model.state.m)]
         if any(resonant) and not all(resonant):
@@ -84,7 +88,7 @@ def exact_lines(model, constants, forces, *, axis: str, m: str):
         if all(resonant):
             steady = [commented(f"x = x + Fu*t*sin(omega0*t)/(2*{m}*omega0)",
                                 "resonance: the swing grows as F t/(2 m ω0)")]
-        elif LinearDamping not in has:   # undamped: the steady swing is in step (or opposite)
+        elif not damped:   # undamped: the steady swing is in step (or opposite)
             before.append(commented(f"amp = Fu/({n('k')} - {m}*{w}**2)", "m: steady-state amplitude (signed)"))
             x_start = [commented(f"x_start = {start} - amp", "m: start displacement, less the steady swing's"),
                        x_start[1]]
@@ -110,7 +114,7 @@ def exact_lines(model, constants, forces, *, axis: str, m: str):
                          "c1 = (v_start + (gamma + mu)*x_start)/(2*mu)", "c2 = x_start - c1"],
                         ["x = c1*exp((mu - gamma)*t) + c2*exp(-(gamma + mu)*t)"]),
     }
-    if LinearDamping not in has:
+    if not damped:
         return before, [commented("x = x_start*cos(omega0*t) + v_start/omega0*sin(omega0*t)", "undamped")] + steady
     if len(regimes) == 1:
         coefficients, now = branches[regimes.pop()]

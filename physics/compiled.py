@@ -21,6 +21,11 @@ How: the one copy of the physics (forces.py, integrators.py) writes the fast cop
    numpy, which gives inf or NaN as usual, and traces again from there. The time of each step is
    t = t0 + n·Δt from its number n, as in the engine.
 
+A force the trace cannot follow (one that calls float() on its numbers, or a numpy function such
+as np.exp that traced numbers do not know) leaves the numpy tick in charge, several times slower.
+That is never silent: the first time, an :class:`UntracedWarning` names the force and what it did
+(once per force and reason in a process); the command line shows it as one line on stderr.
+
 Why not numba: measured on the user command (docs/performance.md), importing and compiling with
 numba costs as much as it saves at 10⁶ steps, it cannot compile forces.py as written, and it adds
 some 200 MB; this module is a few hundred lines and keeps one copy of the physics.
@@ -35,8 +40,12 @@ import math
 import numbers
 import operator
 import re
+import traceback
+import warnings
 
 import numpy as np
+
+from .forces import Force
 
 
 # The loop's cost grows with the number of components (masses × dimensions); numpy's hardly does
@@ -49,6 +58,35 @@ MAX_TRACES = 8
 
 class Untraceable(TypeError):
     """The step did something a traced number cannot follow (float(), an unknown function)."""
+
+
+class UntracedWarning(RuntimeWarning):
+    """The fast loop cannot trace a force, so the engine steps it with numpy: one line that says
+    which force and why."""
+
+
+_REPORTED: set[str] = set()     # the reasons already warned about in this process
+
+
+def untraced_reason(problem: Exception) -> str:
+    """What the trace could not follow, naming the force where the failure was inside one:
+    `the force EddyBrake (in __call__: TypeError: ...)`."""
+    culprit = "the step"
+    for frame, _ in traceback.walk_tb(problem.__traceback__):
+        owner = frame.f_locals.get("self")
+        if isinstance(owner, Force) or (frame.f_code.co_name == "__call__" and not isinstance(owner, Traced)):
+            culprit = f"the force {type(owner).__name__} (in {frame.f_code.co_name})"
+    what = " ".join(f"{type(problem).__name__}: {problem}".split())
+    return f"{culprit} cannot be traced for the fast loop ({what})"
+
+
+def warn_untraced(problem: Exception) -> None:
+    """Warn once per reason that the numpy tick, several times slower, steps this system."""
+    reason = untraced_reason(problem)
+    if reason not in _REPORTED:
+        _REPORTED.add(reason)
+        warnings.warn(f"{reason}: it runs with numpy, several times slower (physics/compiled.py)",
+                      UntracedWarning, stacklevel=2)
 
 
 class Tape:
@@ -201,6 +239,7 @@ class CompiledLoop:
         leave the numpy tick in charge."""
         self.traces += 1
         self._loop = None
+        self.failure = None
         try:
             tape = Tape()
             names = [f"a{n}_{i}" for n, a in enumerate(arrays) for i in range(np.size(a))]
@@ -217,8 +256,12 @@ class CompiledLoop:
                          "_t0": self.t0, "_dt": self.dt, **tape.constants}
             exec(compile(self.source, "<compiled tick>", "exec"), namespace)
             self._loop = namespace["advance"]
-        except Exception:   # whatever the trace cannot follow, the numpy tick still can
+        except (ArithmeticError, ValueError):   # the state itself (√ of a negative, overflow):
+            self._loop = None                     # numpy gives NaN or inf there, as it should
+        except Exception as problem:   # whatever the trace cannot follow, the numpy tick still can
             self._loop = None
+            self.failure = problem
+            warn_untraced(problem)
 
     def advance(self, arrays, done: int, stop: int, mark: int, record):
         """Tick from step number `done` towards `stop`; returns (done, mark, arrays).
@@ -286,7 +329,8 @@ def compile_loop(tick, arrays, *, t0: float, dt: float) -> CompiledLoop | None:
     """A compiled loop for this tick and these arrays, or None where numpy is as fast.
 
     Worth it for up to MAX_COMPONENTS numbers in r (32 masses in 3-D); returns None if the
-    first trace fails, so the engine keeps to the numpy tick.
+    first trace fails, so the engine keeps to the numpy tick (with an UntracedWarning, once,
+    where a force could not be traced).
     """
     if np.size(arrays[0]) > MAX_COMPONENTS:
         return None

@@ -15,12 +15,21 @@ the force is made. A force whose uses_velocity is False never reads v, so a step
 v = None.
 For motion along one line, give r the shape (N, 1) and the forces 1-component vectors:
 Spring(anchor=(0.0,)), Gravity(direction=(-1.0,)), Driving(axis=(1.0,)).
+
+Each force is one declaration (a subclass of :class:`Force`): beside its law it gives the constants
+of that law with their units and ranges (CONSTANTS, which scenes/_constants.py's DECLARED reads),
+the rates the stability judgement needs (:meth:`Force.rates`, read by physics/stability.py), and
+its line in the handed-out VPython program (PROGRAM, plain text that export/ fills in with the
+program's names). Nothing else in the project chooses by the kind of force; docs/architecture.md
+gives the recipe for a new one, and tests/test_new_force.py adds one from a folder of its own.
 """
 from __future__ import annotations
 
 from dataclasses import dataclass
 
 import numpy as np
+
+from .declared import Declared
 
 
 def _per_mass(value) -> np.ndarray | float:
@@ -47,8 +56,64 @@ def _unit(vector) -> np.ndarray:
     return vector / length
 
 
+FORCES: list[type] = []     # every force class, in the order defined (ours, then any a scene brings)
+
+
+class Force:
+    """What every force declares, beside its law (its __call__).
+
+    CONSTANTS  the constants of its law, by the name the scenes and the program give them, each
+               with its unit, range and meaning (scenes/_constants.py's DECLARED reads them)
+    TERM       the program's name for the force: Fspring, Fdamping
+    PROGRAM    its line(s) in the program, (code, comment) pairs; the code names the constants
+               and {t}, {r}, {v}, {m} (time, position, velocity and mass as the program spells
+               them) in braces, filled in by export/ with str.format
+    conservative, uses_velocity   whether it has a potential energy, whether it reads v
+
+    A class that subclasses Force is known by that alone (FORCES), wherever it is defined.
+    """
+
+    CONSTANTS: dict[str, Declared] = {}
+    TERM = ""
+    PROGRAM: tuple[tuple[str, str], ...] = ()
+    conservative = False
+    uses_velocity = False
+
+    def __init_subclass__(cls, **options):
+        super().__init_subclass__(**options)
+        FORCES.append(cls)
+
+    def rates(self, m: np.ndarray, speed: np.ndarray) -> dict:
+        """What the force adds to the stability judgement (physics/stability.py), per mass, at the
+        present speeds |v| (m/s): any of
+
+            "stiffness"  k, N/m: a spring from a fixed anchor (ω² = Σk/m)
+            "joint"      (i, j, k): a spring of k N/m between masses i and j
+            "damping"    γ = b/m, s⁻¹: a force near −γ m v, the same at every speed
+            "drag"       γ, s⁻¹: the slope of a force that grows with speed, at the present speed
+
+        A force that only adds to the motion without multiplying it (gravity, driving) adds
+        nothing: {}.
+        """
+        return {}
+
+    def program_values(self) -> dict:
+        """The values of CONSTANTS this force holds, by name: a number, or an (N,) or (N, 3) array
+        of one per mass. Raises ValueError where the program cannot write the force as it is."""
+        return {name: getattr(self, name) for name in self.CONSTANTS}
+
+    def program(self) -> tuple[tuple[str, str], ...]:
+        """Its PROGRAM lines, as they apply to this force (Spring: a shorter law where L0 = 0)."""
+        return self.PROGRAM
+
+
+def _column(value, count: int) -> np.ndarray:
+    """A parameter as one number per mass, (count,)."""
+    return np.broadcast_to(np.asarray(value, dtype=float).reshape(-1, 1), (count, 1))[:, 0]
+
+
 @dataclass(frozen=True, eq=False)
-class Spring:
+class Spring(Force):
     """Hooke's law for a spring from a fixed anchor to each mass, in 3-D.
 
     F = −k (|L| − L0) L̂,  with L = r − anchor
@@ -60,6 +125,16 @@ class Spring:
     anchor: object = (0.0, 0.0, 0.0)
     conservative = True
     uses_velocity = False
+    CONSTANTS = {
+        "k": Declared("N/m", 0, 1e6, meaning="spring constant"),
+        "L0": Declared("m", 0, 1e4, meaning="relaxed length of the spring"),
+        "anchor": Declared("m", -1e4, 1e4, vector=True, meaning="fixed end of the spring"),
+    }
+    TERM = "Fspring"
+    PROGRAM = (("L = {r} - {anchor}", "the spring, from its fixed end to the mass"),
+               ("Fspring = {k}*({L0}/mag(L) - 1)*L", "Hooke's law: F = −k (|L| − L0) L̂, written k (L0/|L| − 1) L"))
+    LINEAR = (("L = {r} - {anchor}", "the spring, from its fixed end to the mass"),
+              ("Fspring = -{k}*L", "Hooke's law with L0 = 0: F = −k L"))
 
     def __post_init__(self):
         object.__setattr__(self, "k", _per_mass(self.k))
@@ -91,9 +166,26 @@ class Spring:
         _, length = self.stretch(r)
         return (0.5 * self.k * (length - self.L0) ** 2)[..., 0]
 
+    @classmethod
+    def switched_on(cls, *, k, L0, anchor, **_others):
+        """The spring of the single-mass scenes' constants (always there: k = 0 is a spring of no stiffness)."""
+        return cls(k=k, L0=L0, anchor=anchor)
+
+    def rates(self, m, speed):
+        return {"stiffness": _column(self.k, len(m))}
+
+    def program_values(self):
+        values = {"k": self.k, "anchor": self.anchor}
+        if not self._zero_length:
+            values["L0"] = self.L0
+        return values
+
+    def program(self):
+        return self.LINEAR if self._zero_length else self.PROGRAM
+
 
 @dataclass(frozen=True, eq=False)
-class SpringBetween:
+class SpringBetween(Force):
     """Hooke's law for a spring joining mass i to mass j (for chains).
 
     F_i = −k (|L| − L0) L̂,  F_j = −F_i,  with L = r_i − r_j
@@ -119,6 +211,12 @@ class SpringBetween:
         F[self.j] -= pull
         return F
 
+    def rates(self, m, speed):
+        return {"joint": (self.i, self.j, self.k)}
+
+    def program_values(self):
+        raise ValueError("the program cannot write a spring between two masses yet")
+
     def potential_energy(self, r, m):
         L = r[..., self.i, :] - r[..., self.j, :]     # r may hold many samples: (n, N, 3)
         length = np.sqrt(np.sum(L * L, axis=-1))
@@ -128,7 +226,7 @@ class SpringBetween:
 
 
 @dataclass(frozen=True, eq=False)
-class Gravity:
+class Gravity(Force):
     """Uniform gravity near the Earth's surface.
 
     F = m g ĝ,  with g the magnitude in m/s² (9.8 on Earth) acting along ĝ = −y by default.
@@ -139,6 +237,10 @@ class Gravity:
     direction: object = (0.0, -1.0, 0.0)
     conservative = True
     uses_velocity = False
+    CONSTANTS = {"g": Declared("m/s²", 0, 1e3, note="it is a magnitude; gravity acts along −y",
+                               slider_from_zero=True, meaning="strength of gravity, along −y")}
+    TERM = "Fgravity"
+    PROGRAM = (("Fgravity = {m}*vector(0, -{g}, 0)", "gravity: F = m g, down (−y)"),)
 
     def __post_init__(self):
         object.__setattr__(self, "direction", _unit(self.direction))
@@ -152,9 +254,18 @@ class Gravity:
         """U = m g h, with h measured up from the origin, J."""
         return -m * self.g * (r @ self.direction)
 
+    @classmethod
+    def switched_on(cls, *, g, **_others):
+        return cls(g=g) if g else None
+
+    def program_values(self):
+        if not np.array_equal(self.direction, (0.0, -1.0, 0.0)):
+            raise ValueError("the program writes gravity along −y only")
+        return {"g": self.g}
+
 
 @dataclass(frozen=True, eq=False)
-class LinearDamping:
+class LinearDamping(Force):
     """Linear (viscous) damping.
 
     F = −b v,  b in kg/s (N per m/s). Always opposite v; it removes energy at the rate b|v|².
@@ -163,6 +274,10 @@ class LinearDamping:
     b: object = 0.0
     conservative = False
     uses_velocity = True
+    CONSTANTS = {"b": Declared("kg/s", 0, 1e6, none="critical damping, b = 2√(mk)", slider_from_zero=True,
+                               meaning="linear damping constant in F = −b v")}
+    TERM = "Fdamping"
+    PROGRAM = (("Fdamping = -{b}*{v}", "linear damping: F = −b v"),)
 
     def __post_init__(self):
         object.__setattr__(self, "b", _per_mass(self.b))
@@ -170,9 +285,16 @@ class LinearDamping:
     def __call__(self, t, r, v, m):
         return -self.b * v
 
+    @classmethod
+    def switched_on(cls, *, b, **_others):
+        return cls(b=b) if b else None
+
+    def rates(self, m, speed):
+        return {"damping": _column(self.b, len(m)) / m}      # F = −b v = −(b/m) m v
+
 
 @dataclass(frozen=True, eq=False)
-class QuadraticDrag:
+class QuadraticDrag(Force):
     """Quadratic air drag.
 
     F = −½ C A ρ |v| v,  with C the drag coefficient (no unit), A the cross-section area in m²
@@ -184,6 +306,13 @@ class QuadraticDrag:
     rho: object = 0.0
     conservative = False
     uses_velocity = True
+    CONSTANTS = {
+        "C": Declared("1", 0, 100, slider_from_zero=True, meaning="drag coefficient"),
+        "A": Declared("m²", 0, 1e3, meaning="cross-section area, for drag"),
+        "rho": Declared("kg/m³", 0, 1e5, symbol="ρ", meaning="air density, for drag"),
+    }
+    TERM = "Fdrag"
+    PROGRAM = (("Fdrag = -0.5*{C}*{A}*{rho}*mag({v})*{v}", "air drag: F = −½ C A ρ |v|² v̂ = −½ C A ρ |v| v"),)
 
     def __post_init__(self):
         for name in ("C", "A", "rho"):
@@ -193,9 +322,17 @@ class QuadraticDrag:
         speed = magnitude(v)
         return -0.5 * self.C * self.A * self.rho * speed * v
 
+    @classmethod
+    def switched_on(cls, *, C, A, rho, **_others):
+        return cls(C=C, A=A, rho=rho) if C and A and rho else None
+
+    def rates(self, m, speed):
+        # the slope of ½ C A ρ |v| v with respect to v is ρ C A |v|
+        return {"drag": _column(self.C * self.A * self.rho, len(m)) * speed / m}
+
 
 @dataclass(frozen=True, eq=False)
-class Driving:
+class Driving(Force):
     """A sinusoidal driving force.
 
     F = F0 cos(ω t) â,  F0 in N (amplitude), ω in rad/s (angular frequency, not Hz: f = ω / 2π),
@@ -207,6 +344,15 @@ class Driving:
     axis: object = (1.0, 0.0, 0.0)
     conservative = False
     uses_velocity = False
+    CONSTANTS = {
+        "F0": Declared("N", -1e6, 1e6, slider_from_zero=True, meaning="driving force amplitude in F = F0 cos(ω t)"),
+        "omega": Declared("rad/s", 0, 1e4, symbol="ω", slider_from_zero=True,
+                          meaning="driving angular frequency ω (rad/s, not Hz)"),
+        "drive_axis": Declared("1", -1e6, 1e6, vector=True, nonzero=True,
+                               meaning="direction of the driving force (a unit vector)"),
+    }
+    TERM = "Fdrive"
+    PROGRAM = (("Fdrive = {F0}*cos({omega}*{t})*{drive_axis}", "driving: F = F0 cos(ω t) along drive_axis"),)
 
     def __post_init__(self):
         object.__setattr__(self, "F0", _per_mass(self.F0))
@@ -216,6 +362,28 @@ class Driving:
     def __call__(self, t, r, v, m):
         # F = F0 cos(ω t) â for every mass, written into a new array laid out like r
         return np.multiply(self.F0 * np.cos(self.omega * t), self.axis, out=_new_like(r))
+
+    @classmethod
+    def switched_on(cls, *, F0, omega, drive_axis, **_others):
+        return cls(F0=F0, omega=omega, axis=drive_axis) if F0 else None
+
+    def program_values(self):
+        return {"F0": self.F0, "omega": self.omega, "drive_axis": self.axis}
+
+
+# The page's forces, in the order it adds them: what the single-mass scenes switch on from their
+# constants (each class's switched_on gives the force, or None where its constant is 0).
+PAGE_FORCES = (Spring, Gravity, LinearDamping, QuadraticDrag, Driving)
+
+
+def declared_constants() -> dict[str, Declared]:
+    """Every force's CONSTANTS, by name. Raises ValueError where two forces declare one name differently."""
+    declared: dict[str, Declared] = {}
+    for cls in FORCES:
+        for name, declaration in cls.CONSTANTS.items():
+            if declared.setdefault(name, declaration) != declaration:
+                raise ValueError(f"two forces declare the constant {name} differently ({cls.__name__} is one)")
+    return declared
 
 
 def uses_velocity(forces) -> bool:

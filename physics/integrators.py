@@ -2,6 +2,16 @@
 
 Every method advances time by one fixed step Δt. Velocity always comes from momentum,
 v = p / m (physics/state.py). F(t, r, v) below means the net force of the list of forces.
+
+Each method also gives its program template: the same update written out as lines of the
+handed-out VPython program (export/ writes them). A template is a function
+
+    template(F, *, r, p, m, uses_velocity) -> [(code, comment), ...]
+
+of how the program spells the position, momentum and mass of one mass, where F(t, r, v, laws)
+gives the lines that work out Fnet at time t, position r and velocity v (with each force's law as
+its comment where laws is True). Its order of operations is the step's, so the program's numbers
+are the engine's to round-off.
 """
 from __future__ import annotations
 
@@ -33,6 +43,15 @@ def euler_cromer(state: State, forces, dt: float) -> State:
     return State(t=t + dt, r=r_f, p=p_f, m=m)
 
 
+def euler_cromer_program(F, *, r, p, m, uses_velocity):
+    """The page's update as the program writes it: v_i only where a force reads it, as the step."""
+    lines = [(f"v = {p}/{m}", "velocity from momentum: v = p/m")] if uses_velocity else []
+    return lines + F("t", r, "v", True) + [
+        (f"{p} = {p} + Fnet*dt", "momentum principle: p_f = p_i + F_net Δt"),
+        (f"{r} = {r} + {p}/{m}*dt", "r_f = r_i + v_f Δt, with v_f = p_f/m"),
+    ]
+
+
 def euler(state: State, forces, dt: float) -> State:
     """Forward (explicit) Euler: the position moves with the OLD velocity.
 
@@ -47,6 +66,13 @@ def euler(state: State, forces, dt: float) -> State:
     v_i = velocity(p, m)
     F_net = net_force(forces, t, r, v_i, m)
     return State(t=t + dt, r=r + v_i * dt, p=p + F_net * dt, m=m)
+
+
+def euler_program(F, *, r, p, m, uses_velocity):
+    return [(f"v = {p}/{m}", "velocity from momentum: v_i = p_i/m")] + F("t", r, "v", True) + [
+        (f"{r} = {r} + v*dt", "r_f = r_i + v_i Δt: the OLD velocity (why euler gains energy)"),
+        (f"{p} = {p} + Fnet*dt", "momentum principle: p_f = p_i + F_net Δt"),
+    ]
 
 
 def verlet(state: State, forces, dt: float) -> State:
@@ -72,6 +98,25 @@ def verlet(state: State, forces, dt: float) -> State:
         v_guess = velocity(p_half + net_force(forces, t + dt, r_f, v_half, m) * half, m)
     p_f = p_half + net_force(forces, t + dt, r_f, v_guess, m) * half
     return State(t=t + dt, r=r_f, p=p_f, m=m)
+
+
+def verlet_program(F, *, r, p, m, uses_velocity):
+    """verlet's half kick, drift and half kick; with a force that reads v, its guess of v_f first."""
+    lines = [("# velocity Verlet: half a kick, a drift, half a kick", "")]
+    if uses_velocity:
+        lines.append((f"v = {p}/{m}", "velocity at the start of the step"))
+    lines += F("t", r, "v", True)
+    lines += [(f"{p} = {p} + Fnet*(dt/2)", "half a kick: p_½ = p_i + F_i Δt/2"),
+              (f"{r} = {r} + {p}/{m}*dt", "drift: r_f = r_i + (p_½/m) Δt")]
+    if uses_velocity:
+        lines += [(f"v = {p}/{m}", ""),
+                  ("for guess in range(2):", "F needs v_f, not known yet: guess it, then use it")]
+        lines += _indented(F("(t + dt)", r, "v", False))
+        lines.append((f"    v = ({p} + Fnet*(dt/2))/{m}", "v_f ≈ (p_½ + F Δt/2)/m"))
+    else:
+        lines += F("(t + dt)", r, "v", False)
+    lines.append((f"{p} = {p} + Fnet*(dt/2)", "half a kick with the force at the end"))
+    return lines
 
 
 def rk4(state: State, forces, dt: float) -> State:
@@ -106,6 +151,29 @@ def rk4(state: State, forces, dt: float) -> State:
     )
 
 
+def rk4_program(F, *, r, p, m, uses_velocity):
+    """rk4's four slopes in a for loop, and their weighted average."""
+    return [
+        ("dr = []", "rk4: the slopes dr/dt = v and dp/dt = F_net at four points of the step"),
+        ("dp = []", ""),
+        ("v = vector(0, 0, 0)", ""),
+        ("Fnet = vector(0, 0, 0)", ""),
+        ("for h in [0, dt/2, dt/2, dt]:", "each point: h ahead along the slope before"),
+        (f"    r_s = {r} + v*h", ""),
+        (f"    p_s = {p} + Fnet*h", ""),
+        (f"    v = p_s/{m}", ""),
+        *_indented(F("(t + h)", "r_s", "v", True)),
+        ("    dr.append(v)", ""),
+        ("    dp.append(Fnet)", ""),
+        (f"{r} = {r} + (dr[0] + 2*dr[1] + 2*dr[2] + dr[3])*(dt/6)", "the slopes' weighted average"),
+        (f"{p} = {p} + (dp[0] + 2*dp[1] + 2*dp[2] + dp[3])*(dt/6)", ""),
+    ]
+
+
+def _indented(lines):
+    return [("    " + code, comment) for code, comment in lines]
+
+
 @dataclass(frozen=True)
 class Integrator:
     """Everything about one method, in one registry entry.
@@ -118,6 +186,7 @@ class Integrator:
     rule          how the step uses F_net, in words, for the step table a student checks by hand
     kicks_once    True if p_f = p_i + F(t_i, r_i, v_i) Δt: one kick with the force at the start
     damped_rule   the stability condition with linear damping b, in words, where it is known
+    program       its template: the step as lines of the handed-out program (see the module's docstring)
     """
 
     name: str
@@ -127,6 +196,7 @@ class Integrator:
     rule: str
     kicks_once: bool = False
     damped_rule: Optional[str] = None
+    program: Optional[Callable] = None
 
     def __call__(self, state: State, forces, dt: float) -> State:
         return self.step(state, forces, dt)
@@ -136,16 +206,16 @@ INTEGRATORS = {entry.name: entry for entry in (
     Integrator("euler-cromer", euler_cromer, order=1, omega_dt_limit=2.0,
                rule="F_net = F(t_i, r_i, v_i) at the start of the step; p_f = p_i + F_net·Δt; "
                     "v_f = p_f / m; r_f = r_i + v_f·Δt", kicks_once=True,
-               damped_rule="stable while (ω·dt)² + 2·(b/m)·dt < 4"),
+               damped_rule="stable while (ω·dt)² + 2·(b/m)·dt < 4", program=euler_cromer_program),
     Integrator("euler", euler, order=1, omega_dt_limit=None,
                rule="F_net = F(t_i, r_i, v_i) at the start of the step; p_f = p_i + F_net·Δt; "
-                    "r_f = r_i + v_i·Δt (the old velocity); v_f = p_f / m", kicks_once=True),
+                    "r_f = r_i + v_i·Δt (the old velocity); v_f = p_f / m", kicks_once=True, program=euler_program),
     Integrator("verlet", verlet, order=2, omega_dt_limit=2.0,
                rule="F_net = (p_f − p_i)/Δt, the average of the half kicks at the start and end of "
-                    "the step; r_f = r_i + (p_i + F_i·Δt/2)/m·Δt"),
+                    "the step; r_f = r_i + (p_i + F_i·Δt/2)/m·Δt", program=verlet_program),
     Integrator("rk4", rk4, order=4, omega_dt_limit=2.0 * 2.0 ** 0.5,
                rule="F_net = (p_f − p_i)/Δt, RK4's weighted average of its four force samples; "
-                    "r_f from RK4's weighted average of velocities"),
+                    "r_f from RK4's weighted average of velocities", program=rk4_program),
 )}
 DEFAULT_INTEGRATOR = "euler-cromer"
 

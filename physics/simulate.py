@@ -10,9 +10,11 @@ the benchmarks all ask it for steps. It owns
     the tick         one step of the chosen integrator (physics/integrators.py), and the work
                      meter W_nc = ∫ P_nc dt (trapezoid rule) where a force is not conservative
     the recording    which steps to keep: every step, every n-th, a time grid, or only the end
+                     (the schedules and the recorder are in physics/recording.py)
     the checks       every CHUNK steps: a state that stopped being finite, or a mass far beyond
                      any size its motion could reach, is a blow-up; physics/stability.py says why
     the run's cost   an estimate of its seconds, so a run too long is refused before it starts
+                     (measured on a trial engine; physics/run_cost.py)
 
 `advance(steps)` and `run_until(t)` continue from wherever the engine is; `restart()` goes back to
 the exact initial state (reassignment, nothing recomputed).
@@ -30,16 +32,19 @@ from __future__ import annotations
 
 import math
 import time
-from dataclasses import dataclass, replace
+from dataclasses import replace
 
 import numpy as np
 
 from .compiled import MAX_COMPONENTS, MAX_TRACES, compile_loop
-from .energy import nonconservative_power, report, series, work_step
+from .energy import nonconservative_power, report, work_step
 from .forces import Spring
 from .integrators import DEFAULT_INTEGRATOR, INTEGRATORS, methods_for
 from .stability import fastest_angular_frequency, judge
 from .state import State, velocity
+# What a run records and what it costs live beside the engine; their names are the engine's API too.
+from .recording import Recorder, Samples, Trajectory, every, steps_to_reach, time_grid, trajectory  # noqa: F401
+from .run_cost import MAX_RUN_SECONDS, TRIAL_SECONDS, RunTooLong, check_cost, time_steps  # noqa: F401
 
 CHUNK = 1024                 # steps between two checks for blow-up, cancellation and progress
 PROGRESS_EVERY = 1.0         # s of computing between two progress reports
@@ -57,53 +62,6 @@ class BlowUpError(RuntimeError):
 
 class Cancelled(RuntimeError):
     """The run was cancelled (Simulation.cancel) before it finished."""
-
-
-def steps_to_reach(until: float, dt: float) -> int:
-    """Number of steps of dt that reaches time `until` (rounding up, forgiving round-off)."""
-    return max(0, math.ceil(until / dt - 1e-9))
-
-
-# ---- what to record: a schedule says which step number is recorded next ----
-
-def every(n: int):
-    """Record every n-th step (n = 1: every step)."""
-    if isinstance(n, bool) or not isinstance(n, (int, np.integer)) or n < 1:
-        raise ValueError("record_every must be a whole number ≥ 1, or None for the final state only")
-    n = int(n)
-    return lambda done: (done // n + 1) * n
-
-
-def time_grid(spacing: float, *, t0: float, dt: float, start: float = 0.0, end: float = math.inf):
-    """Record the first step at or after each time start, start + spacing, ... up to end, s.
-
-    spacing ≤ dt records every step from start to end.
-    """
-    def after(done):
-        t = t0 + done * dt
-        if t >= end:
-            return math.inf
-        grid = start if t < start else start + (math.floor((t - start) / spacing + 1e-9) + 1) * spacing
-        return max(done + 1, steps_to_reach(min(grid, end) - t0, dt))
-    return after
-
-
-@dataclass
-class Samples:
-    """Recorded steps: t (n,) s, r and p (n, N, D) in m and kg·m/s, W_nc so far (n, N) J."""
-
-    t: np.ndarray
-    r: np.ndarray
-    p: np.ndarray
-    work: np.ndarray
-    m: np.ndarray
-
-    @property
-    def v(self) -> np.ndarray:
-        return velocity(self.p, self.m)
-
-    def __len__(self) -> int:
-        return len(self.t)
 
 
 class Simulation:
@@ -205,35 +163,22 @@ class Simulation:
         """
         steps = int(steps)
         target = self.steps + steps
-        rows = _Rows(self)
-        schedule = record if record is not None else (lambda done: math.inf)
-        mark = self._next_mark(schedule, self.steps, target, final)
-        reported, last = time.monotonic(), None
-
-        def on_record(done, values=None, arrays=None):
-            rows.add(done, values=values, arrays=arrays)
-            return self._next_mark(schedule, done, target, final)
-
+        recorder = Recorder(self, record, target=target, final=final)
+        report = _Progress(progress, total=steps, first=self.steps)
         with np.errstate(over="ignore", invalid="ignore"):
-            while self.steps < target:
-                if self._cancelled:
-                    self._cancelled = False
-                    raise Cancelled(f"cancelled at t = {self.t:g} s")
-                stop = min(target, self.steps + CHUNK)
-                mark = self._ticks(stop, mark, on_record, compile_ok=steps >= COMPILE_FROM_STEPS)
-                rows.flush()
+            while self.steps < target:         # a chunk of steps at a time, then the checks
+                self._stop_if_cancelled()
+                self._ticks(min(target, self.steps + CHUNK), recorder, compile_ok=steps >= COMPILE_FROM_STEPS)
+                recorder.flush()
                 self._check()
-                if progress is not None and time.monotonic() - reported >= PROGRESS_EVERY:
-                    progress(self.steps - (target - steps), steps, self.t)
-                    reported, last = time.monotonic(), self.steps
-        if progress is not None and last is not None and last != target:   # end where it ended
-            progress(steps, steps, self.t)
-        return rows.samples()
+                report.now(self.steps, self.t)
+        report.end(self.steps, self.t)
+        return recorder.samples()
 
-    @staticmethod
-    def _next_mark(schedule, done: int, target: int, final: bool):
-        mark = schedule(done)
-        return min(mark, target) if final else mark
+    def _stop_if_cancelled(self) -> None:
+        if self._cancelled:
+            self._cancelled = False
+            raise Cancelled(f"cancelled at t = {self.t:g} s")
 
     def _arrays(self) -> list:
         return [self._r, self._p, self._power, self.work]
@@ -254,16 +199,16 @@ class Simulation:
         power_next = nonconservative_power(State(t=t_next, r=new.r, p=new.p, m=self.start.m), self.forces)
         return new.r, new.p, power_next, work_step(work, power, power_next, self.dt)
 
-    def _ticks(self, stop: int, mark, on_record, *, compile_ok: bool):
-        """Tick up to step number `stop`, recording at the marks; returns the next mark."""
+    def _ticks(self, stop: int, recorder: Recorder, *, compile_ok: bool) -> None:
+        """Tick up to step number `stop`, recording the steps the recorder marks."""
         if self.compiled and compile_ok and self._loop is None and not self._loop_failed:
             self._loop = compile_loop(self.tick, self._arrays(), t0=self.start.t, dt=self.dt)
             self._loop_failed = self._loop is None
         loop = self._loop
         while self.steps < stop:
             if loop is not None and loop.ready:
-                done, mark, arrays = loop.advance(self._arrays(), self.steps, stop, mark,
-                                                  lambda done, values: on_record(done, values=values))
+                done, _, arrays = loop.advance(self._arrays(), self.steps, stop, recorder.mark,
+                                               lambda done, values: recorder.record(done, values=values))
                 self._set(arrays)
                 self.steps = done
                 if done == stop:
@@ -271,11 +216,10 @@ class Simulation:
             # One numpy tick: the loop stopped short (a guard), or there is none.
             self._set(self.tick(self.time_of(self.steps), self.time_of(self.steps + 1), *self._arrays()))
             self.steps += 1
-            if self.steps == mark:
-                mark = on_record(self.steps, arrays=self._arrays())
+            if self.steps == recorder.mark:
+                recorder.record(self.steps, arrays=self._arrays())
             if loop is not None and loop.traces < MAX_TRACES:
                 loop.retrace(self._arrays(), step=self.steps)
-        return mark
 
     def _check(self) -> None:
         """Freeze or stop masses that blew up: non-finite, or beyond the limit from their anchor."""
@@ -313,104 +257,34 @@ class Simulation:
     # ---- what a run will cost ----
 
     def seconds_per_step(self) -> float:
-        """What one step costs on this computer, s: measured on a trial copy of this engine.
-
-        The trial takes the same path as a real run (the compiled loop where it applies, or numpy)
-        for about TRIAL_SECONDS of processor time, so the estimate follows the real cost of one
-        mass and of a big batch alike. Measured once per engine.
-        """
+        """What one step costs on this computer, s: measured once, on a trial copy of this engine
+        that takes the same path as a real run (physics/run_cost.py)."""
         if self._seconds_per_step is None:
             trial = Simulation(self.state, self.forces, dt=self.dt, integrator=self.methods,
                                compiled=self.compiled, growth_limit=math.inf)
             compiles = self.compiled and self.start.r.size <= MAX_COMPONENTS
-            # Batches big enough that the cost of a call is not what is measured, timed in this
-            # thread's CPU time, so a computer busy with other programs does not inflate it.
-            steps, spent, batch = 0, 0.0, CHUNK if compiles else 1
-            try:
-                trial.advance(COMPILE_FROM_STEPS if compiles else 1)     # warm up (and compile)
-                while spent < TRIAL_SECONDS and steps < 1_000_000:
-                    begin = time.thread_time()
-                    trial.advance(batch)
-                    spent += time.thread_time() - begin
-                    steps += batch
-                    batch *= 2
-            except (BlowUpError, ArithmeticError):
-                pass
-            self._seconds_per_step = spent / steps if steps else 0.0
+            self._seconds_per_step = time_steps(trial.advance, warm_up=COMPILE_FROM_STEPS if compiles else 1,
+                                                batch=CHUNK if compiles else 1,
+                                                gives_up=(BlowUpError, ArithmeticError))
         return self._seconds_per_step
 
 
-MAX_RUN_SECONDS = 60.0       # the longest run the program starts, by the engine's estimate, s
-TRIAL_SECONDS = 0.02         # how long the trial that measures a step's cost runs, s
+class _Progress:
+    """Calls progress(done, total, t) about every PROGRESS_EVERY seconds of a long advance, and at
+    its end if it reported on the way (so the last report is where it ended)."""
 
+    def __init__(self, progress, *, total: int, first: int):
+        self.progress, self.total, self.first = progress, total, first
+        self.reported, self.last = time.monotonic(), None
 
-class RunTooLong(ValueError):
-    """A run would take longer than MAX_RUN_SECONDS: a one-line message naming what would fit."""
+    def now(self, steps: int, t: float) -> None:
+        if self.progress is not None and time.monotonic() - self.reported >= PROGRESS_EVERY:
+            self.progress(steps - self.first, self.total, t)
+            self.reported, self.last = time.monotonic(), steps
 
-
-def check_cost(engine: Simulation, *, until: float, extra_per_step: float = 0.0,
-               limit: float = MAX_RUN_SECONDS, until_name: str = "--until") -> int:
-    """The number of steps from the engine's time to `until`, if they fit in `limit` seconds.
-
-    extra_per_step is what the caller adds per step (writing rows, s). Raises RunTooLong naming
-    the steps, the estimated time and the longest `until` that fits, before any step is taken.
-    """
-    dt, start = engine.dt, engine.t
-    ratio = (until - start) / dt
-    n = steps_to_reach(until - start, dt) if math.isfinite(ratio) and ratio < 1e18 else math.inf
-    if n * engine.start.count <= 10_000:      # a few thousand mass-steps: not worth measuring
-        return n
-    per_step = engine.seconds_per_step() + extra_per_step
-    if n * per_step <= limit:
-        return n
-    count = f"{n:,} steps" if math.isfinite(n) else "more than 10¹⁸ steps"
-    longest = start + math.floor(limit / per_step) * dt
-    raise RunTooLong(
-        f"a run to t = {until:g} s with dt = {dt:g} s is {count} of {engine.start.count} "
-        f"mass{'es' if engine.start.count > 1 else ''}, about {_duration(n * per_step)} of computing "
-        f"here, more than the {limit:g} s a run may take; use a larger dt, or a smaller {until_name} "
-        f"(at most {longest:.6g} s with dt = {dt:g} s)")
-
-
-def _duration(seconds: float) -> str:
-    if not math.isfinite(seconds) or seconds > 1e9:
-        return "forever"
-    for unit, size in (("days", 86400), ("hours", 3600), ("minutes", 60)):
-        if seconds >= 2 * size:
-            return f"{seconds / size:.3g} {unit}"
-    return f"{seconds:.3g} s"
-
-
-class _Rows:
-    """The steps recorded during one advance: flat rows of floats, packed into arrays a chunk at a time."""
-
-    def __init__(self, engine: Simulation):
-        self.engine = engine
-        self.steps: list[int] = []
-        self.rows: list = []           # this chunk's rows: every component of r, p, P_nc, W_nc
-        self.blocks: list[np.ndarray] = []
-
-    def add(self, done, *, values=None, arrays=None):
-        self.steps.append(done)
-        self.rows.append(values if values is not None else
-                         np.concatenate([np.asarray(a, dtype=float).ravel() for a in arrays]))
-        if len(self.rows) >= CHUNK:
-            self.flush()
-
-    def flush(self):
-        if self.rows:
-            self.blocks.append(np.array(self.rows, dtype=float))
-            self.rows = []
-
-    def samples(self) -> Samples:
-        self.flush()
-        start = self.engine.start
-        size, count = start.r.size, start.count
-        flat = np.concatenate(self.blocks) if self.blocks else np.empty((0, 2 * size + 2 * count))
-        return Samples(t=self.engine.start.t + np.array(self.steps, dtype=float) * self.engine.dt,
-                       r=flat[:, :size].reshape((-1,) + start.r.shape),
-                       p=flat[:, size:2 * size].reshape((-1,) + start.r.shape),
-                       work=flat[:, 2 * size + count:], m=start.m)
+    def end(self, steps: int, t: float) -> None:
+        if self.progress is not None and self.last is not None and self.last != steps:
+            self.progress(self.total, self.total, t)
 
 
 def _stepper(methods, *, frozen):
@@ -444,41 +318,6 @@ def _motion_scale(state: State, springs, omega: float) -> float:
     offset = np.max(np.linalg.norm(state.r - spring.anchor, axis=-1))
     speed = np.max(np.linalg.norm(state.v, axis=-1))
     return float(offset + speed / omega + np.max(spring.L0) + 9.8 / omega**2 + 1.0)
-
-
-# ---- a whole run, for tests, benchmarks and sweeps ----
-
-@dataclass
-class Trajectory:
-    """Samples of a run: t (n,), r and p (n, N, 3); energy (dict of (n,) arrays, J) if asked for."""
-
-    t: np.ndarray
-    r: np.ndarray
-    p: np.ndarray
-    m: np.ndarray
-    energy: dict | None = None
-    work: np.ndarray | None = None
-
-    @property
-    def v(self) -> np.ndarray:
-        return velocity(self.p, self.m)
-
-    @property
-    def final(self) -> State:
-        """The last recorded state, ready to run on."""
-        return State(t=float(self.t[-1]), r=np.asfortranarray(self.r[-1]), p=np.asfortranarray(self.p[-1]),
-                     m=self.m)
-
-
-def trajectory(engine: Simulation, samples: Samples, *, with_energy: bool = True) -> Trajectory:
-    """A Trajectory of the engine's start and these samples (energy of every sample, J)."""
-    start = engine.start
-    t = np.concatenate([[start.t], samples.t])
-    r = np.concatenate([start.r[None], samples.r])
-    p = np.concatenate([start.p[None], samples.p])
-    work = np.concatenate([np.zeros((1, start.count)), samples.work])
-    energy = (series(State(t=t, r=r, p=p, m=start.m), engine.forces, work) if with_energy else None)
-    return Trajectory(t=t, r=r, p=p, m=start.m, energy=energy, work=work)
 
 
 def run(state: State, forces, *, dt: float, until: float, integrator=DEFAULT_INTEGRATOR,

@@ -26,7 +26,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .forces import LinearDamping, QuadraticDrag, Spring, SpringBetween, magnitude
+from .forces import LinearDamping, Spring, magnitude
 from .integrators import INTEGRATORS, describe
 from .state import make_state
 
@@ -102,23 +102,37 @@ class Rates:
 def rates(forces, m, v=None) -> Rates:
     """Each mass's ω, b/m and drag rate ρCA|v|/m at velocity v (rest if None).
 
-    ω is √(Σk/m) of the springs from anchors; a mass joined to others by springs gets the fastest
-    normal mode of its chain (:func:`fastest_angular_frequency`), which is faster than any single
-    √(k/m).
+    Each force says what it adds (physics.forces.Force.rates): stiffness from an anchor, a joint
+    to another mass, a damping or a drag rate. ω is √(Σk/m) of the springs from anchors; a mass
+    joined to others by springs gets the fastest normal mode of its chain
+    (:func:`fastest_angular_frequency`), which is faster than any single √(k/m).
     """
     m = np.asarray(m, dtype=float)
     count = len(m)
-    column = lambda value: np.broadcast_to(value, (count, 1))[:, 0]      # noqa: E731
-    k = sum((column(f.k) for f in forces if isinstance(f, Spring)), np.zeros(count))
+    speed = np.zeros(count) if v is None else magnitude(np.asarray(v, dtype=float))[:, 0]
+    k, joints, damping, drag = _terms(forces, m, speed)
     omega = np.sqrt(k / m)
-    joined = sorted({index % count for f in forces if isinstance(f, SpringBetween) for index in (f.i, f.j)})
+    joined = sorted({index % count for i, j, _ in joints for index in (i, j)})
     if joined:
         omega[joined] = np.maximum(omega[joined], fastest_angular_frequency(forces, m))
-    damping = sum((column(f.b) for f in forces if isinstance(f, LinearDamping)), np.zeros(count)) / m
-    speed = np.zeros(count) if v is None else magnitude(np.asarray(v, dtype=float))[:, 0]
-    drag = sum((column(f.C * f.A * f.rho) for f in forces if isinstance(f, QuadraticDrag)),
-               np.zeros(count)) * speed / m
     return Rates(omega=omega, damping=damping, drag=drag, speed=speed)
+
+
+def _terms(forces, m, speed) -> tuple:
+    """The forces' declared rates, summed: (k from anchors N/m, joints [(i, j, k)], damping s⁻¹,
+    drag s⁻¹), each per mass."""
+    count = len(m)
+    k, damping, drag = np.zeros(count), np.zeros(count), np.zeros(count)
+    joints = []
+    for force in forces:
+        declared = getattr(force, "rates", None)     # a bare function of (t, r, v, m) declares none
+        terms = declared(m, speed) if declared else {}
+        k = k + terms.get("stiffness", 0.0)
+        damping = damping + terms.get("damping", 0.0)
+        drag = drag + terms.get("drag", 0.0)
+        if "joint" in terms:
+            joints.append(terms["joint"])
+    return k, joints, damping, drag
 
 
 def fastest_angular_frequency(forces, m) -> float:
@@ -136,22 +150,18 @@ def fastest_angular_frequency(forces, m) -> float:
     fastest.)
     """
     m = np.asarray(m, dtype=float)
-    k_anchor = np.zeros(len(m))          # N/m: springs from a fixed anchor, per mass
-    for force in forces:
-        if isinstance(force, Spring):
-            k_anchor += np.broadcast_to(force.k, (len(m), 1))[:, 0]
-    joints = [force for force in forces if isinstance(force, SpringBetween)]
+    k_anchor, joints, _, _ = _terms(forces, m, np.zeros(len(m)))   # N/m: springs from a fixed anchor, per mass
     omega_sq = float(np.max(k_anchor / m, initial=0.0))
     if joints:
-        coupled = sorted({index % len(m) for joint in joints for index in (joint.i, joint.j)})
+        coupled = sorted({index % len(m) for i, j, _ in joints for index in (i, j)})
         row = {mass: n for n, mass in enumerate(coupled)}
         K = np.diag(k_anchor[coupled])
-        for joint in joints:
-            i, j = row[joint.i % len(m)], row[joint.j % len(m)]
-            K[i, i] += joint.k
-            K[j, j] += joint.k
-            K[i, j] -= joint.k
-            K[j, i] -= joint.k
+        for i, j, k in joints:
+            i, j = row[i % len(m)], row[j % len(m)]
+            K[i, i] += k
+            K[j, j] += k
+            K[i, j] -= k
+            K[j, i] -= k
         scale = 1.0 / np.sqrt(m[coupled])
         omega_sq = max(omega_sq, float(np.linalg.eigvalsh(scale[:, None] * K * scale[None, :])[-1]))
     return float(np.sqrt(max(omega_sq, 0.0)))

@@ -160,7 +160,7 @@ def step_count(engine, *, until: float, rows_per_step: float = 0.0) -> int:
     try:
         return check_cost(engine, until=until, extra_per_step=rows_per_step * ROW_SECONDS)
     except RunTooLong as problem:
-        raise TooManySteps(str(problem)) from None
+        raise TooManySteps(problem.worded("--until")) from None
 
 
 def simulate(setup, *, model=None, integrator: str | None = None, until: float | None = None,

@@ -18,103 +18,24 @@ import io
 import math
 import numbers
 import os
-import re
 import tokenize
+from collections.abc import Mapping
 from dataclasses import dataclass
+
+from physics.declared import NONZERO, SMALLEST, Declared, _short  # noqa: F401  (scenes import them from here)
+from physics.forces import declared_constants
 
 
 class ConstantError(ValueError):
     """A bad constant: its message is one line a teacher can act on."""
 
 
-def _short(x: float) -> str:
-    """1e+06 -> 1e6, 1e-06 -> 1e-6, 0.5 -> 0.5: a bound as a teacher writes it."""
-    return re.sub(r"e([+-])0*(\d)", lambda m: "e" + ("-" if m[1] == "-" else "") + m[2], f"{x:g}")
-
-
-@dataclass(frozen=True)
-class Declared:
-    """One constant, as every scene has it: its unit and symbol, and what values it may take.
-
-    unit      its SI unit ("1" for a pure number), as the scene files' comments write it
-    symbol    how the page writes it (ω, ρ); "" means its name
-    vector    three numbers (a position, a velocity, a direction) rather than one
-    low, high every number it (or each component) may take lies from `low` to `high`; `above_low`
-              leaves `low` itself out (m > 0). Wide for teaching, narrow enough that the products
-              the forces take, m·g, k·(|L| − L0), b·v, ½ρCA|v|², stay far from floating-point
-              overflow (10³⁰⁸) and Δt far from round-off (10⁻¹⁶ of t).
-    whole     a whole number (a count); `nonzero`: a vector of non-zero length (a direction)
-    note      added to the range in the message
-    none      what None means, where a scene file may write it instead of a number ("" if it may not)
-    slider_from_zero  a slider for it starts at 0, where 0 switches its force off (b, F0, ω, ...);
-              otherwise at a tenth of its default (m, k, Δt must stay positive)
-    slider_round  a slider for it gives only round values, 1, 2 or 5 × 10ⁿ, and the scene's
-              default (Δt: so that t reads 0.1, 0.2, 0.3 s, not 8.4645 s)
-    numerical  how a run is computed (Δt, the question time), not the physical case: a scenario
-              preset, which sets its whole case, leaves it as chosen
-    """
-
-    unit: str
-    low: float
-    high: float
-    symbol: str = ""
-    vector: bool = False
-    above_low: bool = False
-    whole: bool = False
-    nonzero: bool = False
-    note: str = ""
-    none: str = ""
-    slider_from_zero: bool = False
-    slider_round: bool = False
-    numerical: bool = False
-
-    def allows(self, value) -> bool:
-        numbers = value if isinstance(value, tuple) else (value,)
-        inside = all((x > self.low if self.above_low else x >= self.low) and x <= self.high
-                     and (not self.whole or x == int(x)) for x in numbers)
-        return inside and (not self.nonzero or max(abs(x) for x in numbers) >= NONZERO)
-
-    @staticmethod
-    def too_small(value) -> bool:
-        """Whether a number is nonzero but below SMALLEST in size: round-off, not a value to
-        compute with (k = 1e-320 N/m makes the stretch m·g/k overflow)."""
-        numbers = value if isinstance(value, tuple) else (value,)
-        return any(0 < abs(x) < SMALLEST for x in numbers)
-
-    def words(self, unit: str = "", *, vector: bool = False) -> str:
-        """`from 0 to 1e6 N/m`, `greater than 0 and at most 1e6 kg`, `a whole number from 2 to 10000`."""
-        unit = f" {unit}" if unit and unit != "1" else ""
-        low, high = _short(self.low), _short(self.high)
-        span = (f"greater than {low} and at most {high}{unit}" if self.above_low
-                else f"from {low} to {high}{unit}")
-        if self.whole:
-            span = f"a whole number {span}"
-        if vector:
-            span = f"three numbers, each {span}"
-            if self.nonzero:
-                span += f", not all near 0 (the largest at least {_short(NONZERO)})"
-        return f"{span} ({self.note})" if self.note else span
-
-
-NONZERO = 1e-6  # a direction's largest component must be at least this, so its length is not round-off
-SMALLEST = 1e-9  # any number given is 0 or at least this in size
-
-# The one table of what each constant may be, for every scene (the units are the scene files').
-DECLARED = {
-    "m": Declared("kg", 1e-6, 1e6),
-    "k": Declared("N/m", 0, 1e6),
-    "b": Declared("kg/s", 0, 1e6, none="critical damping, b = 2√(mk)", slider_from_zero=True),
-    "C": Declared("1", 0, 100, slider_from_zero=True),
-    "A": Declared("m²", 0, 1e3),
-    "rho": Declared("kg/m³", 0, 1e5, symbol="ρ"),
-    "L0": Declared("m", 0, 1e4),
-    "g": Declared("m/s²", 0, 1e3, note="it is a magnitude; gravity acts along −y", slider_from_zero=True),
-    "F0": Declared("N", -1e6, 1e6, slider_from_zero=True),
-    "omega": Declared("rad/s", 0, 1e4, symbol="ω", slider_from_zero=True),
-    "drive_axis": Declared("1", -1e6, 1e6, vector=True, nonzero=True),
-    "anchor": Declared("m", -1e4, 1e4, vector=True),
-    "r0": Declared("m", -1e4, 1e4, vector=True, none="worked out by the scene"),
-    "v0": Declared("m/s", -1e4, 1e4, vector=True),
+# What each constant that is not a force's may be, for every scene (the units are the scene files').
+# A force's own constants (k, b, ω, ...) are declared beside its law, in its CONSTANTS (physics/forces.py).
+SCENE_CONSTANTS = {
+    "m": Declared("kg", 1e-6, 1e6, meaning="mass"),
+    "r0": Declared("m", -1e4, 1e4, vector=True, none="worked out by the scene", meaning="start position"),
+    "v0": Declared("m/s", -1e4, 1e4, vector=True, meaning="start velocity"),
     "x0": Declared("m", -1e4, 1e4, slider_from_zero=True),
     "spacing": Declared("m", 0, 1e3),
     "under_fraction": Declared("1", 0, 1e3),
@@ -126,9 +47,35 @@ DECLARED = {
     "omega_max": Declared("rad/s", 0, 1e4, symbol="ω_max", above_low=True),
     "settle": Declared("s", 0, 1e6),
     "periods": Declared("1", 0, 1e4, above_low=True),
-    "dt": Declared("s", 1e-6, 1e3, symbol="Δt", slider_round=True, numerical=True),
-    "until": Declared("s", 0, 1e6, numerical=True),
+    "dt": Declared("s", 1e-6, 1e3, symbol="Δt", slider_round=True, numerical=True,
+                   meaning="time step Δt of the momentum update"),
+    "until": Declared("s", 0, 1e6, numerical=True, meaning="when to stop"),
 }
+
+
+class _Declarations(Mapping):
+    """The one table of what each constant may be, for every scene: SCENE_CONSTANTS, and every
+    force's CONSTANTS (physics.forces.declared_constants), read when asked, so a force a teacher's
+    scene brings (tests/test_new_force.py) declares its constants as ours do."""
+
+    def _table(self) -> dict[str, Declared]:
+        forces = declared_constants()
+        both = sorted(forces.keys() & SCENE_CONSTANTS.keys())
+        if both:
+            raise ValueError(f"{both[0]} is declared twice, by a force and in SCENE_CONSTANTS: keep one")
+        return {**forces, **SCENE_CONSTANTS}
+
+    def __getitem__(self, name: str) -> Declared:
+        return self._table()[name]
+
+    def __iter__(self):
+        return iter(self._table())
+
+    def __len__(self) -> int:
+        return len(self._table())
+
+
+DECLARED = _Declarations()
 
 
 @dataclass(frozen=True)

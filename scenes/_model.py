@@ -33,6 +33,8 @@ class Model:
     exact_valid_until  None if the closed form holds at all times, else T -> the first time up to T
              at which it stops holding, s (math.inf if it holds all the way to T)
     exact_limit  why the closed form can stop holding, one sentence
+    per_mass  None, or how the scene's build makes its lists of one value per mass, as data the
+             handed-out program writes out (scenes/_row.py's MassLoop)
     """
 
     state: State
@@ -47,6 +49,7 @@ class Model:
     exact_limit: str = ""
     default_integrator: Optional[str] = None
     may_run_away: tuple = ()
+    per_mass: Optional[object] = None
 
     def __post_init__(self):
         for force in self.forces:

@@ -13,10 +13,17 @@ along +x for a spring on a wall). With gravity g along −y, the spring's length
     s_eq = L0 + m g (ĝ·û) / k
 
 and a mass started at s_eq + x0 along û, with its velocity along û, stays on that line.
+
+The rules that place a row (anchors `spacing` apart, each mass x0 beyond its equilibrium) are
+also declared here as data for the handed-out program (:class:`MassList`, :class:`MassLoop`):
+plain text naming the scene's constants, written beside the function that works the same values
+out with the same arithmetic, so the program builds its lists as the scene's build does. A scene
+hands them to its Model (Model.per_mass); export/ writes them without knowing any scene.
 """
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -33,6 +40,95 @@ def anchors_in_a_row(*, count: int, spacing: float, along=(1.0, 0.0, 0.0)) -> np
     along = np.asarray(along, dtype=float)
     offsets = (np.arange(count) - 0.5 * (count - 1)) * spacing
     return offsets[:, None] * along[None, :]
+
+
+@dataclass(frozen=True)
+class MassList:
+    """One list of the program with a value per mass, as the scene's build works it out.
+
+    name     the model's quantity it holds: "anchor", "r0", or a force's constant ("b", "omega")
+    comment  the program's comment on the line that makes each value
+    each     one mass's value, inside the loop over the masses (MassLoop.index names it), or
+    whole    the whole list at once, before the loop
+    before   (code, comment) lines it needs before the loop: `s_eq = L0 + m*g/k`
+    keep     a name the value is kept in first, for the lists after it (`a`, the anchor)
+    All text names the scene's constants, as its constants block does.
+    """
+
+    name: str
+    comment: str = ""
+    each: str = ""
+    whole: str = ""
+    before: tuple = ()
+    keep: str = ""
+
+
+@dataclass(frozen=True)
+class MassLoop:
+    """The scene's lists of one value per mass: the loop over the masses and the lists it fills.
+
+    loop     the for line(s), `for i in range(3):` or a row per b and a column per ω
+    index    the loop's index inside, for a mass's place in its row (`i`, `col`)
+    lists    the MassList of each quantity, in the order they are made
+    per_row  where there are rows: the constant that gives a row's length (`count`)
+    """
+
+    loop: tuple
+    index: str
+    lists: tuple
+    per_row: str = ""
+
+    def then(self, *lists: MassList) -> "MassLoop":
+        """The same loop with more lists (a scene's own, after the row's)."""
+        return MassLoop(self.loop, self.index, self.lists + tuple(lists), self.per_row)
+
+
+def row_loop(*, count: int, count_name: str = "", rows_name: str = "") -> MassLoop:
+    """The loop over a row of count masses (`for i in range(count)`), or over rows of them, one
+    row per value of the constant rows_name (`for row in range(curves): for col in range(count)`)."""
+    counted = count_name or str(count)
+    if rows_name:
+        return MassLoop((f"for row in range({rows_name}):", f"    for col in range({counted}):"), "col", (),
+                        per_row=count_name)
+    return MassLoop((f"for i in range({counted}):",), "i", ())
+
+
+def row_anchors(loop: MassLoop, *, count: int, count_name: str = "", along=(1.0, 0.0, 0.0),
+                row_depth: float = 0.0) -> MassList:
+    """anchors_in_a_row as a list of the program: (i − (count − 1)/2)·spacing along ±x, ±y or ±z,
+    and (rows) each row row_depth m behind the one before, along −z."""
+    along = np.asarray(along, dtype=float)
+    axis = int(np.flatnonzero(along)[0])
+    centre = f"0.5*({count_name} - 1)" if count_name else _number(0.5 * (count - 1))
+    i = loop.index
+    parts = ["0", "0", "0"]
+    parts[axis] = f"({i} - {centre})*spacing" if along[axis] > 0 else f"({centre} - {i})*spacing"
+    rows = len(loop.loop) > 1
+    if rows:
+        parts[2] = "-row" if row_depth == 1 else f"-row*{_number(row_depth)}"
+    sign = "+" if along[axis] > 0 else "−"
+    comment = (f"m: rows along {sign}{'xyz'[axis]}, spacing apart, one behind another" if rows
+               else f"m: a row along {sign}{'xyz'[axis]}, spacing apart")
+    return MassList("anchor", comment, each="vector(" + ", ".join(parts) + ")", keep="a")
+
+
+def row_starts(*, direction=DOWN, k, x0_name: str = "x0") -> MassList:
+    """start_positions as a list of the program: a + (s_eq + x0) û from each anchor a, with s_eq
+    written out where the spring hangs (û = −y, k > 0), else the relaxed length L0."""
+    u = "vector(" + ", ".join(_number(c) for c in direction) + ")"
+    stretch = f" + {x0_name}" if x0_name else ""
+    if tuple(direction) == DOWN and k:
+        equilibrium = ("s_eq = L0 + m*g/k", "m: length of each spring at equilibrium, where k (s_eq − L0) = m g")
+        each = f"a + (s_eq{stretch})*{u}" if stretch else f"a + s_eq*{u}"
+        return MassList("r0", "m: " + ("x0 below" if stretch else "at rest at") + " equilibrium", each=each,
+                        before=(equilibrium,))
+    return MassList("r0", "m: " + ("x0 beyond" if stretch else "at") + " the relaxed length",
+                    each=f"a + (L0{stretch})*{u}")
+
+
+def _number(x: float) -> str:
+    """A half or a unit component as the program writes it: 1, -0.5, 0 (exact for these)."""
+    return f"{float(x) + 0.0:g}"
 
 
 def rest_length(*, L0, m, k, g, direction=DOWN) -> float:

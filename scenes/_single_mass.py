@@ -16,24 +16,17 @@ import math
 import numpy as np
 
 from physics.exact import single_mass_motion
-from physics.forces import Driving, Gravity, LinearDamping, QuadraticDrag, Spring
+from physics.forces import PAGE_FORCES
 from physics.state import make_state
 
 from ._model import Model
 
 
-def forces_for(*, k, L0, anchor, g, b, C, A, rho, F0, omega, drive_axis) -> tuple:
-    """The forces that are switched on (non-zero constants), in the order the page adds them."""
-    forces = [Spring(k=k, L0=L0, anchor=anchor)]
-    if g:
-        forces.append(Gravity(g=g))
-    if b:
-        forces.append(LinearDamping(b=b))
-    if C and A and rho:
-        forces.append(QuadraticDrag(C=C, A=A, rho=rho))
-    if F0:
-        forces.append(Driving(F0=F0, omega=omega, axis=drive_axis))
-    return tuple(forces)
+def forces_for(**constants) -> tuple:
+    """The forces that are switched on (non-zero constants), in the order the page adds them
+    (physics.forces.PAGE_FORCES; each force's switched_on reads its own constants)."""
+    forces = (cls.switched_on(**constants) for cls in PAGE_FORCES)
+    return tuple(force for force in forces if force is not None)
 
 
 class AnchorCrossing:

@@ -24,7 +24,7 @@ from physics.forces import Gravity, LinearDamping, QuadraticDrag, Spring
 from physics.state import make_state
 
 from ._model import Model
-from ._row import anchors_in_a_row, exact_row, start_positions
+from ._row import anchors_in_a_row, exact_row, row_anchors, row_loop, row_starts, start_positions
 
 # ---- constants: edit these (unit: meaning); 0 switches a force off ----
 m = 0.27                   # kg: mass of each ball (a volleyball)
@@ -72,6 +72,7 @@ def build(*, m, k, L0, g, b, C, A, rho, x0, spacing, dt, until):
         **exact_row(anchors=anchors, r0=r0, m=m, k=k, L0=L0, g=g, b=[b, 0.0], C=[0.0, C * A * rho]),
         anchors=anchors,
         labels=(f"linear, b = {b:.3g} kg/s", f"quadratic, ½CAρ = {0.5 * C * A * rho:.3g} kg/m"),
+        per_mass=row_loop(count=2).then(row_anchors(row_loop(count=2), count=2), row_starts(k=k)),
     )
 
 

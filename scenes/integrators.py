@@ -15,7 +15,7 @@ from physics.forces import Spring
 from physics.state import make_state
 
 from ._model import Model
-from ._row import anchors_in_a_row, exact_row, start_positions
+from ._row import anchors_in_a_row, exact_row, row_anchors, row_loop, row_starts, start_positions
 
 # ---- constants: edit these (unit: meaning); 0 switches a force off ----
 m = 1.0                    # kg: mass of each block
@@ -32,6 +32,7 @@ MENU_ORDER = 7               # where it stands in --list and the page's scene me
 METHODS = ("euler", "euler-cromer", "verlet", "rk4")
 ALONG_WALL = (0.0, -1.0, 0.0)   # the anchors go down the wall
 OUT_OF_WALL = (1.0, 0.0, 0.0)   # the springs stick out of it
+_ROW = row_loop(count=len(METHODS))
 
 
 def build(*, m, k, L0, x0, spacing, dt, until):
@@ -48,6 +49,8 @@ def build(*, m, k, L0, x0, spacing, dt, until):
         labels=METHODS,
         integrators=METHODS,
         may_run_away=(METHODS.index("euler"),),
+        per_mass=_ROW.then(row_anchors(_ROW, count=len(METHODS), along=ALONG_WALL),
+                           row_starts(direction=OUT_OF_WALL, k=k)),
     )
 
 

@@ -21,7 +21,7 @@ from physics.state import make_state
 
 from ._constants import ConstantError
 from ._model import Model
-from ._row import anchors_in_a_row, exact_row, start_positions
+from ._row import MassList, anchors_in_a_row, exact_row, row_anchors, row_loop, row_starts, start_positions
 
 # ---- constants: edit these (unit: meaning); 0 switches a force off ----
 m = 1.0                    # kg: mass of each block
@@ -50,12 +50,21 @@ def damping_constants(*, m, k, b, under_fraction, over_multiple) -> np.ndarray:
     return np.array([under_fraction * b_c, b_c if b is None else b, over_multiple * b_c])
 
 
+def damping_list(*, b) -> MassList:
+    """damping_constants as the program writes it, with b_c = 2√(mk) as critical_damping works it out."""
+    middle = "b_c" if b is None else "b"
+    return MassList("b", whole=f"[under_fraction*b_c, {middle}, over_multiple*b_c]",
+                    before=(("b_c = 2*sqrt(m*k)", "kg/s: critical damping, 2√(mk)"),))
+
+
 def build(*, m, k, L0, g, b, under_fraction, over_multiple, x0, spacing, dt, until):
     """Three hanging oscillators, identical but for their damping constants."""
     b_each = damping_constants(m=m, k=k, b=b, under_fraction=under_fraction, over_multiple=over_multiple)
     anchors = anchors_in_a_row(count=3, spacing=spacing)
     # x0 is a stretch below equilibrium: along û = −y that is +x0.
     r0 = start_positions(anchors=anchors, L0=L0, m=m, k=k, g=g, x0=x0)
+    loop = row_loop(count=3)
+    per_mass = loop.then(row_anchors(loop, count=3), row_starts(k=k), damping_list(b=b))
     forces = [Spring(k=k, L0=L0, anchor=anchors), LinearDamping(b=b_each)]
     if g:
         forces.append(Gravity(g=g))
@@ -67,6 +76,7 @@ def build(*, m, k, L0, g, b, under_fraction, over_multiple, x0, spacing, dt, unt
         **exact_row(anchors=anchors, r0=r0, m=m, k=k, L0=L0, g=g, b=b_each),
         anchors=anchors,
         labels=tuple(f"{damping_regime(m=m, k=k, b=b_i)} (b = {b_i:.3g} kg/s)" for b_i in b_each),
+        per_mass=per_mass,
     )
 
 

@@ -27,7 +27,7 @@ from physics.state import make_state, velocity
 
 from ._constants import DECLARED, SMALLEST, ConstantError
 from ._model import Model
-from ._row import anchors_in_a_row, exact_row, start_positions
+from ._row import MassList, anchors_in_a_row, exact_row, row_anchors, row_loop, row_starts, start_positions
 
 # ---- constants: edit these (unit: meaning); 0 switches a force off ----
 m = 1.0                    # kg: mass of each block
@@ -85,7 +85,8 @@ def frequency_grid(*, omega_min, omega_max, count) -> np.ndarray:
     count = _whole("count", count, 2)
     if not 0 < omega_min < omega_max:
         raise ConstantError(f"need 0 < omega_min < omega_max (got {omega_min:g} and {omega_max:g} rad/s)")
-    return np.linspace(omega_min, omega_max, count)
+    # ω_min + i·(ω_max − ω_min)/(count − 1): the arithmetic of the program's list (sweep_lists)
+    return omega_min + np.arange(count) * ((omega_max - omega_min) / (count - 1))
 
 
 def damping_values(*, m, k, b, b_ratio, curves) -> np.ndarray:
@@ -108,6 +109,18 @@ def damping_values(*, m, k, b, b_ratio, curves) -> np.ndarray:
                             f"nonzero b may be; use b_ratio = {least_ratio:g} or more, or at most "
                             f"{most_curves} curves")
     return values
+
+
+def sweep_lists(*, b) -> tuple:
+    """damping_values and frequency_grid as lists of the program, row by row and along each row:
+    b·b_ratio^row (b_c = 2√(mk) where b is None) and ω from omega_min to omega_max in count steps."""
+    first = "b" if b is not None else "b_c"
+    critical = () if b is not None else (("b_c = 2*sqrt(m*k)", "kg/s: critical damping, 2√(mk)"),)
+    return (MassList("b", f"row by row: {first}, {first}·b_ratio, {first}·b_ratio², …",
+                     each=f"{first}*b_ratio**row", before=critical),
+            MassList("omega", "from omega_min to omega_max along each row", each="omega_min + col*omega_step",
+                     before=(("omega_step = (omega_max - omega_min)/(count - 1)",
+                              "rad/s: from one spring's drive to the next"),)))
 
 
 def _rounded_up(x: float) -> float:
@@ -143,6 +156,7 @@ def build(*, m, k, L0, g, F0, b, b_ratio, curves, omega_min, omega_max, count, s
     omega, b_each, omega_all, b_all = _grid(m=m, k=k, b=b, b_ratio=b_ratio, curves=curves,
                                             omega_min=omega_min, omega_max=omega_max, count=count)
     row = anchors_in_a_row(count=count, spacing=spacing)
+    loop = row_loop(count=count, count_name="count", rows_name="curves")
     depth = np.repeat(np.arange(len(b_each)) * ROW_DEPTH, count)
     anchors = np.tile(row, (len(b_each), 1)) - depth[:, None] * np.array([0.0, 0.0, 1.0])
     r0 = start_positions(anchors=anchors, L0=L0, m=m, k=k, g=g, x0=0.0)
@@ -160,6 +174,8 @@ def build(*, m, k, L0, g, F0, b, b_ratio, curves, omega_min, omega_max, count, s
         anchors=anchors,
         labels=tuple(f"b = {b_j:.3g} kg/s, ω = {w:.3g} rad/s" for b_j, w in zip(b_all, omega_all)),
         default_integrator=DEFAULT_INTEGRATOR,
+        per_mass=loop.then(row_anchors(loop, count=count, count_name="count", row_depth=ROW_DEPTH),
+                           row_starts(k=k, x0_name=""), *sweep_lists(b=b)),
     )
 
 

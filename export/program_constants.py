@@ -1,0 +1,91 @@
+"""The program's named values: the constants block at its top, `k = 40  # N/m: spring constant`.
+
+Every number comes from the scene's model (the force objects and the initial state), written with
+repr, so the program starts from exactly the model's values. A name that is one of the scene's
+constants, with the scene's value, keeps the comment of the scene's constants block; otherwise its
+unit and meaning are those declared once, in DECLARED (scenes/_constants.py, which reads each
+force's CONSTANTS). A value that differs between masses becomes a list (`b_each`).
+"""
+from __future__ import annotations
+
+import re
+
+import numpy as np
+
+from scenes import DECLARED
+
+from .lines import CONSTANT_COLUMN, ProgramError, commented, number, unit_and_meaning, vector
+
+
+class ProgramConstants:
+    """The program's named values, from the model's numbers: one value, or one per mass.
+
+    A name that is one of the scene's constants, with the scene's value, keeps the comment of the
+    scene's constants block; otherwise its unit and meaning are DECLARED's.
+    """
+
+    def __init__(self, setup, count: int):
+        self.setup, self.count = setup, count
+        self.single: dict[str, object] = {}       # name -> a float, or a 3-tuple for a vector
+        self.per_mass: dict[str, np.ndarray] = {}  # name -> (count,) or (count, 3)
+
+    def add(self, name: str, value, *, is_vector: bool = False) -> None:
+        """Record a value of the model: one for all the masses, or one per mass where they differ."""
+        array = np.asarray(value, dtype=float)
+        rows = np.broadcast_to(array.reshape(-1, 3) if is_vector else array.reshape(-1),
+                               (self.count, 3) if is_vector else (self.count,))
+        varies = not np.all(rows == rows[0])
+        value = rows.copy() if varies else (tuple(float(x) for x in rows[0]) if is_vector else float(rows[0]))
+        before = self.per_mass.get(name, self.single.get(name))
+        if before is not None and not np.array_equal(before, value):
+            raise ProgramError(f"two forces use different values of {name}: the program cannot name both")
+        (self.per_mass if varies else self.single)[name] = value
+
+    def has(self, name: str) -> bool:
+        return name in self.single or name in self.per_mass
+
+    def each(self, name: str) -> np.ndarray:
+        """The value of `name` for each mass: (count,), or (count, 3) for a vector."""
+        if name in self.per_mass:
+            return self.per_mass[name]
+        value = np.asarray(self.single[name], dtype=float)
+        return np.broadcast_to(value, (self.count,) + value.shape)
+
+    def list_name(self, name: str) -> str:
+        """The name of a list with one value per mass: `anchor`, or `b_each` where the scene has a b."""
+        return f"{name}_each" if name in self.setup.constants else name
+
+    def name(self, name: str) -> str:
+        """How the loop spells a value: `b`, or `b_each[i]` for one value per mass."""
+        return f"{self.list_name(name)}[i]" if name in self.per_mass else name
+
+    def comment(self, name: str, *, per_mass: bool = False) -> str:
+        """`N/m: spring constant`: the scene's comment where the program's value is the scene's."""
+        constant = self.setup.constants.get(name)
+        same = (constant is not None and not per_mass and self.setup.values.get(name) is not None
+                and np.array_equal(np.asarray(self.setup.values[name], dtype=float),
+                                   np.asarray(self.single.get(name, self.setup.values[name]), dtype=float)))
+        meaning = _without_none(constant.meaning) if same else (DECLARED[name].meaning if name in DECLARED else "") or name
+        return unit_and_meaning(DECLARED[name].unit if name in DECLARED else "",
+                                meaning + (", one per mass" if per_mass else ""))
+
+
+def _without_none(meaning: str) -> str:
+    """A scene's meaning without what None means in the scene file: the program has a number."""
+    return re.sub(r"\s*\(None\b.*\)\s*$", "", meaning)
+
+
+def _literal(value) -> str:
+    return vector(value) if isinstance(value, (tuple, list, np.ndarray)) else number(value)
+
+
+def constants_block(setup, constants: ProgramConstants, used: set[str]) -> list[str]:
+    """One line per constant, `k = 40  # N/m: spring constant`, in the scene file's order (dt and
+    until last): the program's values, and the scene's constants the lists of masses are built from."""
+    values = {name: constants.single[name] for name in constants.single}
+    values.update({name: setup.values[name] for name in used if name not in values})
+    scene = [name for name in setup.constants if name not in ("dt", "until")]
+    order = [name for name in scene if name in values] + [name for name in values if name not in scene]
+    order = [name for name in order if name not in ("dt", "until")] + [name for name in ("dt", "until") if name in values]
+    return [commented(f"{name} = {_literal(values[name])}", constants.comment(name), width=CONSTANT_COLUMN)
+            for name in order]

@@ -1,0 +1,62 @@
+"""The forces and the integrator's update, as lines of the handed-out program.
+
+Nothing here knows a force or a method by name: each force gives its constants' values and its
+line(s) of program (physics/forces.py: Force.program_values, Force.program), and each integrator
+its template (physics/integrators.py: the registry entry's program). This module fills them in
+with the program's names, `b` or `b_each[i]` for a value per mass, in the order
+physics.forces.net_force adds the forces.
+"""
+from __future__ import annotations
+
+from physics.integrators import INTEGRATORS
+
+from .lines import ProgramError, commented
+
+POSITION, VELOCITY, MASS, TIME = "r", "v", "m", "t"      # the names a force's PROGRAM fills in
+
+
+class ProgramForces:
+    """The model's forces as lines of the program; their constants are added to `constants`
+    (program_constants.ProgramConstants) as each force declares them."""
+
+    def __init__(self, model, constants):
+        self.constants = constants
+        self.forces = list(model.forces)
+        for force in self.forces:
+            if not force.program():
+                raise ProgramError(f"the program cannot write the force {type(force).__name__}: "
+                                   f"it declares no PROGRAM line (physics/forces.py)")
+            try:
+                values = force.program_values()
+            except ValueError as problem:
+                raise ProgramError(str(problem)) from None
+            for name, value in values.items():
+                constants.add(name, value, is_vector=force.CONSTANTS[name].vector)
+        self.uses_velocity = any(force.uses_velocity for force in self.forces)
+
+    def lines(self, t: str, r: str, v: str, laws: bool) -> list[tuple[str, str]]:
+        """Fnet at time t, position r and velocity v: each force's lines, then their sum, as (code, comment)."""
+        out, terms = [], []
+        for force in self.forces:
+            names = {name: self.constants.name(name) for name in force.program_values()}
+            names.update({TIME: t, POSITION: r, VELOCITY: v, MASS: self.mass})
+            out += [(code.format(**names), comment if laws else "") for code, comment in force.program()]
+            terms.append(force.TERM)
+        out.append(("Fnet = " + (" + ".join(terms) or "vector(0, 0, 0)"),
+                    "net force: the sum of the forces" if laws else ""))
+        return out
+
+    @property
+    def mass(self) -> str:
+        return self.constants.name("m")
+
+
+def update(method: str, forces: ProgramForces, *, r: str, p: str, m: str) -> list[str]:
+    """The lines of one step of `method` for one mass (position r, momentum p, mass m), before t
+    moves on: the integrator's own template (physics/integrators.py), filled in with the forces."""
+    entry = INTEGRATORS.get(method)
+    if entry is None or entry.program is None:
+        raise ProgramError(f"the program cannot write the integrator {method!r} (known: "
+                           f"{', '.join(name for name, known in INTEGRATORS.items() if known.program)})")
+    lines = entry.program(forces.lines, r=r, p=p, m=m, uses_velocity=forces.uses_velocity)
+    return [commented(code, comment) for code, comment in lines]

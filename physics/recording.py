@@ -1,0 +1,149 @@
+"""What a run keeps: which steps to record, the recorded steps, and a whole run's trajectory.
+
+The engine (physics/simulate.py) steps; this module holds what it records. A schedule says which
+step number is recorded next (every n-th step, or the first step at or after each time of a
+grid); the recorder keeps those steps as flat rows of floats, packed into arrays a block at a
+time; Samples are what one advance() recorded, and a Trajectory is a run from its start with the
+energy of every sample.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from .energy import series
+from .state import State, velocity
+
+BLOCK = 1024                 # recorded rows packed into one array at a time
+
+
+def steps_to_reach(until: float, dt: float) -> int:
+    """Number of steps of dt that reaches time `until` (rounding up, forgiving round-off)."""
+    return max(0, math.ceil(until / dt - 1e-9))
+
+
+# ---- what to record: a schedule says which step number is recorded next ----
+
+def every(n: int):
+    """Record every n-th step (n = 1: every step)."""
+    if isinstance(n, bool) or not isinstance(n, (int, np.integer)) or n < 1:
+        raise ValueError("record_every must be a whole number ≥ 1, or None for the final state only")
+    n = int(n)
+    return lambda done: (done // n + 1) * n
+
+
+def time_grid(spacing: float, *, t0: float, dt: float, start: float = 0.0, end: float = math.inf):
+    """Record the first step at or after each time start, start + spacing, ... up to end, s.
+
+    spacing ≤ dt records every step from start to end.
+    """
+    def after(done):
+        t = t0 + done * dt
+        if t >= end:
+            return math.inf
+        grid = start if t < start else start + (math.floor((t - start) / spacing + 1e-9) + 1) * spacing
+        return max(done + 1, steps_to_reach(min(grid, end) - t0, dt))
+    return after
+
+
+@dataclass
+class Samples:
+    """Recorded steps: t (n,) s, r and p (n, N, D) in m and kg·m/s, W_nc so far (n, N) J."""
+
+    t: np.ndarray
+    r: np.ndarray
+    p: np.ndarray
+    work: np.ndarray
+    m: np.ndarray
+
+    @property
+    def v(self) -> np.ndarray:
+        return velocity(self.p, self.m)
+
+    def __len__(self) -> int:
+        return len(self.t)
+
+
+class Recorder:
+    """The steps recorded during one advance: which step is due next (`mark`, from the schedule),
+    and the recorded rows of floats, packed into arrays a block at a time.
+
+    schedule  step number done -> the next step number to record (every(n), time_grid(...)), or None
+    target    the step number the advance ends at; with `final` it is recorded too
+    """
+
+    def __init__(self, engine, schedule=None, *, target: float = math.inf, final: bool = True):
+        self.engine = engine
+        self.schedule = schedule if schedule is not None else (lambda done: math.inf)
+        self.target, self.final = target, final
+        self.steps: list[int] = []
+        self.rows: list = []           # this block's rows: every component of r, p, P_nc, W_nc
+        self.blocks: list[np.ndarray] = []
+        self.mark = self._next(engine.steps)
+
+    def _next(self, done: int):
+        mark = self.schedule(done)
+        return min(mark, self.target) if self.final else mark
+
+    def record(self, done, *, values=None, arrays=None):
+        """Keep step number `done` (its values flattened, or its arrays); returns the next mark."""
+        self.add(done, values=values, arrays=arrays)
+        self.mark = self._next(done)
+        return self.mark
+
+    def add(self, done, *, values=None, arrays=None):
+        self.steps.append(done)
+        self.rows.append(values if values is not None else
+                         np.concatenate([np.asarray(a, dtype=float).ravel() for a in arrays]))
+        if len(self.rows) >= BLOCK:
+            self.flush()
+
+    def flush(self):
+        if self.rows:
+            self.blocks.append(np.array(self.rows, dtype=float))
+            self.rows = []
+
+    def samples(self) -> Samples:
+        self.flush()
+        start = self.engine.start
+        size, count = start.r.size, start.count
+        flat = np.concatenate(self.blocks) if self.blocks else np.empty((0, 2 * size + 2 * count))
+        return Samples(t=self.engine.start.t + np.array(self.steps, dtype=float) * self.engine.dt,
+                       r=flat[:, :size].reshape((-1,) + start.r.shape),
+                       p=flat[:, size:2 * size].reshape((-1,) + start.r.shape),
+                       work=flat[:, 2 * size + count:], m=start.m)
+
+
+@dataclass
+class Trajectory:
+    """Samples of a run: t (n,), r and p (n, N, 3); energy (dict of (n,) arrays, J) if asked for."""
+
+    t: np.ndarray
+    r: np.ndarray
+    p: np.ndarray
+    m: np.ndarray
+    energy: dict | None = None
+    work: np.ndarray | None = None
+
+    @property
+    def v(self) -> np.ndarray:
+        return velocity(self.p, self.m)
+
+    @property
+    def final(self) -> State:
+        """The last recorded state, ready to run on."""
+        return State(t=float(self.t[-1]), r=np.asfortranarray(self.r[-1]), p=np.asfortranarray(self.p[-1]),
+                     m=self.m)
+
+
+def trajectory(engine, samples: Samples, *, with_energy: bool = True) -> Trajectory:
+    """A Trajectory of the engine's start and these samples (energy of every sample, J)."""
+    start = engine.start
+    t = np.concatenate([[start.t], samples.t])
+    r = np.concatenate([start.r[None], samples.r])
+    p = np.concatenate([start.p[None], samples.p])
+    work = np.concatenate([np.zeros((1, start.count)), samples.work])
+    energy = (series(State(t=t, r=r, p=p, m=start.m), engine.forces, work) if with_energy else None)
+    return Trajectory(t=t, r=r, p=p, m=start.m, energy=energy, work=work)
