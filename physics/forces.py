@@ -239,12 +239,12 @@ class Driving:
         """
         if type(t) is not float or not isinstance(self.omega, np.ndarray):
             return self.F0 * np.cos(self.omega * t)
-        recent = self.__dict__.setdefault("_recent", {})
-        value = recent.get(t)
-        if value is None:
-            if len(recent) >= 4:
-                del recent[next(iter(recent))]
-            value = recent[t] = self.F0 * np.cos(self.omega * t)
+        recent = self.__dict__.get("_recent", ())
+        for t_kept, value in recent:
+            if t_kept == t:
+                return value
+        value = self.F0 * np.cos(self.omega * t)
+        self.__dict__["_recent"] = (recent + ((t, value),))[-4:]   # replaced whole: safe across threads
         return value
 
 
