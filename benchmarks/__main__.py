@@ -20,7 +20,7 @@ import subprocess
 import sys
 import time
 
-from . import accuracy, batches, resonance_sweep, single_mass, startup
+from . import accuracy, batches, resonance_sweep, single_mass, startup, where_the_work_is
 from .common import Settings
 
 BENCHMARKS = {
@@ -30,6 +30,8 @@ BENCHMARKS = {
     "resonance": (resonance_sweep, "part 3: `main.py resonance` with 1,000 frequencies against solve_ivp"),
     "accuracy": (accuracy, "part 4: error after 10 periods against CPU time, with a plot"),
     "startup": (startup, "part 6: wall time of `python main.py vertical --headless`"),
+    "csv-batch": (where_the_work_is, "part 7: --csv of 10⁶ rows against the page's loop, and "
+                                     "`main.py resonance` at 10⁴ masses in rk4 mass-steps/s"),
 }
 # Not in the full run: minutes of wall time in headless Chromium. Run it as its own command.
 SEPARATE = {

@@ -14,6 +14,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from .forces import row_dot
 from .state import State, velocity
 
 
@@ -38,7 +39,7 @@ def nonconservative_power(state: State, forces) -> np.ndarray:
     for force in forces:
         if not force.conservative:
             F_nc += force(state.t, state.r, v, state.m)
-    return np.sum(F_nc * v, axis=-1)
+    return row_dot(F_nc, v)
 
 
 def work_step(work, power_before, power_after, dt: float):

@@ -1,0 +1,82 @@
+"""--csv writes its rows a block at a time (export/csv_rows.py): the file must be byte for byte what
+the row-by-row writer gave, csv.writer on clean()ed numbers, which is kept here as the reference."""
+from __future__ import annotations
+
+import csv
+import dataclasses
+import io
+import math
+
+import numpy as np
+import pytest
+
+from export.csv_rows import csv_field, format_numbers
+from export.numbers import CSV_HEADER, ENERGY_KEYS, clean, clean_time
+from reports import headless
+from scenes import configure
+
+
+def reference_rows(result) -> str:
+    """The row writer --csv used before the block writer: one csv.writer row, one clean() per number."""
+    handle = io.StringIO(newline="")
+    traj = result.trajectory
+    v = traj.v
+    single = len(traj.m) == 1
+    writer = csv.writer(handle)
+    writer.writerow(CSV_HEADER + ([] if single else ["body"]))
+    dt = result.model.dt
+    for n, t in enumerate(traj.t):
+        energy = [clean(traj.energy[key][n]) for key in ENERGY_KEYS] if traj.energy else [""] * 4
+        for i, label in enumerate(result.labels):
+            row = [clean_time(t, dt), *map(clean, traj.r[n, i]), *map(clean, v[n, i]), *map(clean, traj.p[n, i]),
+                   *energy]
+            writer.writerow(row + ([] if single else [label]))
+    return handle.getvalue()
+
+
+def block_rows(result) -> tuple[str, int]:
+    handle = io.StringIO(newline="")
+    rows = headless._write_rows(result, handle)
+    return handle.getvalue(), rows
+
+
+RUNS = [
+    ("vertical", ["until=3"]),                                  # one mass, energies, many exact zeros
+    ("damped", ["until=2", "dt=0.005"]),
+    ("driven", ["until=2"]),
+    ("regimes", ["until=1"]),                                   # several masses: the body column
+    ("integrators", ["until=1"]),
+    ("resonance", ["count=7", "curves=2", "settle=0.5", "periods=1", "until=4"]),  # labels with commas
+]
+
+
+@pytest.mark.parametrize("scene, assignments", RUNS, ids=[name for name, _ in RUNS])
+@pytest.mark.parametrize("energies", [True, False], ids=["energies", "no-energies"])
+def test_block_writer_gives_the_row_writers_bytes(scene, assignments, energies):
+    result = headless.simulate(configure(scene, assignments=assignments), progress=None)
+    if not energies:
+        result = dataclasses.replace(result, trajectory=dataclasses.replace(result.trajectory, energy=None))
+    text, rows = block_rows(result)
+    assert text == reference_rows(result)
+    assert rows == len(result.trajectory.t) * len(result.trajectory.m) == text.count("\r\n") - 1
+
+
+AWKWARD = [0.0, -0.0, 1.0, -3.0, 10.0, 1e14, 99999999999999.9, 1e15, 1.5e15, -1234567890123456.0, 9.999999999999999e14,
+           1e16, 1.5e16, 1e-5, 1e-4, 0.0001234, 1.5e-7, -2.5e-300, 5e-324, 2.9999999999999996, 0.1 + 0.2,
+           -7.800000000000001, 1.7976931348623157e308, -1.7976931348623157e308, 1.79769313486231e308,
+           math.inf, -math.inf, math.nan, 123456.00000000001, 0.5, 1 / 3, 2 ** 53, 2.0 ** 60, -0.49999999999999994]
+
+
+def test_awkward_numbers_are_written_as_csv_writes_their_clean_values():
+    rng = np.random.default_rng(16)
+    values = np.concatenate([AWKWARD,
+                             rng.normal(size=2000) * 10.0 ** rng.integers(-20, 20, 2000),
+                             rng.integers(-10**6, 10**6, 500).astype(float),
+                             rng.integers(-10**6, 10**6, 500) + rng.choice([1e-15, -1e-14, 1e-12, 0.5], 500)])
+    values = np.resize(values, (len(values) + 7) // 7 * 7).reshape(-1, 7)
+    expected = io.StringIO(newline="")
+    writer = csv.writer(expected)
+    for i, row in enumerate(values):
+        writer.writerow([clean(x) for x in row] + [["a,b", 'say "hi"', "%s %d"][i % 3]])
+    after = ["," + csv_field(label) + "\r\n" for label in ["a,b", 'say "hi"', "%s %d"]]
+    assert format_numbers(values, after=after) == expected.getvalue()
