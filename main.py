@@ -35,7 +35,7 @@ if __name__ == "__main__":  # run() takes over once everything is loaded
     signal.signal(signal.SIGTERM, _stop_while_loading)
 
 from export import files  # noqa: E402
-from reports import headless  # noqa: E402
+from reports import headless, terminal  # noqa: E402
 from physics.integrators import DEFAULT_INTEGRATOR, INTEGRATORS  # noqa: E402
 from physics.simulate import BlowUpError  # noqa: E402
 from scenes import catalog  # noqa: E402
@@ -381,6 +381,7 @@ def run(argv=None) -> int:
     reports them); an output file being written is removed, the old one left as it was. Anything
     unforeseen is a bug of ours: one line naming it, and exit status 1.
     """
+    terminal.install()   # a symbol the terminal cannot write (Δt, ω, ²) is spelled in ASCII (dt, omega, ^2)
     previous = signal.signal(signal.SIGINT, signal.default_int_handler), signal.signal(signal.SIGTERM, _terminate)
     try:
         return main(argv)

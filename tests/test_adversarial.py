@@ -407,3 +407,39 @@ def test_ctrl_c_while_the_browser_view_waits_for_a_browser_is_one_line_and_statu
     assert process.returncode == 130, err
     assert err.splitlines() == ["stopped: interrupted (Ctrl-C); no file was left half-written"], err
     assert os.listdir(tmp_path) == []
+
+
+# ---- issue 20: hardening, round three ----
+
+def run_main(*argv, cwd=None, env=None, timeout=120, **options):
+    """`python main.py ARGV` as a user runs it, with extra environment variables."""
+    return subprocess.run([sys.executable, str(ROOT / "main.py"), *argv], cwd=cwd or ROOT,
+                          env={**os.environ, **(env or {})}, capture_output=True, timeout=timeout, **options)
+
+
+@pytest.mark.parametrize("encoding, argv", [
+    ("ascii", "vertical --headless"), ("ascii", "vertical --headless --json"), ("ascii", "vertical --steps 2"),
+    ("ascii", "--list"), ("ascii", "integrators --constants"), ("ascii", "--help"),
+    ("ascii", "vertical --headless --set g=-1"), ("cp1252", "damped --steps 2"), ("latin-1", "--help")])
+def test_every_output_works_in_a_terminal_that_cannot_write_the_symbols(encoding, argv):
+    """A Windows console (cp1252), an ASCII pipe or a latin-1 locale once ended every command with
+    'unexpected UnicodeEncodeError': now Δt is written dt, ω omega, √ sqrt, ² ^2, − -."""
+    from reports.terminal import spell
+
+    done = run_main(*argv.split(), env={"PYTHONIOENCODING": encoding})
+    assert done.returncode == (2 if "g=-1" in argv else 0), done.stderr
+    assert b"UnicodeEncodeError" not in done.stderr and b"Traceback" not in done.stderr
+    if encoding == "ascii":   # exactly the UTF-8 output, each symbol spelled out
+        utf8 = run_main(*argv.split(), env={"PYTHONIOENCODING": "utf-8"})
+        assert done.stdout.decode("ascii") == spell(utf8.stdout.decode("utf-8"))
+        assert done.stderr.decode("ascii") == spell(utf8.stderr.decode("utf-8"))
+    else:
+        assert done.stdout.decode(encoding)
+
+
+def test_the_ascii_spellings_read_as_a_student_would_type_them():
+    from reports.terminal import spell
+
+    assert spell("Δt = 0.1 s, ω = √(k/m), g = 9.8 m/s², b/m = 4 s⁻¹, x = −1.7") == \
+        "dt = 0.1 s, omega = sqrt(k/m), g = 9.8 m/s^2, b/m = 4 s^-1, x = -1.7"
+    assert spell("kg·m/s, L̂, û") == "kg*m/s, L, u"
