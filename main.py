@@ -383,8 +383,15 @@ def run(argv=None) -> int:
     """
     terminal.install()   # a symbol the terminal cannot write (Δt, ω, ²) is spelled in ASCII (dt, omega, ^2)
     previous = signal.signal(signal.SIGINT, signal.default_int_handler), signal.signal(signal.SIGTERM, _terminate)
+    stdout, sys.stdout = sys.stdout, terminal.GuardedOutput(sys.stdout)  # closed or full: one line
     try:
-        return main(argv)
+        status = main(argv)
+        sys.stdout.flush()   # a full disk shows here, while there is still a status to give
+        return status
+    except terminal.OutputStreamError as problem:
+        terminal.discard_output(stdout)
+        print(f"error: {problem}", file=sys.stderr)
+        return 2
     except KeyboardInterrupt:
         print("stopped: interrupted (Ctrl-C); no file was left half-written", file=sys.stderr)
         return 128 + signal.SIGINT
@@ -392,7 +399,7 @@ def run(argv=None) -> int:
         print("stopped: terminated (SIGTERM); no file was left half-written", file=sys.stderr)
         return 128 + signal.SIGTERM
     except BrokenPipeError:  # output piped into `head` and cut short: not an error of ours
-        os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
+        terminal.discard_output(stdout)
         return 0
     except MemoryError:
         print("error: not enough memory for this run; use a larger dt or a shorter --until", file=sys.stderr)
@@ -403,6 +410,7 @@ def run(argv=None) -> int:
               f"it with the command you ran)", file=sys.stderr)
         return 1
     finally:
+        sys.stdout = stdout
         signal.signal(signal.SIGINT, previous[0])
         signal.signal(signal.SIGTERM, previous[1])
 

@@ -22,6 +22,15 @@ class OutputError(ValueError):
     """An output file that cannot be written: a one-line message, found before the run starts."""
 
 
+def _real(path: str, *, what: str) -> str:
+    """os.path.realpath, but a relative path from a folder that was deleted is an OutputError."""
+    try:
+        return os.path.realpath(path)
+    except FileNotFoundError:   # os.getcwd(): the folder the command runs in is gone
+        raise OutputError(f"cannot write {what} {path!r}: the folder this command runs in no longer exists; "
+                          f"cd to a folder that exists, or give the full path") from None
+
+
 def _target(path: str, *, what: str) -> str:
     """The file to replace for `path`: itself, or the file a symbolic link points to.
 
@@ -32,11 +41,11 @@ def _target(path: str, *, what: str) -> str:
     try:
         mode = os.stat(path).st_mode       # follows links as the system does, /dev/stdout too
     except (FileNotFoundError, NotADirectoryError):   # a new file (a link to one), or no such folder
-        return os.path.realpath(path)
+        return _real(path, what=what)
     except OSError as problem:
         raise OutputError(f"cannot write {what} {path!r}: {problem.strerror or problem}") from None
     if stat.S_ISREG(mode) and not _is_a_standard_stream(path):
-        return os.path.realpath(path)
+        return _real(path, what=what)
     if stat.S_ISREG(mode):                 # /dev/stdout where the shell sends the output to a file
         raise OutputError(f"cannot write {what} {path!r}: it is this program's own standard input, "
                           f"output or error (to print the output, give - instead, where - is allowed)")
@@ -133,7 +142,10 @@ def same_file(first: str, second: str) -> bool:
         return first == second
     if os.path.exists(first) and os.path.exists(second):
         return os.path.samefile(first, second)
-    return os.path.realpath(first) == os.path.realpath(second)
+    try:
+        return os.path.realpath(first) == os.path.realpath(second)
+    except FileNotFoundError:   # the working folder was deleted: check_writable says so
+        return first == second
 
 
 def write_text(path: str, text: str, *, what: str) -> None:

@@ -66,3 +66,50 @@ def install() -> None:
                 reconfigure(errors=ERRORS)
             except (ValueError, OSError):   # a closed or detached stream: nothing to print to anyway
                 pass
+
+
+class OutputStreamError(Exception):
+    """Standard output is closed or cannot be written (a full disk, /dev/full): a one-line message."""
+
+
+class GuardedOutput:
+    """Standard output that says in one line why it cannot be written, instead of losing the output.
+
+    `python main.py ... >&-` starts Python with no standard output at all (sys.stdout is None, and
+    print() would drop the report without a word); a full disk fails part-way. A broken pipe
+    (`| head`) is left as it is: main.run() ends that quietly, as a shell expects.
+    """
+
+    def __init__(self, stream):
+        self.stream = stream
+
+    def _guarded(self, action, *arguments):
+        if self.stream is None:
+            raise OutputStreamError("cannot print the output: standard output is closed (the command "
+                                    "was started with >&- or without a console); redirect it to a file")
+        try:
+            return getattr(self.stream, action)(*arguments)
+        except BrokenPipeError:
+            raise
+        except OSError as problem:
+            raise OutputStreamError(f"cannot print the output: {problem.strerror or problem}") from None
+
+    def write(self, text):
+        return self._guarded("write", text)
+
+    def flush(self):
+        return self._guarded("flush") if self.stream is not None else None
+
+    def __getattr__(self, name):
+        return getattr(self.stream, name)
+
+
+def discard_output(stream) -> None:
+    """Point `stream`'s file at the null device, so Python's last flush at exit cannot fail again
+    on what was left in its buffer (after a broken pipe or a full disk)."""
+    import os
+
+    try:
+        os.dup2(os.open(os.devnull, os.O_WRONLY), stream.fileno())
+    except (OSError, AttributeError, ValueError):   # no file under it (closed, or captured): nothing to flush
+        pass

@@ -413,8 +413,9 @@ def test_ctrl_c_while_the_browser_view_waits_for_a_browser_is_one_line_and_statu
 
 def run_main(*argv, cwd=None, env=None, timeout=120, **options):
     """`python main.py ARGV` as a user runs it, with extra environment variables."""
+    streams = {"stdout": subprocess.PIPE, "stderr": subprocess.PIPE, **options}
     return subprocess.run([sys.executable, str(ROOT / "main.py"), *argv], cwd=cwd or ROOT,
-                          env={**os.environ, **(env or {})}, capture_output=True, timeout=timeout, **options)
+                          env={**os.environ, **(env or {})}, timeout=timeout, **streams)
 
 
 @pytest.mark.parametrize("encoding, argv", [
@@ -443,3 +444,53 @@ def test_the_ascii_spellings_read_as_a_student_would_type_them():
     assert spell("Δt = 0.1 s, ω = √(k/m), g = 9.8 m/s², b/m = 4 s⁻¹, x = −1.7") == \
         "dt = 0.1 s, omega = sqrt(k/m), g = 9.8 m/s^2, b/m = 4 s^-1, x = -1.7"
     assert spell("kg·m/s, L̂, û") == "kg*m/s, L, u"
+
+
+def test_a_closed_standard_output_is_one_line_and_status_2_not_a_lost_report(tmp_path):
+    """`main.py vertical --headless >&-` once printed nothing and exited 0."""
+    done = run_main("vertical", "--headless", cwd=tmp_path, stdout=None, preexec_fn=lambda: os.close(1))
+    assert done.returncode == 2
+    assert done.stderr.decode().splitlines() == [
+        "error: cannot print the output: standard output is closed (the command was started with >&- or "
+        "without a console); redirect it to a file"]
+
+
+@pytest.mark.skipif(not os.path.exists("/dev/full"), reason="needs /dev/full (Linux)")
+def test_a_full_disk_under_standard_output_is_one_line_not_a_bug(tmp_path):
+    with open("/dev/full", "w") as full:
+        done = run_main("vertical", "--headless", "--json", cwd=tmp_path, stdout=full)
+    assert done.returncode == 2
+    assert done.stderr.decode().splitlines() == ["error: cannot print the output: No space left on device"]
+
+
+@pytest.mark.parametrize("argv", ["vertical --headless --csv x.csv", "vertical --vpython x.py --webvpython y.py"])
+def test_a_relative_path_from_a_deleted_folder_is_one_line_not_a_bug(argv, tmp_path, monkeypatch, capsys):
+    folder = tmp_path / "gone"
+    folder.mkdir()
+    monkeypatch.chdir(folder)
+    folder.rmdir()
+    assert main.run(argv.split()) == 2
+    out, err = capsys.readouterr()
+    assert err.splitlines() == [f"error: cannot write {'CSV file' if 'csv' in argv else 'the program'} "
+                                f"'x.{'csv' if 'csv' in argv else 'py'}': the folder this command runs in no "
+                                f"longer exists; cd to a folder that exists, or give the full path"]
+    assert os.listdir(tmp_path) == []
+
+
+def test_a_misspelt_matplotlib_backend_does_not_stop_the_figure(tmp_path):
+    """MPLBACKEND=nonsense made matplotlib refuse to load ('unexpected ValueError'); the figure is
+    drawn to a file whatever the backend, so it is left aside."""
+    done = run_main("vertical", "--plot", "v.png", cwd=tmp_path, env={"MPLBACKEND": "nonsense"})
+    assert done.returncode == 0 and done.stderr == b"", done.stderr
+    assert os.listdir(tmp_path) == ["v.png"]
+
+
+def test_a_broken_matplotlib_is_one_line_naming_it(tmp_path):
+    (tmp_path / "matplotlib").mkdir()
+    (tmp_path / "matplotlib" / "__init__.py").write_text("raise RuntimeError('half installed')\n")
+    done = run_main("vertical", "--plot", "v.png", cwd=tmp_path, env={"PYTHONPATH": str(tmp_path)})
+    assert done.returncode == 2
+    lines = done.stderr.decode().splitlines()
+    assert len(lines) == 1 and lines[0].startswith(
+        "error: --plot cannot load matplotlib (RuntimeError: half installed); reinstall it"), lines
+    assert os.listdir(tmp_path) == ["matplotlib"]
