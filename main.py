@@ -97,6 +97,9 @@ def build_parser() -> argparse.ArgumentParser:
                         help="write the scene as a standalone VPython program to hand out ('-': print it)")
     parser.add_argument("--webvpython", metavar="FILE.py",
                         help="the same program for Web VPython (glowscript.org, trinket)")
+    parser.add_argument("--overwrite", action="store_true",
+                        help="let --csv, --plot, --vpython or --webvpython replace an existing Python file "
+                             "this program did not write (its own files are never replaced)")
     parser.add_argument("--no-browser", action="store_true",
                         help="print the page's URL instead of opening a browser")
     parser.add_argument("--port", type=int, metavar="P", help="port for the browser page")
@@ -166,7 +169,8 @@ def check_options(args) -> None:
     if args.list:
         others = [flag for flag, attribute in (("--constants", "constants"), ("--set", "assignments"),
                                                ("--scenario", "scenario"), ("--preset", "preset"),
-                                               *RUN_OPTIONS, *PROGRAM_OPTIONS, *BROWSER_ONLY)
+                                               *RUN_OPTIONS, *PROGRAM_OPTIONS, *BROWSER_ONLY,
+                                               ("--overwrite", "overwrite"))
                   if _given(args, attribute)]
         if args.scene is not None or others:
             what = f"scene {args.scene!r}" if args.scene is not None else others[0]
@@ -209,6 +213,9 @@ def check_options(args) -> None:
                          f"leave --port out for any free port")
     outputs = [(flag, getattr(args, attribute)) for flag, attribute in OUTPUT_FILES
                if getattr(args, attribute) not in (None, files.STDOUT)]
+    if args.overwrite and not outputs:
+        raise UsageError("--overwrite does nothing without a file to write (--csv, --plot, --vpython or "
+                         "--webvpython); leave it out")
     for n, (flag, path) in enumerate(outputs):
         for other, other_path in outputs[n + 1:]:
             if files.same_file(path, other_path):
@@ -246,9 +253,9 @@ def run_headless(args, setup, model) -> int:
     if args.steps is None or every_step:  # a run too long is refused before anything prints
         headless.step_count(engine, until=until, rows_per_step=model.state.count if every_step else 0)
     if args.csv is not None:
-        files.check_writable(args.csv, what="CSV file")
+        files.check_writable(args.csv, what="CSV file", overwrite=args.overwrite)
     if args.plot is not None:
-        files.check_writable(args.plot, what="figure")
+        files.check_writable(args.plot, what="figure", overwrite=args.overwrite)
         from reports import plotting
 
         plotting.check_format(args.plot)
@@ -305,12 +312,12 @@ def write_programs(args, setup, model, *, warn: bool) -> None:
                  for path, web in ((args.vpython, False), (args.webvpython, True)) if path is not None]
         for path, _ in texts:
             if path != "-":
-                export.check_path(path)
+                export.check_path(path, overwrite=args.overwrite)
         for path, text in texts:
             if path == "-":
                 print(text, end="")
             else:
-                export.write_program(path, text)
+                export.write_program(path, text, overwrite=args.overwrite)
                 print(f"wrote {path}", file=sys.stderr)
     except ValueError as problem:   # export.ProgramError, or constants the physics cannot take
         raise UsageError(str(problem)) from None

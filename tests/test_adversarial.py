@@ -176,6 +176,8 @@ BAD = [
     ("vertical --webvpython x.py --no-browser", 2, "--no-browser is for the browser page"),
     ("integrators --headless --integrator rk4", 2, "would do nothing; leave it out"),
     ("integrators --vpython x.py --integrator euler", 2, "would do nothing"),
+    ("vertical --headless --overwrite", 2, "--overwrite does nothing without a file to write"),
+    ("--list --overwrite", 2, "--list takes no scene or other option (got --overwrite)"),
 ]
 
 # Inputs that would run for minutes or hours: the engine's cost limit (physics.simulate.check_cost)
@@ -494,3 +496,42 @@ def test_a_broken_matplotlib_is_one_line_naming_it(tmp_path):
     assert len(lines) == 1 and lines[0].startswith(
         "error: --plot cannot load matplotlib (RuntimeError: half installed); reinstall it"), lines
     assert os.listdir(tmp_path) == ["matplotlib"]
+
+
+@pytest.mark.parametrize("argv", ["vertical --vpython main.py", "vertical --headless --csv scenes/damped.py",
+                                  "vertical --vpython scenes/_model.py --overwrite", "vertical --plot README.md",
+                                  "vertical --webvpython requirements.txt --overwrite"])
+def test_the_program_never_writes_over_its_own_files(argv, monkeypatch, capsys):
+    """`--vpython main.py` once replaced main.py with the handout (then `main.py --list` ran the
+    handout and waited for a browser for ever); `--vpython scenes/_model.py` broke every command."""
+    monkeypatch.chdir(ROOT)
+    before = {path: (ROOT / path).read_bytes() for path in ("main.py", "scenes/damped.py", "scenes/_model.py",
+                                                          "README.md", "requirements.txt")}
+    try:
+        assert main.run(argv.split()) == 2
+    finally:   # the old code wrote over them: put them back
+        changed = [path for path, text in before.items() if (ROOT / path).read_bytes() != text]
+        for path in changed:
+            (ROOT / path).write_bytes(before[path])
+    assert changed == []
+    out, err = capsys.readouterr()
+    what, path = argv.split()[-3:-1] if argv.endswith("--overwrite") else argv.split()[-2:]
+    assert err.splitlines() == [f"error: cannot write {dict(csv='CSV file', plot='figure').get(what[2:], 'the program')} "
+                                f"{path!r}: it is one of this program's own files; give another name"]
+
+
+def test_a_python_file_the_program_did_not_write_is_replaced_only_with_overwrite(tmp_path, monkeypatch, capsys):
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "mine.py").write_text("print('a student's own program')\n")
+    for argv in (["vertical", "--vpython", "mine.py"], ["vertical", "--headless", "--csv", "mine.py"]):
+        assert main.run(argv) == 2
+        assert capsys.readouterr().err.splitlines() == [
+            f"error: cannot write {'the program' if '--vpython' in argv else 'CSV file'} 'mine.py': it is a Python "
+            f"file this program did not write; give another name, or add --overwrite to replace it"]
+        assert (tmp_path / "mine.py").read_text() == "print('a student's own program')\n"
+    assert main.run(["vertical", "--vpython", "mine.py", "--overwrite"]) == 0
+    assert main.run(["damped", "--vpython", "mine.py"]) == 0   # now a handout of ours: replaced as asked
+    assert "# damped:" in (tmp_path / "mine.py").read_text(encoding="utf-8")
+    assert main.run(["damped", "--headless", "--csv", "run.csv"]) == 0
+    assert main.run(["damped", "--headless", "--csv", "run.csv"]) == 0   # any other file: replaced as before
+    assert sorted(os.listdir(tmp_path)) == ["mine.py", "run.csv"]

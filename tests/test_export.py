@@ -341,7 +341,7 @@ def test_read_only_folder_leaves_no_file(tmp_path):
 def test_program_replaces_an_old_file_whole(tmp_path):
     """Written through a temporary file renamed over the old one: readable by others like any new file."""
     path = tmp_path / "spring.py"
-    path.write_text("old handout\n" * 1000)
+    path.write_text("# Written by the spring-mass simulator\n" + "old handout\n" * 1000)   # an earlier handout
     assert main_py("damped", "--vpython", str(path)).returncode == 0
     text = path.read_text(encoding="utf-8")
     assert text.startswith("from vpython import *\n# damped:") and "old handout" not in text
