@@ -535,3 +535,73 @@ def test_a_python_file_the_program_did_not_write_is_replaced_only_with_overwrite
     assert main.run(["damped", "--headless", "--csv", "run.csv"]) == 0
     assert main.run(["damped", "--headless", "--csv", "run.csv"]) == 0   # any other file: replaced as before
     assert sorted(os.listdir(tmp_path)) == ["mine.py", "run.csv"]
+
+
+def hostile_scenes_folder(folder: Path) -> Path:
+    """A teacher's scenes folder with what once hung or broke every command: a handout (its vpython
+    server waits for a browser), a scene that sleeps as it loads, a named pipe and a link to
+    /dev/stdin called *.py, a 13 MB file, and a scene called catalog.py."""
+    done = run_main("vertical", "--vpython", str(folder / "handout.py"))
+    assert done.returncode == 0, done.stderr
+    (folder / "sleepy.py").write_text('"""Sleeps as it loads."""\nimport time\ntime.sleep(600)\n\n\n'
+                                      'def build(**constants):\n    pass\n')
+    os.mkfifo(folder / "pipe.py")
+    os.symlink("/dev/stdin", folder / "stdin.py")
+    (folder / "huge.py").write_text('"""Huge."""\n' + "#" * 13_000_000 + "\n")
+    (folder / "catalog.py").write_text((ROOT / "scenes" / "vertical.py").read_text().replace("from ._", "from scenes._"))
+    return folder
+
+
+@pytest.mark.skipif(not hasattr(os, "mkfifo"), reason="named pipes are POSIX")
+def test_a_teachers_scenes_folder_is_read_without_running_any_scene(tmp_path):
+    """--list read every scene by running it: each of these hung it, or every command; now the
+    files are read as text (with a size limit), and a scene runs only when it is asked for."""
+    folder = hostile_scenes_folder(tmp_path)
+    env = {"SPRING_SCENES": str(folder)}
+    started = time.monotonic()
+    listed = run_main("--list", env=env, timeout=60, stdin=subprocess.DEVNULL)
+    assert time.monotonic() - started < 20
+    out, err = listed.stdout.decode(), listed.stderr.decode()
+    assert listed.returncode == 2 and "Traceback" not in err
+    assert "sleepy       Sleeps as it loads." in out and "vertical" in out
+    assert not any(name in out for name in ("handout", "pipe", "stdin", "huge", "catalog"))
+    assert sorted(err.splitlines()) == sorted([
+        f"error: {folder / 'catalog.py'}: the name 'catalog' is taken by the simulator's own code "
+        f"(scenes.catalog); rename the file",
+        f"error: {folder / 'handout.py'} is not a scene: it has no build function (`def build(**constants):` "
+        f"after the constants block)",
+        f"error: {folder / 'huge.py'}: it is 13,000,013 bytes, more than a scene file's 1,000,000, so it was not read",
+        f"error: {folder / 'pipe.py'}: it is not a regular file, so it was not read",
+        f"error: {folder / 'stdin.py'}: it is not a regular file, so it was not read"])
+    run = run_main("vertical", "--headless", env=env, timeout=60)
+    assert run.returncode == 0 and run.stderr == b""
+    for name in ("pipe", "handout", "catalog"):
+        chosen = run_main(name, "--headless", env=env, timeout=60)
+        assert chosen.returncode == 2 and len(chosen.stderr.splitlines()) == 1, chosen.stderr
+
+
+def test_the_reserved_scene_names_are_every_name_the_scenes_package_gives_its_own_code():
+    import scenes
+    from scenes import catalog
+
+    own = {name for name, value in vars(scenes).items() if not name.startswith("_")
+           and getattr(value, "__file__", None) not in {str(path) for path in catalog.SCENE_FILES.values()}}
+    assert own <= catalog.RESERVED
+
+
+@pytest.mark.parametrize("body", ["import sys\nsys.exit()\n", "raise SystemExit(3)\n",
+                                  "m = 10.0   # kg: mass\n# ---- end of constants ----\n\n\n"
+                                  "def build(**constants):\n    raise SystemExit(0)\n"])
+def test_a_scene_that_calls_sys_exit_is_a_broken_scene_like_any_other(body, tmp_path):
+    """It used to end the program silently: `--list` printed nothing with exit 0, a run just stopped."""
+    source = '"""Ends the program."""\n' + body
+    if "def build" not in body:
+        source += "\n\ndef build(**constants):\n    pass\n"
+    (tmp_path / "quits.py").write_text(source)
+    env = {"SPRING_SCENES": str(tmp_path)}
+    run = run_main("quits", "--headless", env=env)
+    lines = run.stderr.decode().splitlines()
+    assert run.returncode == 2 and len(lines) == 1, lines
+    assert lines[0].startswith(f"error: {tmp_path / 'quits.py'}, line ") and "calls sys.exit()" in lines[0]
+    listed = run_main("--list", env=env)
+    assert listed.returncode == 0 and b"quits" in listed.stdout and b"vertical" in listed.stdout
