@@ -127,7 +127,8 @@ def _temporary_beside(target: str, *, what: str, shown: str) -> str:
     get (`shown`: the path as the user gave it, for the message)."""
     folder, name = os.path.split(target)
     try:
-        handle, temporary = tempfile.mkstemp(prefix=f".{name}.", suffix=".part", dir=folder)
+        # a short name of its own: a legal name of 255 bytes would be too long with a suffix added
+        handle, temporary = tempfile.mkstemp(prefix=".spring-", suffix=".part", dir=folder)
         os.close(handle)
         if os.path.exists(target):  # keep the old file's permissions, not mkstemp's private 0600
             os.chmod(temporary, os.stat(target).st_mode & 0o7777)

@@ -608,3 +608,17 @@ def test_a_scene_that_calls_sys_exit_is_a_broken_scene_like_any_other(body, tmp_
     assert lines[0].startswith(f"error: {tmp_path / 'quits.py'}, line ") and "calls sys.exit()" in lines[0]
     listed = run_main("--list", env=env)
     assert listed.returncode == 0 and b"quits" in listed.stdout and b"vertical" in listed.stdout
+
+
+@pytest.mark.parametrize("length", [241, 255])
+def test_a_legal_long_file_name_is_written(length, tmp_path, monkeypatch, capsys):
+    """Names of 241 to 255 bytes were refused ('File name too long'): the temporary file's name was
+    the target's plus 15 bytes."""
+    monkeypatch.chdir(tmp_path)
+    for flag, extension in (("--csv", ".csv"), ("--vpython", ".py")):
+        name = "a" * (length - len(extension)) + extension
+        argv = ["vertical", "--headless", flag, name] if flag == "--csv" else ["vertical", flag, name]
+        assert main.run(argv) == 0, capsys.readouterr().err
+        assert (tmp_path / name).stat().st_size > 0
+    capsys.readouterr()
+    assert len(os.listdir(tmp_path)) == 2
