@@ -192,21 +192,37 @@ def simulate(setup, *, model=None, integrator: str | None = None, until: float |
         record = None if window is None else time_grid(
             model.dt, t0=model.state.t, dt=model.dt, **dict(zip(("start", "end"), window(setup.values))))
     stream = sys.stderr if progress == "stderr" else progress     # looked up now, not at import
-    samples = engine.run_until(until, record=record, progress=_progress_printer(stream))
+    printer = _progress_printer(stream)
+    try:
+        samples = engine.run_until(until, record=record, progress=printer)
+    finally:   # on a terminal the line is redrawn in place: end it, so what follows starts a line
+        if printer is not None:
+            printer.end()
     return Result(setup=setup, model=model, methods=engine.methods,
                   trajectory=trajectory(engine, samples), steps=engine.steps)
 
 
-def _progress_printer(stream):
-    """progress(done, total, t) for the engine: a line on `stream` (one line, redrawn, on a terminal)."""
-    if stream is None:
-        return None
-    tty = hasattr(stream, "isatty") and stream.isatty()
+class _ProgressLine:
+    """progress(done, total, t) for the engine: a line on `stream` (one line, redrawn, on a terminal);
+    end() finishes a redrawn line, whether the run ended, failed or was interrupted."""
 
-    def progress(done, total, t):
+    def __init__(self, stream):
+        self.stream, self.open = stream, False
+        self.tty = hasattr(stream, "isatty") and stream.isatty()
+
+    def __call__(self, done, total, t):
         line = f"running: {done:,} of {total:,} steps ({100 * done // total} %), t = {number(t)} s"
-        print(("\r" + line) if tty else line, end="" if tty else "\n", file=stream, flush=True)
-    return progress
+        print(("\r" + line) if self.tty else line, end="" if self.tty else "\n", file=self.stream, flush=True)
+        self.open = self.tty
+
+    def end(self):
+        if self.open:
+            self.open = False
+            print(file=self.stream, flush=True)
+
+
+def _progress_printer(stream):
+    return None if stream is None else _ProgressLine(stream)
 
 
 def stop_note(model, *, until: float) -> str | None:

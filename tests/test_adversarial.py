@@ -622,3 +622,40 @@ def test_a_legal_long_file_name_is_written(length, tmp_path, monkeypatch, capsys
         assert (tmp_path / name).stat().st_size > 0
     capsys.readouterr()
     assert len(os.listdir(tmp_path)) == 2
+
+
+class TerminalStream:
+    """A stream that says it is a terminal, as standard error is when a person runs a command."""
+
+    def __init__(self, interrupt_after=None):
+        self.text, self.writes, self.interrupt_after = "", 0, interrupt_after
+
+    def isatty(self):
+        return True
+
+    def write(self, text):
+        self.text += text
+        self.writes += 1
+        if self.writes == self.interrupt_after:
+            raise KeyboardInterrupt
+
+    def flush(self):
+        pass
+
+
+@pytest.mark.parametrize("interrupt_after", [None, 3])
+def test_the_progress_line_on_a_terminal_is_ended_so_the_next_line_starts_afresh(interrupt_after, monkeypatch):
+    """The redrawn line was never ended: `...t = 5 sdamped: ...`, and the Ctrl-C message glued on too."""
+    import physics.simulate
+    from reports import headless
+    from scenes import configure
+
+    monkeypatch.setattr(physics.simulate, "PROGRESS_EVERY", 0.0)   # a line for every chunk of steps
+    stream = TerminalStream(interrupt_after)
+    setup = configure("damped")
+    try:
+        headless.simulate(setup, until=300.0, every_step=False, progress=stream)
+    except KeyboardInterrupt:
+        assert interrupt_after is not None
+    assert stream.text.startswith("\rrunning: ") and stream.text.count("\rrunning: ") >= 2
+    assert stream.text.endswith(" s\n") and stream.text.count("\n") == 1
