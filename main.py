@@ -252,7 +252,8 @@ def run_headless(args, setup, model) -> int:
     every_step = args.csv is not None or args.plot is not None
     engine = model.simulation(args.integrator)   # the one that runs: its cost is measured once
     if args.steps is None or every_step:  # a run too long is refused before anything prints
-        headless.step_count(engine, until=until, rows_per_step=model.state.count if every_step else 0)
+        headless.step_count(engine, until=until, rows_per_step=model.state.count if every_step else 0,
+                            shortest=headless.shortest_until(setup))
     if args.csv is not None:
         files.check_writable(args.csv, what="CSV file", overwrite=args.overwrite)
     if args.plot is not None:

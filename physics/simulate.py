@@ -348,12 +348,17 @@ class RunTooLong(ValueError):
     """A run would take longer than MAX_RUN_SECONDS: a one-line message naming what would fit."""
 
 
+SUGGESTION_MARGIN = 0.5       # a suggested --until fits in half the limit: the estimate can be off by 1.6×
+
+
 def check_cost(engine: Simulation, *, until: float, extra_per_step: float = 0.0,
-               limit: float = MAX_RUN_SECONDS, until_name: str = "--until") -> int:
+               limit: float = MAX_RUN_SECONDS, until_name: str = "--until", shortest: float = 0.0) -> int:
     """The number of steps from the engine's time to `until`, if they fit in `limit` seconds.
 
     extra_per_step is what the caller adds per step (writing rows, s). Raises RunTooLong naming
-    the steps, the estimated time and the longest `until` that fits, before any step is taken.
+    the steps and the estimated time, before any step is taken, with an `until` that fits in
+    SUGGESTION_MARGIN of the limit (rounded down to two digits) if there is one of at least
+    `shortest` (the least the scene accepts), else only a larger dt.
     """
     dt, start = engine.dt, engine.t
     ratio = (until - start) / dt
@@ -364,12 +369,25 @@ def check_cost(engine: Simulation, *, until: float, extra_per_step: float = 0.0,
     if n * per_step <= limit:
         return n
     count = f"{n:,} steps" if math.isfinite(n) else "more than 10¹⁸ steps"
-    longest = start + math.floor(limit / per_step) * dt
+    longest = _two_digits_down(start + math.floor(SUGGESTION_MARGIN * limit / per_step) * dt)
+    several = engine.start.count > 1
+    if longest > start and longest >= shortest:
+        advice = f"use a larger dt, or a smaller {until_name} (at most {longest:.6g} s with dt = {dt:g} s)"
+    else:   # no until short enough would still be a run the scene accepts
+        advice = f"use a larger dt{' or fewer masses' if several else ''}" + (
+            f" (the scene needs {until_name} of at least {shortest:.6g} s)" if shortest > start else "")
     raise RunTooLong(
         f"a run to t = {until:g} s with dt = {dt:g} s is {count} of {engine.start.count} "
-        f"mass{'es' if engine.start.count > 1 else ''}, about {_duration(n * per_step)} of computing "
-        f"here, more than the {limit:g} s a run may take; use a larger dt, or a smaller {until_name} "
-        f"(at most {longest:.6g} s with dt = {dt:g} s)")
+        f"mass{'es' if several else ''}, about {_duration(n * per_step)} of computing "
+        f"here, more than the {limit:g} s a run may take; {advice}")
+
+
+def _two_digits_down(x: float) -> float:
+    """x rounded down to two significant digits (157.69 → 150, 1.567 → 1.5): a value to type."""
+    if x <= 0 or not math.isfinite(x):
+        return x
+    unit = 10.0 ** (math.floor(math.log10(x)) - 1)
+    return float(f"{math.floor(x / unit + 1e-9) * unit:.2g}")
 
 
 def _duration(seconds: float) -> str:

@@ -148,7 +148,13 @@ class Result:
                 f"t = {number(self.exact_valid_until(), 4)} s, {self.model.exact_limit}")
 
 
-def step_count(engine, *, until: float, rows_per_step: float = 0.0) -> int:
+def shortest_until(setup) -> float:
+    """The least `until` the scene accepts, s: the end of its measuring window (resonance), else 0."""
+    window = getattr(setup.module, "measure_window", None)
+    return float(window(setup.values)[1]) if window is not None else 0.0
+
+
+def step_count(engine, *, until: float, rows_per_step: float = 0.0, shortest: float = 0.0) -> int:
     """How many steps of Δt the engine (physics.simulate.Simulation) takes to `until`, if it fits in time.
 
     Raises TooManySteps, before any step is taken, when the run would take longer than
@@ -157,7 +163,7 @@ def step_count(engine, *, until: float, rows_per_step: float = 0.0) -> int:
     cost once, so asking again for the same engine costs nothing.
     """
     try:
-        return check_cost(engine, until=until, extra_per_step=rows_per_step * ROW_SECONDS)
+        return check_cost(engine, until=until, extra_per_step=rows_per_step * ROW_SECONDS, shortest=shortest)
     except RunTooLong as problem:
         raise TooManySteps(str(problem)) from None
 
@@ -178,7 +184,8 @@ def simulate(setup, *, model=None, integrator: str | None = None, until: float |
     until = model.until if until is None else until
     if "until" in setup.values and setup.values["until"] != until:  # report the until that was run
         setup = setup.with_values(until=float(until))
-    step_count(engine, until=until, rows_per_step=model.state.count if every_step else 0)
+    step_count(engine, until=until, rows_per_step=model.state.count if every_step else 0,
+               shortest=shortest_until(setup))
     window = getattr(setup.module, "measure_window", None)
     if window is not None and window(setup.values)[1] > until:
         start, end = window(setup.values)

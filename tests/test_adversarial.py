@@ -659,3 +659,32 @@ def test_the_progress_line_on_a_terminal_is_ended_so_the_next_line_starts_afresh
         assert interrupt_after is not None
     assert stream.text.startswith("\rrunning: ") and stream.text.count("\rrunning: ") >= 2
     assert stream.text.endswith(" s\n") and stream.text.count("\n") == 1
+
+
+def test_a_suggested_until_fits_with_room_to_spare():
+    """The refusal suggested the --until that just fitted the estimate, which was then refused
+    (157.691, then 154.67, then 151.147, which ran 95 s against the 60 s limit). Now it fits in half
+    the limit by the estimate, rounded down to two digits (a busy machine can run slower than that)."""
+    from physics.simulate import RunTooLong, check_cost
+    from scenes import configure
+
+    model = configure("vertical", assignments=["dt=1e-5"]).build()
+    engine = model.simulation(None)
+    with pytest.raises(RunTooLong) as refused:
+        check_cost(engine, until=1000.0, limit=0.4)
+    suggested = float(re.search(r"at most ([0-9.e+-]+) s with dt", str(refused.value)).group(1))
+    assert len(f"{suggested:g}".replace(".", "").lstrip("0")) <= 2   # a value to type: two digits
+    per_step = engine.seconds_per_step()
+    assert suggested / 1e-5 * per_step <= 0.5 * 0.4 + 1e-9
+    assert check_cost(engine, until=suggested, limit=0.4) > 0   # asked again: accepted
+
+
+def test_a_run_too_long_for_the_scene_to_shorten_suggests_no_until_it_refuses(tmp_path, monkeypatch, capsys):
+    """resonance --set count=10000 --csv suggested until ≤ 1.56 s, which the scene itself refuses
+    (it measures the amplitudes from t = settle = 40 s on)."""
+    monkeypatch.chdir(tmp_path)
+    assert main.run(["resonance", "--set", "count=10000", "--headless", "--csv", "r.csv"]) == 2
+    line, = capsys.readouterr().err.splitlines()
+    assert "more than the 60 s a run may take; use a larger dt or fewer masses (the scene needs --until of at " \
+           "least 49.4248 s)" in line and "at most" not in line
+    assert os.listdir(tmp_path) == []
