@@ -36,7 +36,7 @@ import numpy as np
 
 from .compiled import MAX_COMPONENTS, MAX_TRACES, compile_loop
 from .energy import nonconservative_power, report, series, work_step
-from .forces import Spring
+from .forces import QuadraticDrag, Spring
 from .integrators import DEFAULT_INTEGRATOR, INTEGRATORS, methods_for
 from .stability import fastest_angular_frequency, judge
 from .state import State, velocity
@@ -306,7 +306,11 @@ class Simulation:
         v = np.nan_to_num(velocity(self._p, self.start.m), nan=0.0, posinf=0.0, neginf=0.0)
         methods = tuple(self.methods[i] for i in rows)
         verdict = judge(self.forces, self.start.m, self.methods, self.dt, v=v)
+        drag = any(isinstance(force, QuadraticDrag) and np.any(force.C * force.A * force.rho > 0)
+                   for force in self.forces)
         advice = (verdict.message if verdict.message and verdict.method in methods else
+                  f"dt = {self.dt:g} s, but the drag (its rate ρCA|v|/m grows with the speed) outgrew what "
+                  f"{methods[0]} can follow at this dt; try a smaller dt, or less drag" if drag else
                   f"dt = {self.dt:g} s; try a smaller dt")
         return f"the simulation blew up by t = {self.t:.4g} s ({how}): {advice}"
 

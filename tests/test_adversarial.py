@@ -688,3 +688,32 @@ def test_a_run_too_long_for_the_scene_to_shorten_suggests_no_until_it_refuses(tm
     assert "more than the 60 s a run may take; use a larger dt or fewer masses (the scene needs --until of at " \
            "least 49.4248 s)" in line and "at most" not in line
     assert os.listdir(tmp_path) == []
+
+
+@pytest.mark.parametrize("method", ["euler-cromer", "verlet"])
+def test_a_step_exactly_at_the_stability_limit_is_refused(method, capsys):
+    """ω·Δt = 2 exactly (vertical: ω = 2 rad/s, dt = 1 s) ran silently, and the motion grew."""
+    from physics.stability import _grows, amplification
+
+    assert _grows(float(amplification(method, omega=2.0, rate=0.0, dt=1.0)[0]), 2.0)
+    assert not _grows(float(amplification(method, omega=2.0, rate=0.0, dt=0.9999999)[0]), 2.0)
+    assert main.run(["vertical", "--headless", "--set", "dt=1", "--until", "10", "--integrator", method]) == 1
+    line, = capsys.readouterr().err.splitlines()
+    assert line == (f"error: the run would blow up, past the stability limit: dt = 1 s, but the spring "
+                    f"(ω = 2 rad/s, √(k/m) for one mass) makes dt < 1 s necessary for {method}, ω·dt < 2")
+
+
+def test_a_dt_just_past_the_limit_is_printed_with_the_digits_that_show_it(capsys):
+    """It read 'dt = 1 s, but … makes dt < 1 s necessary' for dt = 1.0000001 s."""
+    assert main.run(["vertical", "--headless", "--set", "dt=1.0000001", "--until", "10"]) == 1
+    line, = capsys.readouterr().err.splitlines()
+    assert "dt = 1.0000001 s, but the spring" in line and "makes dt < 1 s necessary" in line
+
+
+def test_a_blow_up_caused_by_drag_names_the_drag(capsys):
+    """It said only 'try a smaller dt', where the stability judgement names the drag."""
+    assert main.run("vertical --headless --set C=100 --set A=10 --set rho=1000 --until 10".split()) == 1
+    line, = capsys.readouterr().err.splitlines()
+    assert line.startswith("error: the simulation blew up by t = ")
+    assert "dt = 0.1 s, but the drag (its rate ρCA|v|/m grows with the speed) outgrew what euler-cromer can " \
+           "follow at this dt; try a smaller dt, or less drag" in line
