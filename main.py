@@ -335,7 +335,8 @@ def main(argv=None) -> int:
             for problem in problems:  # the other scenes are listed, and run, as usual
                 print(f"error: {problem}", file=sys.stderr)
             return 2 if problems else 0
-        setup = catalog.configure(args.scene or catalog.DEFAULT_SCENE, assignments=args.assignments,
+        setup = catalog.configure(catalog.DEFAULT_SCENE if args.scene is None else args.scene,
+                                  assignments=args.assignments,
                                   scenario=args.scenario, preset=args.preset)
         if args.constants:
             print(headless.constants_report(setup))

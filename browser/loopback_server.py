@@ -315,9 +315,18 @@ class _Refusals:
 
 
 def _remind(url: str, every: float, stop: threading.Event) -> None:
-    while not stop.wait(every):
+    """Say once, `every` seconds after the address was printed, that no browser has come (a line
+    every 10 s without end buried the address)."""
+    if not stop.wait(every):
         print(f"Still waiting for a browser: open {url} (Ctrl-C to quit)",
               file=sys.stderr, flush=True)
+
+
+def _open_browser(url: str) -> None:
+    """Ask the system's browser to open the page; if there is none, say so once, and how to open it."""
+    if not webbrowser.open(url):
+        print(f"No browser was found on this computer: open {url} in a browser yourself "
+              f"(Ctrl-C to quit)", file=sys.stderr, flush=True)
 
 
 @contextlib.contextmanager
@@ -395,7 +404,7 @@ def _http_server_class(state: _State):
             self.server_address = self.socket.getsockname()
             self.server_name, self.server_port = LOOPBACK, self.server_address[1]
             if state.open_browser:  # the page's first request queues until serve_forever
-                webbrowser.open(state.url)
+                _open_browser(state.url)
 
         def handle_error(self, request, client_address):
             # socketserver prints a traceback for any error in a request. A browser that drops

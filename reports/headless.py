@@ -311,6 +311,9 @@ def final_report(result: Result) -> str:
         lines.append(f"energy: K = {number(e['K'])} J, U = {number(e['U'])} J, E = {number(e['E'])} J, "
                      f"W_nc = {number(e['W_nc'])} J, E − W_nc = {number(e['E_minus_W_nc'])} J "
                      f"({number(traj.energy['E_minus_W_nc'][0])} J at the start)")
+    extra = getattr(result.setup.module, "extra_text", None)  # a scene's own results: resonance's curves
+    if extra is not None:
+        lines.append(extra(result))
     return "\n".join(lines)
 
 

@@ -181,6 +181,9 @@ def load(name: str):
     Raises ConstantError with the closest name for an unknown scene, and with the file, the line and
     what is wrong for a scene file that cannot run: a typo in one scene leaves the others usable.
     """
+    if not name.strip():
+        raise ConstantError(f"the scene name is empty: give one, like {DEFAULT_SCENE!r} "
+                            f"(run 'python main.py --list' to see them)")
     if name in SKIPPED:
         raise ConstantError(SKIPPED[name])
     if name not in SCENE_NAMES:

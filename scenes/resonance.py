@@ -239,6 +239,35 @@ def extra_json(result) -> dict:
     return {"resonance": out}
 
 
+def extra_text(result) -> str:
+    """The resonance curves for the headless report: a table of A against ω, measured from the run
+    and exact, one pair of columns per b (the numbers --json gives, as a teacher reads them)."""
+    v = result.setup.values
+    measured = amplitudes(result.setup, result.model, result.trajectory)
+    omega, b_each, omega_all, b_all = _grid_of(v)
+    exact = curve_amplitude(v, b=b_all, omega=omega_all).reshape(len(b_each), len(omega))
+    start, end = measure_window(v)
+    if measured is None:
+        return (f"amplitudes: none, the run ended before the measuring window (t = {start:g} s to "
+                f"{end:.4g} s) did; run until at least {end:.4g} s (--until or --set until=...)")
+
+    def shown(A):
+        return f"{A:.4g}" if np.isfinite(A) else "unbounded"
+    heads = [f"b = {b_j:.4g} kg/s" for b_j in b_each]
+    width = max(9, *(len(head) for head in heads))
+    lines = [f"steady-state amplitude A (m) against the driving frequency ω, measured from t = {start:g} s "
+             f"to {end:.4g} s; exact A = F0 / √((k − m ω²)² + (b ω)²)",
+             f"{'ω (rad/s)':<10}" + "".join(f"  {head:<{2 * width + 1}}" for head in heads),
+             f"{'':<10}" + "".join(f"  {'measured':<{width}} {'exact':<{width}}" for _ in heads)]
+    for n, omega_n in enumerate(omega):
+        lines.append(f"{omega_n:<10.4g}" + "".join(
+            f"  {shown(measured.amplitude[j, n]):<{width}} {shown(exact[j, n]):<{width}}"
+            for j in range(len(b_each))))
+    if not np.all(np.isfinite(exact)):
+        lines.append(f"unbounded where {_unbounded_words(v)}")
+    return "\n".join(line.rstrip() for line in lines)
+
+
 def _unbounded_words(v) -> str:
     """Why A(ω) has no value at undamped resonance, in words, for the constants v."""
     omega0 = np.sqrt(v["k"] / v["m"])

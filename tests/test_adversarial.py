@@ -717,3 +717,47 @@ def test_a_blow_up_caused_by_drag_names_the_drag(capsys):
     assert line.startswith("error: the simulation blew up by t = ")
     assert "dt = 0.1 s, but the drag (its rate ρCA|v|/m grows with the speed) outgrew what euler-cromer can " \
            "follow at this dt; try a smaller dt, or less drag" in line
+
+
+def test_an_empty_scene_name_is_an_error_not_the_default_scene(capsys):
+    """`main.py "" --headless` ran vertical."""
+    for name in ("", "  "):
+        assert main.run([name, "--headless"]) == 2
+        out, err = capsys.readouterr()
+        assert out == "" and err.splitlines() == [
+            "error: the scene name is empty: give one, like 'vertical' (run 'python main.py --list' to see them)"]
+
+
+def test_waiting_for_a_browser_is_said_once_not_every_10_s_for_ever(capsys):
+    import threading
+
+    from browser import loopback_server
+
+    reminder = threading.Thread(target=loopback_server._remind, args=("http://127.0.0.1:1/", 0.01, threading.Event()),
+                                daemon=True)
+    reminder.start()
+    reminder.join(timeout=30)
+    alive = reminder.is_alive()
+    assert not alive   # the old reminder never returned
+    assert capsys.readouterr().err.splitlines() == [
+        "Still waiting for a browser: open http://127.0.0.1:1/ (Ctrl-C to quit)"]
+
+
+def test_no_browser_on_the_computer_is_said_once_with_how_to_open_the_page(monkeypatch, capsys):
+    from browser import loopback_server
+
+    monkeypatch.setattr(loopback_server.webbrowser, "open", lambda url: False)
+    loopback_server._open_browser("http://127.0.0.1:1/")
+    assert capsys.readouterr().err.splitlines() == [
+        "No browser was found on this computer: open http://127.0.0.1:1/ in a browser yourself (Ctrl-C to quit)"]
+
+
+def test_the_resonance_report_has_the_amplitude_table(capsys):
+    """`resonance --headless` printed 276 lines of per-mass state and no amplitudes."""
+    assert main.run(["resonance", "--headless"]) == 0
+    out = capsys.readouterr().out
+    assert "steady-state amplitude A (m) against the driving frequency ω, measured from t = 40 s to 49.42 s" in out
+    head = next(line for line in out.splitlines() if line.startswith("ω (rad/s)"))
+    assert head.split() == ["ω", "(rad/s)", "b", "=", "0.5", "kg/s", "b", "=", "1", "kg/s", "b", "=", "2", "kg/s"]
+    row = next(line for line in out.splitlines() if line.startswith("5 "))   # ω = ω0 = 5 rad/s: A = F0/(b ω0)
+    assert row.split() == ["5", "0.4", "0.4", "0.2", "0.2", "0.1", "0.1"]
