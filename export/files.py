@@ -107,10 +107,10 @@ def check_writable(path: str, *, what: str, overwrite: bool = False) -> None:
     if not path:
         raise OutputError(f"cannot write {what} '': give a file name, like run.csv")
     target = _target(path, what=what)
-    _refuse_foreign(path, target, what=what, overwrite=overwrite)
     folder = os.path.dirname(target)
     if not os.path.isdir(folder):
         raise OutputError(f"cannot write {what} {path!r}: folder {folder!r} does not exist")
+    _refuse_foreign(path, target, what=what, overwrite=overwrite)
     existed = os.path.exists(target)
     try:
         with open(target, "ab"):
