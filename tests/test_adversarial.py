@@ -761,3 +761,32 @@ def test_the_resonance_report_has_the_amplitude_table(capsys):
     assert head.split() == ["ω", "(rad/s)", "b", "=", "0.5", "kg/s", "b", "=", "1", "kg/s", "b", "=", "2", "kg/s"]
     row = next(line for line in out.splitlines() if line.startswith("5 "))   # ω = ω0 = 5 rad/s: A = F0/(b ω0)
     assert row.split() == ["5", "0.4", "0.4", "0.2", "0.2", "0.1", "0.1"]
+
+
+@pytest.mark.parametrize("args, options, message", [
+    (("vertical",), {"scenario": "3"}, "scenario needs a whole number, like scenario=3 (got '3')"),
+    (("vertical",), {"preset": 3}, "preset needs a name as text, like preset='Moon gravity' (got 3)"),
+    (("vertical",), {"integrator": ["rk4"]}, "integrator needs a name as text, like integrator='rk4' (got ['rk4'])"),
+    ((123,), {}, "show() needs the scene's name as text, like show('vertical') (got 123)"),
+    (("vertical",), {"k": 10**5000}, "k is too large to be a number the program can use (got an integer of about 5000 digits)"),
+    (("vertical",), {"k": "60"}, "k needs a number, or three numbers for a vector like r0=(0, -1.2, 0) (got '60')"),
+    (("vertical",), {"k": -5}, "k must be from 0 to 1e6 N/m (got -5 N/m)"),
+    (("vertical",), {"integrator": "leapfrog"}, "unknown integrator 'leapfrog'"),
+])
+def test_the_notebooks_show_answers_a_wrong_argument_in_one_line(args, options, message):
+    """Wrong types raised TypeErrors from inside (show(123), integrator=["rk4"], k=10**5000), and a
+    ConstantError printed a 35-line traceback in the notebook: IPython now shows one line."""
+    from browser.notebook import show
+    from scenes import ConstantError
+
+    with pytest.raises(ConstantError) as refused:
+        show(*args, **options)
+    assert message in str(refused.value)
+    assert refused.value._render_traceback_() == [f"ConstantError: {refused.value}"]
+
+
+def test_opening_the_notebook_leaves_git_status_clean():
+    """Jupyter writes examples/.ipynb_checkpoints/ when the notebook is opened."""
+    done = subprocess.run(["git", "check-ignore", "-q", "examples/.ipynb_checkpoints/scenes-checkpoint.ipynb"],
+                          cwd=ROOT)
+    assert done.returncode == 0
