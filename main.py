@@ -315,6 +315,10 @@ def write_programs(args, setup, model, *, warn: bool) -> None:
         for path, _ in texts:
             if path != "-":
                 export.check_path(path, overwrite=args.overwrite)
+        if args.vpython not in (None, "-") and os.path.basename(args.vpython).lower() in ("vpython.py", "vpython.pyw"):
+            raise UsageError(f"a program called {os.path.basename(args.vpython)} cannot run: its "
+                             f"`from vpython import *` would import the program itself instead of the vpython "
+                             f"library; give it another name, like spring.py")
         for path, text in texts:
             if path == "-":
                 print(text, end="")

@@ -58,7 +58,11 @@ from .palette import (CURVE_COLOURS, EXACT_COLOUR, EXACT_WIDTH, MASS_COLOURS, ma
                       simulation_width)
 
 WEB_FIRST_LINE = "Web VPython 3.2"
-IMPORTS = ["from vpython import *"]
+# vpython 7.6.5's own server listens on every network interface and serves any file on the disk to
+# a crafted request: the two lines after the import keep it on this computer (issue 20).
+IMPORTS = ["from vpython import *",
+           "import socket  # vpython's server would listen on every network: keep it on this computer only",
+           "socket.socket.bind = lambda s, a, bind=socket.socket.bind: bind(s, ('127.0.0.1', *a[1:]) if a[0] in ('', '0.0.0.0') else a)"]
 
 # The meaning of each name the program may use where the scene's constants block has no constant
 # of that name with that value (the units are DECLARED's).

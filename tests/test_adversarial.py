@@ -180,6 +180,9 @@ BAD = [
     ("integrators --headless --integrator rk4", 2, "would do nothing; leave it out"),
     ("integrators --vpython x.py --integrator euler", 2, "would do nothing"),
     ("vertical --headless --overwrite", 2, "--overwrite does nothing without a file to write"),
+    ("vertical --vpython vpython.py", 2, "a program called vpython.py cannot run: its `from vpython import *` "
+                                         "would import the program itself"),
+    ("vertical --vpython VPython.py --webvpython web.py", 2, "a program called VPython.py cannot run"),
     ("--list --overwrite", 2, "--list takes no scene or other option (got --overwrite)"),
 ]
 
@@ -790,3 +793,24 @@ def test_opening_the_notebook_leaves_git_status_clean():
     done = subprocess.run(["git", "check-ignore", "-q", "examples/.ipynb_checkpoints/scenes-checkpoint.ipynb"],
                           cwd=ROOT)
     assert done.returncode == 0
+
+
+@pytest.mark.skipif(not Path("/proc/net/tcp").exists(), reason="reads the listening sockets from /proc (Linux)")
+def test_a_handed_out_program_serves_its_page_to_this_computer_only(tmp_path):
+    """Plain vpython listens on 0.0.0.0 (and serves `GET /../file` from anywhere on the disk): the
+    handout's first lines bind its servers to 127.0.0.1. Run with the real vpython, as a student does."""
+    from test_loopback_server import listening_sockets, wait_for_listeners
+    from browser_support import free_port
+
+    program = tmp_path / "vertical.py"
+    assert run_main("vertical", "--vpython", str(program)).returncode == 0
+    env = {**os.environ, "VPYTHON_NO_LAUNCH_BROWSER": "1", "VPYTHON_HTTP_PORT": str(free_port())}
+    process = subprocess.Popen([sys.executable, str(program)], cwd=tmp_path, env=env,
+                               stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    try:
+        wait_for_listeners(process.pid, 2, timeout=60)   # its HTTP and websocket servers
+        found = listening_sockets(process.pid)
+    finally:
+        process.kill()
+        process.wait(timeout=30)
+    assert found and all(address == "127.0.0.1" for _, address, _ in found), found

@@ -265,8 +265,10 @@ def test_web_vpython_file_is_the_same_program(scene, tmp_path):
     web_lines = web.read_text(encoding="utf-8").splitlines()
     assert web_lines[0] == "Web VPython 3.2"
     assert not any(line.startswith(("import ", "from ")) for line in web_lines)
-    imports = [line for line in desktop_lines if line.startswith(("import ", "from "))]
-    assert imports == ["from vpython import *"]
+    from export.vpython_program import IMPORTS
+
+    imports = [line for line in desktop_lines if line.startswith(("import ", "from ", "socket."))]
+    assert imports == IMPORTS == ["from vpython import *", *IMPORTS[1:]]   # and the lines keeping it on this computer
     assert web_lines[1:] == [line for line in desktop_lines[1:] if line not in imports]
     description = f"# {scene}: {catalog.summary(catalog.load(scene))}"
     assert description in desktop_lines and description in web_lines     # Web VPython keeps it too
@@ -344,7 +346,7 @@ def test_program_replaces_an_old_file_whole(tmp_path):
     path.write_text("# Written by the spring-mass simulator\n" + "old handout\n" * 1000)   # an earlier handout
     assert main_py("damped", "--vpython", str(path)).returncode == 0
     text = path.read_text(encoding="utf-8")
-    assert text.startswith("from vpython import *\n# damped:") and "old handout" not in text
+    assert text.startswith("from vpython import *\n") and "\n# damped:" in text and "old handout" not in text
     assert [p.name for p in tmp_path.iterdir()] == ["spring.py"]
     mask = os.umask(0)
     os.umask(mask)
