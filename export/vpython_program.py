@@ -299,7 +299,8 @@ def program(setup, *, integrator: str | None = None, web: bool = False) -> str:
     m = n("m")
 
     lines = IMPORTS + [
-        f"# {setup.name}: {summary(setup.module)}",
+        f"# {setup.name}: {summary(setup.module)}" + ("" if setup.values == catalog.configure(setup.name).values
+                                                       else " (as shipped; this case's constants are below)"),
         "# Written by the spring-mass simulator with " + (f"the {methods[0]} integrator" if len(set(methods)) == 1
                                                           else "each mass's own integrator (the list method)")
         + ". Edit the constants and run it again.",
@@ -408,6 +409,10 @@ def _options(setup, preset: str | None) -> list[str] | None:
                 if value is not None and value != start.get(name)]
         if catalog.configure(setup.name, preset=preset, assignments=sets).values != setup.values:
             return None
+        for text in list(sets):   # b = 52.76… that the preset works out from m and k is left to it
+            fewer = [other for other in sets if other != text]
+            if catalog.configure(setup.name, preset=preset, assignments=fewer).values == setup.values:
+                sets = fewer
     except (ConstantError, ValueError):
         return None
     quoted = f'"{preset}"' if preset is not None and " " in preset else preset
@@ -425,7 +430,9 @@ def _short_label(setup, label: str) -> str:
 
 def _set_value(value) -> str:
     """A value as --set reads it: 2.5, or 0,-1.5,0 for a vector."""
-    return ",".join(number(x) for x in value) if isinstance(value, (tuple, list)) else number(value)
+    def exact(x):   # as short as number() writes it, unless that is not quite the value (17.400000000000002)
+        return number(x) if float(number(x)) == float(x) else repr(float(x))
+    return ",".join(exact(x) for x in value) if isinstance(value, (tuple, list)) else exact(value)
 
 
 def _loop_condition(model) -> str:

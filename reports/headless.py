@@ -324,7 +324,13 @@ def constants_report(setup) -> str:
     rows = [(f"{name} = {format_value(setup.values[name], constant.unit)}", constant.meaning)
             for name, constant in setup.constants.items()]
     width = max(len(left) for left, _ in rows)
-    return "\n".join(f"{left:<{width}}   {meaning}" for left, meaning in rows)
+    lines = [f"{left:<{width}}   {meaning}" for left, meaning in rows]
+    m, k, dt = (setup.values.get(name) for name in ("m", "k", "dt"))
+    if all(isinstance(x, (int, float)) for x in (m, k)) and k > 0:   # worked out from the values in use
+        omega0 = math.sqrt(k / m)
+        lines.append(f"so: ω0 = √(k/m) = {number(omega0, 4)} rad/s, T = 2π/ω0 = {number(2 * math.pi / omega0, 4)} s"
+                     + (f", ω0·dt = {number(omega0 * dt, 4)}" if isinstance(dt, (int, float)) else ""))
+    return "\n".join(lines)
 
 
 # ---- JSON ----

@@ -31,7 +31,7 @@ from ._row import anchors_in_a_row, exact_row, start_positions
 
 # ---- constants: edit these (unit: meaning); 0 switches a force off ----
 m = 1.0                    # kg: mass of each block
-k = 25.0                   # N/m: spring constant of each spring (ω0 = √(k/m) = 5 rad/s)
+k = 25.0                   # N/m: spring constant of each spring
 L0 = 1.0                   # m: relaxed length of each spring
 g = 9.8                    # m/s²: strength of gravity, acting along −y (it only moves the equilibrium)
 F0 = 1.0                   # N: driving force amplitude in F = F0 cos(ω t), up and down
@@ -40,7 +40,7 @@ b_ratio = 2.0              # 1: each further resonance curve has b times this
 curves = 3                 # 1: number of resonance curves (damping constants b, b·ratio, b·ratio², …)
 omega_min = 2.0            # rad/s: driving angular frequency of the leftmost spring
 omega_max = 8.0            # rad/s: driving angular frequency of the rightmost spring
-count = 13                 # 1: number of springs in each row (driving frequencies per curve, 0.5 rad/s apart)
+count = 13                 # 1: number of springs in each row (driving frequencies per curve, omega_min to omega_max)
 spacing = 0.4              # m: distance between neighbouring anchors along x
 settle = 40.0              # s: time for the transient to die away before measuring
 periods = 3.0              # 1: periods of the slowest driving frequency over which to measure

@@ -814,3 +814,31 @@ def test_a_handed_out_program_serves_its_page_to_this_computer_only(tmp_path):
         process.kill()
         process.wait(timeout=30)
     assert found and all(address == "127.0.0.1" for _, address, _ in found), found
+
+
+def test_derived_values_follow_the_values_used(capsys):
+    """Comments and --constants kept the defaults' ω = √(k/m) = 5 rad/s and ω Δt = 0.3 after
+    --set k=100; drag's falling preset (k = 0) kept 'ω0 ≈ 6.1 rad/s'; resonance --set k=16 said ω0 = 5."""
+    def output(*argv):
+        assert main.run(list(argv)) == 0
+        return capsys.readouterr().out
+
+    text = output("integrators", "--set", "k=100", "--constants")
+    assert "so: ω0 = √(k/m) = 10 rad/s, T = 2π/ω0 = 0.6283 s, ω0·dt = 0.6" in text
+    assert "5 rad/s" not in text and "0.3" not in text and "1.26" not in text
+    text = output("resonance", "--set", "k=16", "--constants")
+    assert "ω0 = √(k/m) = 4 rad/s" in text and "5 rad/s" not in text
+    k_line, = [line for line in output("drag", "--preset", "falling", "--vpython", "-").splitlines()
+               if line.startswith("k = ")]
+    assert k_line.startswith("k = 0 ") and "6.1" not in k_line and "rad/s" not in k_line
+
+
+def test_a_handout_with_changed_constants_does_not_describe_the_defaults_as_its_own(capsys):
+    """The vertical program said 'a 10 kg mass' with m = 17.4 below, and the page's Download
+    program wrote --set b=52.76362383309168 where the preset's name gives it."""
+    assert main.run(["vertical", "--preset", "critical damping", "--set", "m=17.4", "--vpython", "-"]) == 0
+    lines = capsys.readouterr().out.splitlines()
+    assert any(line.startswith("# vertical: ") and line.endswith("(as shipped; this case's constants are below)")
+               for line in lines)
+    assert "# The same case on the simulator's page: python main.py vertical --preset \"critical damping\" " \
+           "--set m=17.4" in lines
