@@ -299,8 +299,9 @@ def program(setup, *, integrator: str | None = None, web: bool = False) -> str:
     m = n("m")
 
     lines = IMPORTS + [
-        f"# {setup.name}: {summary(setup.module)}" + ("" if setup.values == catalog.configure(setup.name).values
-                                                       else " (as shipped; this case's constants are below)"),
+        f"# {setup.name}: {summary(setup.module)}",
+        *([] if setup.values == catalog.configure(setup.name).values else
+          ["# (That is the scene as shipped; this case's constants are below.)"]),
         "# Written by the spring-mass simulator with " + (f"the {methods[0]} integrator" if len(set(methods)) == 1
                                                           else "each mass's own integrator (the list method)")
         + ". Edit the constants and run it again.",

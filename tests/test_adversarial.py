@@ -838,7 +838,7 @@ def test_a_handout_with_changed_constants_does_not_describe_the_defaults_as_its_
     program wrote --set b=52.76362383309168 where the preset's name gives it."""
     assert main.run(["vertical", "--preset", "critical damping", "--set", "m=17.4", "--vpython", "-"]) == 0
     lines = capsys.readouterr().out.splitlines()
-    assert any(line.startswith("# vertical: ") and line.endswith("(as shipped; this case's constants are below)")
-               for line in lines)
+    summary = next(n for n, line in enumerate(lines) if line.startswith("# vertical: "))
+    assert lines[summary + 1] == "# (That is the scene as shipped; this case's constants are below.)"
     assert "# The same case on the simulator's page: python main.py vertical --preset \"critical damping\" " \
            "--set m=17.4" in lines
