@@ -198,8 +198,9 @@ def check_options(args) -> None:
                 raise UsageError(f"{flag} is for the browser page, and {programs[0]} only writes a "
                                  f"program (no page opens); leave out one of them")
     if args.until is not None:
-        if not runs_headless:
-            raise UsageError("--until needs --headless (the browser runs until you stop it)")
+        if not runs_headless and not programs:
+            raise UsageError("--until needs --headless, or --vpython or --webvpython (the program runs that "
+                             "long); the browser runs until you stop it")
         try:
             check_value("until", args.until, "s")  # the same range as the scenes' own `until`
         except ConstantError as problem:
@@ -301,6 +302,8 @@ def write_programs(args, setup, model, *, warn: bool) -> None:
     """
     import export
 
+    if args.until is not None:   # the program runs that long (the scene's `until` constant)
+        setup = setup.with_values(until=float(args.until))
     if warn:
         try:
             warning = headless.stability_warning(model, model.methods(args.integrator))

@@ -322,8 +322,15 @@ def program(setup, *, integrator: str | None = None, web: bool = False) -> str:
         if single:
             lines += [""] + exact[0]
 
+    plots = [f"position{i}" + (f"[{k}]" if len(axes) > 1 else "") + f".plot(t, pos{i}.{axis})"
+             for k, axis in enumerate(axes)]
+    if exact is not None:
+        plots += (exact[1] if single else exact[0] + exact[1])
+        plots += [f"exact{i}.plot(t, ({n('anchor')} + (s_eq + x)*u).{axes[0]})"]
     lines += ["", "# ---- the loop: one momentum update per step ----",
               commented("t = 0", "s: time, n·Δt after n steps"), "n = 0"]
+    start = [line for line in plots if line.startswith("position")]   # t = 0 (the exact curve from the first step)
+    lines += start if single else ["for i in range(len(pos)):"] + ["    " + line for line in start]
     lines += [_loop_condition(model), commented("    rate(1/dt)", "real time: 1/Δt steps a second")]
     if len(set(methods)) > 1:
         body = []
@@ -341,11 +348,7 @@ def program(setup, *, integrator: str | None = None, web: bool = False) -> str:
     draw = [f"{'ball' if single else 'balls[i]'}.pos = pos{i}",
             commented(f"spring{'' if single else 's[i]'}.axis = pos{i} - {n('anchor')}",
                       "the helix follows the sphere")]
-    draw += [f"position{i}" + (f"[{k}]" if len(axes) > 1 else "") + f".plot(t, pos{i}.{axis})"
-             for k, axis in enumerate(axes)]
-    if exact is not None:
-        draw += (exact[1] if single else exact[0] + exact[1])
-        draw += [f"exact{i}.plot(t, ({n('anchor')} + (s_eq + x)*u).{axes[0]})"]
+    draw += plots
     if single:
         lines += ["    " + line for line in draw]
     else:

@@ -139,7 +139,8 @@ BAD = [
     # ---- flags that conflict, or do nothing in the chosen mode ----
     ("vertical --json", 2, "--json needs --headless"),
     ("vertical --csv x.csv", 2, "--csv needs --headless"),
-    ("vertical --until 3", 2, "--until needs --headless"),
+    ("vertical --until 3", 2, "--until needs --headless, or --vpython or --webvpython"),
+    ("vertical --vpython x.py --until -1", 2, "--until must be"),
     ("--list --set k=abc", 2, "--list takes no scene or other option (got --set)"),
     ("--list vertical", 2, "--list takes no scene"),
     ("--list --headless", 2, "--list takes no scene or other option (got --headless)"),
@@ -842,3 +843,17 @@ def test_a_handout_with_changed_constants_does_not_describe_the_defaults_as_its_
     assert lines[summary + 1] == "# (That is the scene as shipped; this case's constants are below.)"
     assert "# The same case on the simulator's page: python main.py vertical --preset \"critical damping\" " \
            "--set m=17.4" in lines
+
+
+def test_a_handout_can_run_longer_than_the_question_time_and_plots_from_t_0(capsys):
+    """--until was refused with --vpython (the vertical handout animates 0.2 s, two steps), and the
+    program plotted from the first step on, never t = 0."""
+    assert main.run(["vertical", "--vpython", "-", "--until", "10"]) == 0
+    lines = capsys.readouterr().out.splitlines()
+    assert any(line.startswith("until = 10 ") for line in lines)
+    loop = lines.index("while t < until:")
+    assert "position.plot(t, pos.y)" in lines[:loop]
+    assert main.run(["regimes", "--webvpython", "-"]) == 0
+    lines = capsys.readouterr().out.splitlines()
+    loop = next(n for n, line in enumerate(lines) if line.startswith("while t < until"))
+    assert lines[loop - 2:loop] == ["for i in range(len(pos)):", "    position[i].plot(t, pos[i].y)"]
