@@ -36,7 +36,7 @@ if __name__ == "__main__":  # run() takes over once everything is loaded
     signal.signal(signal.SIGTERM, _stop_while_loading)
 
 from export import files  # noqa: E402
-from reports import headless  # noqa: E402
+from reports import headless, terminal  # noqa: E402
 from physics.integrators import DEFAULT_INTEGRATOR, INTEGRATORS  # noqa: E402
 from physics.simulate import BlowUpError  # noqa: E402
 from scenes import catalog  # noqa: E402
@@ -98,6 +98,9 @@ def build_parser() -> argparse.ArgumentParser:
                         help="write the scene as a standalone VPython program to hand out ('-': print it)")
     parser.add_argument("--webvpython", metavar="FILE.py",
                         help="the same program for Web VPython (glowscript.org, trinket)")
+    parser.add_argument("--overwrite", action="store_true",
+                        help="let --csv, --plot, --vpython or --webvpython replace an existing Python file "
+                             "this program did not write (its own files are never replaced)")
     parser.add_argument("--no-browser", action="store_true",
                         help="print the page's URL instead of opening a browser")
     parser.add_argument("--port", type=int, metavar="P", help="port for the browser page")
@@ -106,18 +109,19 @@ def build_parser() -> argparse.ArgumentParser:
 
 def list_scenes() -> tuple[str, list[str]]:
     """Each scene with its one-line description, and its numbered scenarios if it has any; and
-    what is wrong with each scene file that cannot run (left out of the list)."""
+    what is wrong with each scene file that is not valid Python or was left out (read from the
+    files as text: no scene runs)."""
     names = list(catalog.SCENE_NAMES)
     width = max(len(name) for name in names)
-    lines, problems = [], []
+    lines, problems = [], list(catalog.SKIPPED.values())
     for name in names:
         try:
-            module = catalog.load(name)
+            summary, labels = catalog.describe(name)
         except ConstantError as problem:
             problems.append(str(problem))
             continue
-        lines.append(f"{name:<{width}}  {catalog.summary(module)}")
-        for number, (label, _) in enumerate(catalog.scenarios(module), start=1):
+        lines.append(f"{name:<{width}}  {summary}")
+        for number, label in enumerate(labels, start=1):
             lines.append(f"{'':<{width}}    --scenario {number}: {label}")
     return "\n".join(lines), problems
 
@@ -169,7 +173,8 @@ def check_options(args) -> None:
     if args.list:
         others = [flag for flag, attribute in (("--constants", "constants"), ("--set", "assignments"),
                                                ("--scenario", "scenario"), ("--preset", "preset"),
-                                               *RUN_OPTIONS, *PROGRAM_OPTIONS, *BROWSER_ONLY)
+                                               *RUN_OPTIONS, *PROGRAM_OPTIONS, *BROWSER_ONLY,
+                                               ("--overwrite", "overwrite"))
                   if _given(args, attribute)]
         if args.scene is not None or others:
             what = f"scene {args.scene!r}" if args.scene is not None else others[0]
@@ -196,8 +201,9 @@ def check_options(args) -> None:
                 raise UsageError(f"{flag} is for the browser page, and {programs[0]} only writes a "
                                  f"program (no page opens); leave out one of them")
     if args.until is not None:
-        if not runs_headless:
-            raise UsageError("--until needs --headless (the browser runs until you stop it)")
+        if not runs_headless and not programs:
+            raise UsageError("--until needs --headless, or --vpython or --webvpython (the program runs that "
+                             "long); the browser runs until you stop it")
         try:
             check_value("until", args.until, "s")  # the same range as the scenes' own `until`
         except ConstantError as problem:
@@ -212,6 +218,9 @@ def check_options(args) -> None:
                          f"leave --port out for any free port")
     outputs = [(flag, getattr(args, attribute)) for flag, attribute in OUTPUT_FILES
                if getattr(args, attribute) not in (None, files.STDOUT)]
+    if args.overwrite and not outputs:
+        raise UsageError("--overwrite does nothing without a file to write (--csv, --plot, --vpython or "
+                         "--webvpython); leave it out")
     for n, (flag, path) in enumerate(outputs):
         for other, other_path in outputs[n + 1:]:
             if files.same_file(path, other_path):
@@ -247,11 +256,12 @@ def run_headless(args, setup, model) -> int:
     every_step = args.csv is not None or args.plot is not None
     engine = model.simulation(args.integrator)   # the one that runs: its cost is measured once
     if args.steps is None or every_step:  # a run too long is refused before anything prints
-        headless.step_count(engine, until=until, rows_per_step=model.state.count if every_step else 0)
+        headless.step_count(engine, until=until, rows_per_step=model.state.count if every_step else 0,
+                            shortest=headless.shortest_until(setup))
     if args.csv is not None:
-        files.check_writable(args.csv, what="CSV file")
+        files.check_writable(args.csv, what="CSV file", overwrite=args.overwrite)
     if args.plot is not None:
-        files.check_writable(args.plot, what="figure")
+        files.check_writable(args.plot, what="figure", overwrite=args.overwrite)
         from reports import plotting
 
         plotting.check_format(args.plot)
@@ -295,6 +305,8 @@ def write_programs(args, setup, model, *, warn: bool) -> None:
     """
     import export
 
+    if args.until is not None:   # the program runs that long (the scene's `until` constant)
+        setup = setup.with_values(until=float(args.until))
     if warn:
         try:
             warning = headless.stability_warning(model, model.methods(args.integrator))
@@ -308,12 +320,16 @@ def write_programs(args, setup, model, *, warn: bool) -> None:
                  for path, web in ((args.vpython, False), (args.webvpython, True)) if path is not None]
         for path, _ in texts:
             if path != "-":
-                export.check_path(path)
+                export.check_path(path, overwrite=args.overwrite)
+        if args.vpython not in (None, "-") and os.path.basename(args.vpython).lower() in ("vpython.py", "vpython.pyw"):
+            raise UsageError(f"a program called {os.path.basename(args.vpython)} cannot run: its "
+                             f"`from vpython import *` would import the program itself instead of the vpython "
+                             f"library; give it another name, like spring.py")
         for path, text in texts:
             if path == "-":
                 print(text, end="")
             else:
-                export.write_program(path, text)
+                export.write_program(path, text, overwrite=args.overwrite)
                 print(f"wrote {path}", file=sys.stderr)
     except ValueError as problem:   # export.ProgramError, or constants the physics cannot take
         raise UsageError(str(problem)) from None
@@ -329,7 +345,8 @@ def main(argv=None) -> int:
             for problem in problems:  # the other scenes are listed, and run, as usual
                 print(f"error: {problem}", file=sys.stderr)
             return 2 if problems else 0
-        setup = catalog.configure(args.scene or catalog.DEFAULT_SCENE, assignments=args.assignments,
+        setup = catalog.configure(catalog.DEFAULT_SCENE if args.scene is None else args.scene,
+                                  assignments=args.assignments,
                                   scenario=args.scenario, preset=args.preset)
         if args.constants:
             print(headless.constants_report(setup))
@@ -389,10 +406,18 @@ def run(argv=None) -> int:
     reports them); an output file being written is removed, the old one left as it was. Anything
     unforeseen is a bug of ours: one line naming it, and exit status 1.
     """
+    terminal.install()   # a symbol the terminal cannot write (Δt, ω, ²) is spelled in ASCII (dt, omega, ^2)
     previous = signal.signal(signal.SIGINT, signal.default_int_handler), signal.signal(signal.SIGTERM, _terminate)
     shown, warnings.showwarning = warnings.showwarning, _one_line_warning
+    stdout, sys.stdout = sys.stdout, terminal.GuardedOutput(sys.stdout)  # closed or full: one line
     try:
-        return main(argv)
+        status = main(argv)
+        sys.stdout.flush()   # a full disk shows here, while there is still a status to give
+        return status
+    except terminal.OutputStreamError as problem:
+        terminal.discard_output(stdout)
+        print(f"error: {problem}", file=sys.stderr)
+        return 2
     except KeyboardInterrupt:
         print("stopped: interrupted (Ctrl-C); no file was left half-written", file=sys.stderr)
         return 128 + signal.SIGINT
@@ -400,7 +425,7 @@ def run(argv=None) -> int:
         print("stopped: terminated (SIGTERM); no file was left half-written", file=sys.stderr)
         return 128 + signal.SIGTERM
     except BrokenPipeError:  # output piped into `head` and cut short: not an error of ours
-        os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
+        terminal.discard_output(stdout)
         return 0
     except MemoryError:
         print("error: not enough memory for this run; use a larger dt or a shorter --until", file=sys.stderr)
@@ -411,6 +436,7 @@ def run(argv=None) -> int:
               f"it with the command you ran)", file=sys.stderr)
         return 1
     finally:
+        sys.stdout = stdout
         signal.signal(signal.SIGINT, previous[0])
         signal.signal(signal.SIGTERM, previous[1])
         warnings.showwarning = shown

@@ -68,7 +68,8 @@ class Controls:
         caption("    speed ")
         vp.menu(choices=list(SPEEDS), selected=speed, bind=lambda menu: put(("speed", menu.selected)))
         caption("\n\nscene ")
-        vp.menu(choices=scene_menu_choices(), selected=setup.name, bind=lambda menu: put(("scene", menu.selected)))
+        self.scene_menu = vp.menu(choices=scene_menu_choices(), selected=setup.name,
+                                  bind=lambda menu: put(("scene", menu.selected)))
         caption("    preset ")
         labels = [label for label, _ in catalog.presets(setup)]
         self.preset_menu = None
@@ -110,6 +111,7 @@ class Controls:
                 "the run from t = 0; Reset returns to the start; "
                 "Step advances one Δt.</i>\n")
         self.status_text = vp.wtext(text="")
+        self.notice = ""   # a sentence said (say()) that stays until the next run starts
         caption("\n")
 
     def clicks(self) -> list[tuple]:
@@ -130,6 +132,7 @@ class Controls:
             unit = setup.constants[name].unit
             text.text = f"  {symbol(name)} = {format_value(setup.values[name], unit)}"
         self.download_text.text = ""
+        self.notice = ""
 
     def show_time(self, t: float, *, decimals: int, running: bool, error: str) -> None:
         """The time (to `decimals` places), Run or Pause on the button, and the error readout."""
@@ -146,12 +149,22 @@ class Controls:
         if slow_dt is not None and not status:
             status = (f"Running slower than real time (Δt = {slow_dt:g} s is small for "
                       f"this computer at this speed).")
-        if status != self.status_text.text:
-            self.status_text.text = status if not problem else f"<b>Stopped:</b> {status}"
+        text = f"<b>Stopped:</b> {status}" if problem else status or self.notice
+        if text != self.status_text.text:
+            self.status_text.text = text
 
     def say(self, text: str) -> None:
-        """Put a sentence in the status line (a value that could not be used, a stopped scene)."""
+        """Put a sentence in the status line (a value that could not be used, a scene file that
+        cannot open): it stays there until the next run starts."""
+        self.notice = text
         self.status_text.text = text
+
+    def choice_refused(self, kind: str, scene: str) -> None:
+        """A scene or preset chosen in a menu could not be used: the menu goes back to what runs."""
+        if kind == "scene":
+            self.scene_menu.selected = scene
+        else:
+            self.preset_left()
 
     def preset_left(self) -> None:
         """The constants no longer match the preset chosen: the menu shows its prompt again."""

@@ -60,6 +60,43 @@ class PageGone(RuntimeError):
         return [f"{type(self).__name__}: {self}"]
 
 
+class ShowError(ConstantError):
+    """A bad argument to show(): an unknown name, a value of the wrong type or out of its range."""
+
+    def _render_traceback_(self) -> list[str]:
+        """IPython shows this line instead of a 35-line traceback."""
+        return [f"ConstantError: {self}"]
+
+
+def _checked_arguments(name, scenario, preset, integrator, constants) -> list[str]:
+    """show()'s arguments as --set assignments, after checking their types (ShowError if wrong):
+    a teacher's show(123) or show("vertical", k="60") gets one line, not a TypeError from inside."""
+    def number(value) -> bool:
+        return isinstance(value, (int, float)) and not isinstance(value, bool)
+
+    if not isinstance(name, str):
+        raise ShowError(f"show() needs the scene's name as text, like show({catalog.DEFAULT_SCENE!r}) (got {name!r})")
+    if scenario is not None and not (isinstance(scenario, int) and not isinstance(scenario, bool)):
+        raise ShowError(f"scenario needs a whole number, like scenario=3 (got {scenario!r})")
+    for what, value in (("preset", preset), ("integrator", integrator)):
+        if value is not None and not isinstance(value, str):
+            raise ShowError(f"{what} needs a name as text, like {what}={'Moon gravity' if what == 'preset' else 'rk4'!r} "
+                            f"(got {value!r})")
+    assignments = []
+    for key, value in constants.items():
+        parts = list(value) if isinstance(value, (tuple, list)) else [value]
+        if not parts or not all(number(part) for part in parts):
+            raise ShowError(f"{key} needs a number, or three numbers for a vector like r0=(0, -1.2, 0) (got {value!r})")
+        try:
+            floats = [float(part) for part in parts]
+        except OverflowError:   # an int like 10**5000: too large for any constant
+            big = max(abs(part) for part in parts if isinstance(part, int))
+            raise ShowError(f"{key} is too large to be a number the program can use (got an integer of "
+                            f"about {big.bit_length() * 0.30103:.0f} digits)") from None
+        assignments.append(f"{key}={','.join(repr(x) for x in floats)}")
+    return assignments
+
+
 class NotebookLink:
     """vpython's connection to the notebook page, from the kernel's side: what the page sent, and when."""
 
@@ -101,17 +138,16 @@ def show(name: str = catalog.DEFAULT_SCENE, *, scenario: int | None = None, pres
     vpython was connected to has gone.
     """
     global _live
-    setup = catalog.configure(name, scenario=scenario, preset=preset, assignments=[
-        f"{key}={','.join(map(str, value)) if isinstance(value, (tuple, list)) else value}"
-        for key, value in constants.items()])
-    if integrator is not None and integrator not in INTEGRATORS:
-        raise ConstantError(f"unknown integrator {integrator!r} (choose from {', '.join(INTEGRATORS)})")
-    model = setup.build()
-    integrator = integrator or model.default_integrator or DEFAULT_INTEGRATOR
+    assignments = _checked_arguments(name, scenario, preset, integrator, constants)
     try:
+        setup = catalog.configure(name, scenario=scenario, preset=preset, assignments=assignments)
+        if integrator is not None and integrator not in INTEGRATORS:
+            raise ConstantError(f"unknown integrator {integrator!r} (choose from {', '.join(INTEGRATORS)})")
+        model = setup.build()
+        integrator = integrator or model.default_integrator or DEFAULT_INTEGRATOR
         check_live_cost(model, integrator)
-    except ValueError as problem:
-        raise ConstantError(str(problem)) from None
+    except ValueError as problem:   # ConstantError, or the physics refusing these constants: one line
+        raise ShowError(str(problem)) from None
     _require_notebook()
     _require_live_page()
     stop()

@@ -245,11 +245,13 @@ class SceneView:
                         continue
                 except ValueError as problem:  # a scene file a teacher broke: say so, keep this one
                     self.controls.say(f"<b>Cannot open that:</b> {problem}")
+                    self.controls.choice_refused(kind, self.setup.name)
                     continue
                 self.integrator = integrator or self.integrator
                 changes, integrator = {}, None
                 if self._switch(setup, preset=preset):
                     break
+                self.controls.choice_refused(kind, self.setup.name)
         if changes or integrator:
             self._rebuild(changes=changes, integrator=integrator or self.integrator)
         return bool(pending)

@@ -16,10 +16,23 @@ import stat
 import tempfile
 
 STDOUT = "-"                   # the file name that means standard output
+HANDOUT_MARK = "Written by the spring-mass simulator"   # in the header of every program it writes
+PROJECT = os.path.dirname(os.path.dirname(os.path.realpath(__file__)))
+OWN_FILES = ("main.py", "README.md", "pyproject.toml", ".gitignore", "physics", "scenes", "reports", "export",
+             "browser", "tests", "benchmarks", "docs", "examples", ".ci", ".git")   # in PROJECT; also requirements*
 
 
 class OutputError(ValueError):
     """An output file that cannot be written: a one-line message, found before the run starts."""
+
+
+def _real(path: str, *, what: str) -> str:
+    """os.path.realpath, but a relative path from a folder that was deleted is an OutputError."""
+    try:
+        return os.path.realpath(path)
+    except FileNotFoundError:   # os.getcwd(): the folder the command runs in is gone
+        raise OutputError(f"cannot write {what} {path!r}: the folder this command runs in no longer exists; "
+                          f"cd to a folder that exists, or give the full path") from None
 
 
 def _target(path: str, *, what: str) -> str:
@@ -32,11 +45,11 @@ def _target(path: str, *, what: str) -> str:
     try:
         mode = os.stat(path).st_mode       # follows links as the system does, /dev/stdout too
     except (FileNotFoundError, NotADirectoryError):   # a new file (a link to one), or no such folder
-        return os.path.realpath(path)
+        return _real(path, what=what)
     except OSError as problem:
         raise OutputError(f"cannot write {what} {path!r}: {problem.strerror or problem}") from None
     if stat.S_ISREG(mode) and not _is_a_standard_stream(path):
-        return os.path.realpath(path)
+        return _real(path, what=what)
     if stat.S_ISREG(mode):                 # /dev/stdout where the shell sends the output to a file
         raise OutputError(f"cannot write {what} {path!r}: it is this program's own standard input, "
                           f"output or error (to print the output, give - instead, where - is allowed)")
@@ -57,14 +70,35 @@ def _is_a_standard_stream(path: str) -> bool:
     return False
 
 
-def check_writable(path: str, *, what: str) -> None:
+def _refuse_foreign(path: str, target: str, *, what: str, overwrite: bool) -> None:
+    """Raise OutputError if target is one of this program's own files, or (unless `overwrite`) an
+    existing Python file it did not write: `--vpython main.py` or `--csv scenes/damped.py` would
+    break the program, and a student's own program is not ours to replace."""
+    inside = os.path.relpath(target, PROJECT).split(os.sep)
+    if inside[0] in OWN_FILES or (len(inside) == 1 and inside[0].startswith("requirements")):
+        raise OutputError(f"cannot write {what} {path!r}: it is one of this program's own files; "
+                          f"give another name")
+    if overwrite or not target.lower().endswith((".py", ".pyw")) or not os.path.isfile(target):
+        return
+    try:
+        with open(target, "rb") as file:
+            ours = HANDOUT_MARK.encode() in file.read(2000)
+    except OSError:
+        ours = False   # unreadable: not known to be ours
+    if not ours:
+        raise OutputError(f"cannot write {what} {path!r}: it is a Python file this program did not write; "
+                          f"give another name, or add --overwrite to replace it")
+
+
+def check_writable(path: str, *, what: str, overwrite: bool = False) -> None:
     """Raise OutputError if `path` cannot be written as a file (checked before a run starts).
 
     The check opens the file for writing, without changing one that exists and removing one it
     had to create, so it also catches what permission bits do not show (a read-only file system,
     /proc, a file standing where a folder should be, or running as root). A symbolic link is
     checked as the file it points to; a device, named pipe or socket is refused before it is
-    opened (see _target). "-" (standard output) is refused: the callers that can print to it
+    opened (see _target), and so are the program's own files and, unless `overwrite`, a Python file
+    it did not write (see _refuse_foreign). "-" (standard output) is refused: the callers that can print to it
     handle it before asking.
     """
     if path == STDOUT:
@@ -76,6 +110,7 @@ def check_writable(path: str, *, what: str) -> None:
     folder = os.path.dirname(target)
     if not os.path.isdir(folder):
         raise OutputError(f"cannot write {what} {path!r}: folder {folder!r} does not exist")
+    _refuse_foreign(path, target, what=what, overwrite=overwrite)
     existed = os.path.exists(target)
     try:
         with open(target, "ab"):
@@ -92,7 +127,8 @@ def _temporary_beside(target: str, *, what: str, shown: str) -> str:
     get (`shown`: the path as the user gave it, for the message)."""
     folder, name = os.path.split(target)
     try:
-        handle, temporary = tempfile.mkstemp(prefix=f".{name}.", suffix=".part", dir=folder)
+        # a short name of its own: a legal name of 255 bytes would be too long with a suffix added
+        handle, temporary = tempfile.mkstemp(prefix=".spring-", suffix=".part", dir=folder)
         os.close(handle)
         if os.path.exists(target):  # keep the old file's permissions, not mkstemp's private 0600
             os.chmod(temporary, os.stat(target).st_mode & 0o7777)
@@ -133,22 +169,25 @@ def same_file(first: str, second: str) -> bool:
         return first == second
     if os.path.exists(first) and os.path.exists(second):
         return os.path.samefile(first, second)
-    return os.path.realpath(first) == os.path.realpath(second)
+    try:
+        return os.path.realpath(first) == os.path.realpath(second)
+    except FileNotFoundError:   # the working folder was deleted: check_writable says so
+        return first == second
 
 
-def write_text(path: str, text: str, *, what: str) -> None:
+def write_text(path: str, text: str, *, what: str, overwrite: bool = False) -> None:
     """Write text to path whole (atomic_file); raises OutputError with one line if it cannot."""
-    check_writable(path, what=what)
+    check_writable(path, what=what, overwrite=overwrite)
     with atomic_file(path, what=what) as temporary:
         with open(temporary, "w", encoding="utf-8") as out:
             out.write(text)
 
 
-def check_path(path: str) -> None:
+def check_path(path: str, *, overwrite: bool = False) -> None:
     """Raise OutputError (one line) if a program cannot be written to path."""
-    check_writable(path, what="the program")
+    check_writable(path, what="the program", overwrite=overwrite)
 
 
-def write_program(path: str, text: str) -> None:
+def write_program(path: str, text: str, *, overwrite: bool = False) -> None:
     """Write a program to path whole: a temporary file in the same folder, then renamed over it."""
-    write_text(path, text, what="the program")
+    write_text(path, text, what="the program", overwrite=overwrite)

@@ -38,6 +38,10 @@ def _options(setup, preset: str | None) -> list[str] | None:
                 if value is not None and value != start.get(name)]
         if catalog.configure(setup.name, preset=preset, assignments=sets).values != setup.values:
             return None
+        for text in list(sets):   # b = 52.76… that the preset works out from m and k is left to it
+            fewer = [other for other in sets if other != text]
+            if catalog.configure(setup.name, preset=preset, assignments=fewer).values == setup.values:
+                sets = fewer
     except (ConstantError, ValueError):
         return None
     quoted = f'"{preset}"' if preset is not None and " " in preset else preset
@@ -55,4 +59,6 @@ def _short_label(setup, label: str) -> str:
 
 def _set_value(value) -> str:
     """A value as --set reads it: 2.5, or 0,-1.5,0 for a vector."""
-    return ",".join(number(x) for x in value) if isinstance(value, (tuple, list)) else number(value)
+    def exact(x):   # as short as number() writes it, unless that is not quite the value (17.400000000000002)
+        return number(x) if float(number(x)) == float(x) else repr(float(x))
+    return ",".join(exact(x) for x in value) if isinstance(value, (tuple, list)) else exact(value)

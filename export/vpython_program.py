@@ -53,7 +53,7 @@ import numpy as np
 
 from physics.integrators import INTEGRATORS
 from physics.simulate import steps_to_reach
-from scenes import DECLARED, summary
+from scenes import DECLARED, catalog, summary
 from scenes._view import DEFAULT_VIEW, MAX_DRAWN_MASSES
 
 from .exact_curve import exact_lines
@@ -66,7 +66,11 @@ from .program_masses import mass_count, masses, which_mass
 from .program_objects import objects
 
 WEB_FIRST_LINE = "Web VPython 3.2"
-IMPORTS = ["from vpython import *"]
+# vpython 7.6.5's own server listens on every network interface and serves any file on the disk to
+# a crafted request: the two lines after the import keep it on this computer (issue 20).
+IMPORTS = ["from vpython import *",
+           "import socket  # vpython's server would listen on every network: keep it on this computer only",
+           "socket.socket.bind = lambda s, a, bind=socket.socket.bind: bind(s, ('127.0.0.1', *a[1:]) if a[0] in ('', '0.0.0.0') else a)"]
 
 
 def program(setup, *, integrator: str | None = None, web: bool = False) -> str:
@@ -137,7 +141,9 @@ class _Case:
     def header(self) -> list[str]:
         methods = self.methods
         how = f"the {methods[0]} integrator" if len(set(methods)) == 1 else "each mass's own integrator (the list method)"
+        shipped = self.setup.values == catalog.configure(self.setup.name).values
         return [f"# {self.setup.name}: {summary(self.setup.module)}",
+                *([] if shipped else ["# (That is the scene as shipped; this case's constants are below.)"]),
                 f"# Written by the spring-mass simulator with {how}. Edit the constants and run it again.",
                 f"# The same case on the simulator's page: {command(self.setup, self.model, self.integrator)}"]
 
@@ -156,8 +162,9 @@ class _Case:
 
     def loop(self) -> list[str]:
         lines = ["", "# ---- the loop: one momentum update per step ----",
-                 commented("t = 0", "s: time, n·Δt after n steps"), "n = 0",
-                 _loop_condition(self.model), commented("    rate(1/dt)", "real time: 1/Δt steps a second")]
+                 commented("t = 0", "s: time, n·Δt after n steps"), "n = 0"]
+        lines += [line[4:] for line in self._each_mass(self.plot_position())]   # t = 0 (the exact curve from the first step)
+        lines += [_loop_condition(self.model), commented("    rate(1/dt)", "real time: 1/Δt steps a second")]
         lines += self._each_mass(self.update() + after_update_lines(self))
         lines += ["    n = n + 1", commented("    t = n*dt", "a whole number of steps: no round-off piles up")]
         return lines + self._each_mass(self.draw())
@@ -179,13 +186,17 @@ class _Case:
             body += ["    " + line for line in update(name, self.forces, r="pos[i]", p="p[i]", m=m)]
         return body
 
+    def plot_position(self) -> list[str]:
+        i = self.index
+        return [f"position{i}" + (f"[{k}]" if len(self.axes) > 1 else "") + f".plot(t, pos{i}.{axis})"
+                for k, axis in enumerate(self.axes)]
+
     def draw(self) -> list[str]:
         i, n, axes = self.index, self.constants.name, self.axes
         lines = [f"{'ball' if self.single else 'balls[i]'}.pos = pos{i}",
                  commented(f"spring{'' if self.single else 's[i]'}.axis = pos{i} - {n('anchor')}",
                            "the helix follows the sphere")]
-        lines += [f"position{i}" + (f"[{k}]" if len(axes) > 1 else "") + f".plot(t, pos{i}.{axis})"
-                  for k, axis in enumerate(axes)]
+        lines += self.plot_position()
         if self.exact is not None:
             lines += self.exact[1] if self.single else self.exact[0] + self.exact[1]
             lines += [f"exact{i}.plot(t, ({n('anchor')} + (s_eq + x)*u).{axes[0]})"]

@@ -35,6 +35,7 @@ TOLERANCE = 1e-14      # a spectral radius this close above 1 is round-off, not 
 # Δt (euler: ρ ≈ 1 + ½(ωΔt)²) from one that does not is growth comparable to (ωΔt)² itself.
 RELATIVE = 1e-3
 BISECTIONS = 60
+BOUNDARY = 1e-6        # the growth counted for a step exactly at the limit (an eigenvalue of −1)
 
 
 def amplification(method: str, *, omega, rate, dt: float) -> np.ndarray:
@@ -59,6 +60,10 @@ def amplification(method: str, *, omega, rate, dt: float) -> np.ndarray:
         det = x[:, 0] * v[:, 1] - x[:, 1] * v[:, 0]
         root = np.sqrt((trace * trace - 4.0 * det).astype(complex))
         radius = np.maximum(np.abs(trace + root), np.abs(trace - root)) / 2.0
+        # An eigenvalue of exactly −1 (1 + tr + det = 0) is the limit itself, ω·Δt = 2 for euler-cromer:
+        # the motion flips sign each step without decaying, and with no damping grows linearly.
+        radius = np.where(np.abs(1.0 + trace + det) <= 1e-12 * (1.0 + np.abs(trace) + np.abs(det)),
+                          np.maximum(radius, 1.0 + BOUNDARY), radius)
     return np.where(np.isfinite(radius), radius, np.inf).reshape(omega.shape)
 
 
@@ -269,4 +274,7 @@ def _message(method, *, dt, dt_max, cause, growth, omega, damping, drag, speed) 
     rule = (f", {entry.damped_rule}" if "damping" in cause and entry.damped_rule else
             f", ω·dt < {entry.omega_dt_limit:.3g}" if cause == "spring" and entry.omega_dt_limit else "")
     verb = "makes" if " and " not in cause else "make"
-    return f"dt = {dt:g} s, but {named} {verb} dt < {dt_max:.4g} s necessary for {method}{rule}"
+    limit, digits = f"{dt_max:.4g}", 6
+    while float(f"{dt:.{digits}g}") != dt and float(f"{dt:.{digits}g}") <= float(limit) and digits < 17:
+        digits += 1   # dt = 1.0000001 s against dt < 1 s, not dt = 1 s
+    return f"dt = {dt:.{digits}g} s, but {named} {verb} dt < {limit} s necessary for {method}{rule}"

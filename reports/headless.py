@@ -150,7 +150,13 @@ class Result:
                 f"t = {number(self.exact_valid_until(), 4)} s, {self.model.exact_limit}")
 
 
-def step_count(engine, *, until: float, rows_per_step: float = 0.0) -> int:
+def shortest_until(setup) -> float:
+    """The least `until` the scene accepts, s: the end of its measuring window (resonance), else 0."""
+    window = getattr(setup.module, "measure_window", None)
+    return float(window(setup.values)[1]) if window is not None else 0.0
+
+
+def step_count(engine, *, until: float, rows_per_step: float = 0.0, shortest: float = 0.0) -> int:
     """How many steps of Δt the engine (physics.simulate.Simulation) takes to `until`, if it fits in time.
 
     Raises TooManySteps, before any step is taken, when the run would take longer than
@@ -159,7 +165,7 @@ def step_count(engine, *, until: float, rows_per_step: float = 0.0) -> int:
     cost once, so asking again for the same engine costs nothing.
     """
     try:
-        return check_cost(engine, until=until, extra_per_step=rows_per_step * ROW_SECONDS)
+        return check_cost(engine, until=until, extra_per_step=rows_per_step * ROW_SECONDS, shortest=shortest)
     except RunTooLong as problem:
         raise TooManySteps(problem.worded("--until")) from None
 
@@ -180,7 +186,8 @@ def simulate(setup, *, model=None, integrator: str | None = None, until: float |
     until = model.until if until is None else until
     if "until" in setup.values and setup.values["until"] != until:  # report the until that was run
         setup = setup.with_values(until=float(until))
-    step_count(engine, until=until, rows_per_step=model.state.count if every_step else 0)
+    step_count(engine, until=until, rows_per_step=model.state.count if every_step else 0,
+               shortest=shortest_until(setup))
     window = getattr(setup.module, "measure_window", None)
     if window is not None and window(setup.values)[1] > until:
         start, end = window(setup.values)
@@ -194,21 +201,37 @@ def simulate(setup, *, model=None, integrator: str | None = None, until: float |
         record = None if window is None else time_grid(
             model.dt, t0=model.state.t, dt=model.dt, **dict(zip(("start", "end"), window(setup.values))))
     stream = sys.stderr if progress == "stderr" else progress     # looked up now, not at import
-    samples = engine.run_until(until, record=record, progress=_progress_printer(stream))
+    printer = _progress_printer(stream)
+    try:
+        samples = engine.run_until(until, record=record, progress=printer)
+    finally:   # on a terminal the line is redrawn in place: end it, so what follows starts a line
+        if printer is not None:
+            printer.end()
     return Result(setup=setup, model=model, methods=engine.methods,
                   trajectory=trajectory(engine, samples), steps=engine.steps)
 
 
-def _progress_printer(stream):
-    """progress(done, total, t) for the engine: a line on `stream` (one line, redrawn, on a terminal)."""
-    if stream is None:
-        return None
-    tty = hasattr(stream, "isatty") and stream.isatty()
+class _ProgressLine:
+    """progress(done, total, t) for the engine: a line on `stream` (one line, redrawn, on a terminal);
+    end() finishes a redrawn line, whether the run ended, failed or was interrupted."""
 
-    def progress(done, total, t):
+    def __init__(self, stream):
+        self.stream, self.open = stream, False
+        self.tty = hasattr(stream, "isatty") and stream.isatty()
+
+    def __call__(self, done, total, t):
         line = f"running: {done:,} of {total:,} steps ({100 * done // total} %), t = {number(t)} s"
-        print(("\r" + line) if tty else line, end="" if tty else "\n", file=stream, flush=True)
-    return progress
+        print(("\r" + line) if self.tty else line, end="" if self.tty else "\n", file=self.stream, flush=True)
+        self.open = self.tty
+
+    def end(self):
+        if self.open:
+            self.open = False
+            print(file=self.stream, flush=True)
+
+
+def _progress_printer(stream):
+    return None if stream is None else _ProgressLine(stream)
 
 
 def stop_note(model, *, until: float) -> str | None:
@@ -299,6 +322,9 @@ def final_report(result: Result) -> str:
         lines.append(f"energy: K = {number(e['K'])} J, U = {number(e['U'])} J, E = {number(e['E'])} J, "
                      f"W_nc = {number(e['W_nc'])} J, E − W_nc = {number(e['E_minus_W_nc'])} J "
                      f"({number(traj.energy['E_minus_W_nc'][0])} J at the start)")
+    extra = getattr(result.setup.module, "extra_text", None)  # a scene's own results: resonance's curves
+    if extra is not None:
+        lines.append(extra(result))
     return "\n".join(lines)
 
 
@@ -309,7 +335,13 @@ def constants_report(setup) -> str:
     rows = [(f"{name} = {format_value(setup.values[name], constant.unit)}", constant.meaning)
             for name, constant in setup.constants.items()]
     width = max(len(left) for left, _ in rows)
-    return "\n".join(f"{left:<{width}}   {meaning}" for left, meaning in rows)
+    lines = [f"{left:<{width}}   {meaning}" for left, meaning in rows]
+    m, k, dt = (setup.values.get(name) for name in ("m", "k", "dt"))
+    if all(isinstance(x, (int, float)) for x in (m, k)) and k > 0:   # worked out from the values in use
+        omega0 = math.sqrt(k / m)
+        lines.append(f"so: ω0 = √(k/m) = {number(omega0, 4)} rad/s, T = 2π/ω0 = {number(2 * math.pi / omega0, 4)} s"
+                     + (f", ω0·dt = {number(omega0 * dt, 4)}" if isinstance(dt, (int, float)) else ""))
+    return "\n".join(lines)
 
 
 # ---- JSON ----

@@ -12,6 +12,7 @@ with the Agg backend so no window is needed.
 """
 from __future__ import annotations
 
+import os
 import sys
 
 import numpy as np
@@ -33,12 +34,21 @@ class MissingMatplotlib(OutputError):
 
 
 def _pyplot():
+    """matplotlib's pyplot drawing to files (Agg), whatever MPLBACKEND says: the figure needs no window."""
+    backend = os.environ.pop("MPLBACKEND", None)   # matplotlib refuses to load with a misspelt one
     try:
         import matplotlib
+        matplotlib.use("Agg")
+        import matplotlib.pyplot as plt
     except ImportError:
         raise MissingMatplotlib() from None
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    except Exception as problem:   # a broken installation: say so in one line, not as our bug
+        text = " ".join(str(problem).split())
+        raise OutputError(f"--plot cannot load matplotlib ({type(problem).__name__}: {text}); "
+                          f"reinstall it: {sys.executable} -m pip install --force-reinstall matplotlib") from None
+    finally:
+        if backend is not None:
+            os.environ["MPLBACKEND"] = backend
     return plt
 
 

@@ -6,7 +6,10 @@ like PATH): a teacher's own scenes, kept outside the project. Nothing lists them
 may set MENU_ORDER (a number; lower comes first, default 100) to place itself in --list and in the
 page's scene menu. MENU_ORDER is read from the file without running it, and a scene file runs only
 when that scene is asked for, so a typo in one file is one error naming its line and leaves the
-other scenes usable. Importing a scene module never imports vpython; the browser is separate.
+other scenes usable. --list reads each scene's description and scenarios the same way. A file that
+is not a regular file (a named pipe), is bigger than MAX_SCENE_BYTES, has no build function (a
+handed-out program) or has a name the package's own code uses is left out, with why (SKIPPED).
+Importing a scene module never imports vpython; the browser is separate.
 
 A preset is a named set of constant changes, kept as data: `(label, {name: value})`. The same
 list feeds the command line (`--preset NAME`) and the page's preset menu. Every scene offers the
@@ -32,6 +35,7 @@ import importlib
 import inspect
 import linecache
 import os
+import stat
 import sys
 import textwrap
 import traceback
@@ -54,30 +58,117 @@ FOLDERS = [Path(__file__).parent] + [Path(folder).absolute() for folder in
 sys.modules[__package__].__path__.extend(str(folder) for folder in FOLDERS[1:])
 
 
-def _scene_files() -> dict[str, Path]:
-    """Every scene's name and file, from the first folder that has a file of that name."""
-    found = {}
+MAX_SCENE_BYTES = 1_000_000   # a scene file is a page of text; a bigger file is not read at all
+# Names the scenes package already gives to its own code: a scene file called `catalog.py` would
+# replace `scenes.catalog` when it runs (tests/test_adversarial.py checks this list is complete).
+RESERVED = {"catalog", "load", "configure", "presets", "resolve", "scenarios", "summary", "find_preset",
+            "check_value", "format_value", "parse_assignments", "read_constants", "DECLARED", "Constant",
+            "ConstantError", "Model", "Setup", "CRITICAL_DAMPING", "DEFAULT_SCENE", "GRAVITY_PRESETS",
+            "SCENE_NAMES"}
+
+
+def _source(path: Path) -> bytes:
+    """A scene file's text, read without running it; OSError if it is not a regular file (a named
+    pipe or a link to /dev/stdin would wait for ever), or too big to be a scene."""
+    info = os.stat(path)   # follows a link to what it points at
+    if not stat.S_ISREG(info.st_mode):
+        raise OSError(f"it is not a regular file, so it was not read")
+    if info.st_size > MAX_SCENE_BYTES:
+        raise OSError(f"it is {info.st_size:,} bytes, more than a scene file's {MAX_SCENE_BYTES:,}, "
+                      f"so it was not read")
+    with open(path, "rb") as file:
+        return file.read(MAX_SCENE_BYTES + 1)
+
+
+def _scene_files() -> tuple[dict[str, Path], dict[str, str]]:
+    """Every scene's name and file, from the first folder that has a file of that name; and the
+    files left out, with why (not a regular file, too big, a name the program's code has taken, or
+    a program that is not a scene: it has no build function)."""
+    found, skipped = {}, {}
     for folder in FOLDERS:
         for path in sorted(folder.glob("[!_]*.py")):
-            found.setdefault(path.stem, path)
-    return found
+            if path.stem in found or path.stem in skipped:
+                continue
+            try:
+                tree = _tree(path)
+            except OSError as problem:
+                skipped[path.stem] = f"{shown_path(path)}: {problem}"
+                continue
+            except Exception:   # a syntax error: listed, and named when the scene is asked for
+                tree = None
+            if path.stem in RESERVED:
+                skipped[path.stem] = (f"{shown_path(path)}: the name {path.stem!r} is taken by the "
+                                      f"simulator's own code (scenes.{path.stem}); rename the file")
+            elif tree is not None and not _defines_build(tree):
+                skipped[path.stem] = (f"{shown_path(path)} is not a scene: it has no build function "
+                                      f"(`def build(**constants):` after the constants block)")
+            else:
+                found[path.stem] = path
+    return found, skipped
+
+
+_TREES: dict[Path, ast.Module] = {}
+
+
+def _tree(path: Path) -> ast.Module:
+    """The file's syntax tree, read once (never run): OSError or SyntaxError as they come."""
+    if path not in _TREES:
+        _TREES[path] = ast.parse(_source(path), filename=str(path))
+    return _TREES[path]
+
+
+def _defines_build(tree: ast.Module) -> bool:
+    for node in tree.body:
+        if isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef)) and node.name == "build":
+            return True
+        if isinstance(node, ast.Assign) and any(getattr(target, "id", None) == "build" for target in node.targets):
+            return True
+        if isinstance(node, (ast.Import, ast.ImportFrom)) and any(
+                (alias.asname or alias.name) == "build" for alias in node.names):
+            return True
+    return False
+
+
+def _assigned(tree: ast.Module, name: str):
+    """The literal value of the file's last top-level `name = ...`, or None (not there, or not a literal)."""
+    value = None
+    for node in tree.body:
+        if isinstance(node, ast.Assign) and any(getattr(target, "id", None) == name for target in node.targets):
+            try:
+                value = ast.literal_eval(node.value)
+            except (ValueError, TypeError, SyntaxError, MemoryError, RecursionError):
+                value = None
+    return value
 
 
 def _menu_order(path: Path):
     """A scene's MENU_ORDER, read from its file without running it: 100 where it sets no number
     (or the file cannot be read at all; load() says why when the scene is asked for)."""
-    order = 100
     try:
-        for node in ast.parse(path.read_bytes()).body:
-            if isinstance(node, ast.Assign) and any(getattr(target, "id", None) == "MENU_ORDER"
-                                                    for target in node.targets):
-                order = ast.literal_eval(node.value)
+        order = _assigned(_tree(path), "MENU_ORDER")
     except Exception:  # whatever is in one file, the other scenes stay usable
         return 100
     return order if isinstance(order, (int, float)) and not isinstance(order, bool) else 100
 
 
-SCENE_FILES = _scene_files()
+def describe(name: str) -> tuple[str, list[str]]:
+    """A scene's one-line description and its scenarios' labels, read from its file without running
+    it (--list): ConstantError for an unknown scene or a file that is not valid Python."""
+    if name not in SCENE_FILES:
+        load(name)   # says why
+    path = SCENE_FILES[name]
+    try:
+        tree = _tree(path)
+    except Exception as problem:
+        raise ConstantError(_broken_file_message(path, problem)) from None
+    doc = ast.get_docstring(tree) or ""
+    scenarios = _assigned(tree, "SCENARIOS")
+    labels = [item[0] for item in scenarios if isinstance(item, (tuple, list)) and item and
+              isinstance(item[0], str)] if isinstance(scenarios, (list, tuple)) else []
+    return (doc.strip().splitlines() or [""])[0], labels
+
+
+SCENE_FILES, SKIPPED = _scene_files()
 SCENE_NAMES = sorted(SCENE_FILES, key=lambda name: (_menu_order(SCENE_FILES[name]), name))
 
 GRAVITY_PRESETS = {                # m/s², the strength of gravity at the surface
@@ -94,13 +185,18 @@ def load(name: str):
     Raises ConstantError with the closest name for an unknown scene, and with the file, the line and
     what is wrong for a scene file that cannot run: a typo in one scene leaves the others usable.
     """
+    if not name.strip():
+        raise ConstantError(f"the scene name is empty: give one, like {DEFAULT_SCENE!r} "
+                            f"(run 'python main.py --list' to see them)")
+    if name in SKIPPED:
+        raise ConstantError(SKIPPED[name])
     if name not in SCENE_NAMES:
         close = difflib.get_close_matches(name, SCENE_NAMES, n=1, cutoff=0.5)
         hint = f"; did you mean {close[0]!r}?" if close else ""
         raise ConstantError(f"unknown scene {name!r}{hint} (run 'python main.py --list' to see them)")
     try:
         return importlib.import_module(f"{__package__}.{name}")
-    except Exception as problem:  # anything a scene file can get wrong, from a typo to a bad import
+    except (Exception, SystemExit) as problem:  # anything a scene file can get wrong, from a typo to sys.exit()
         raise ConstantError(_broken_file_message(SCENE_FILES[name], problem)) from None
 
 
@@ -112,7 +208,10 @@ def _broken_file_message(path: Path, problem: Exception) -> str:
     else:   # the last line of this file that ran: the assignment, call or import that failed
         lines = [frame.lineno for frame in traceback.extract_tb(problem.__traceback__)
                  if os.path.abspath(frame.filename) == os.path.abspath(path)]
-        where, line, what = path, lines[-1] if lines else None, f"{type(problem).__name__}: {problem}"
+        what = (f"{type(problem).__name__}: {problem}" if not isinstance(problem, SystemExit) else
+                "it calls sys.exit() (raises SystemExit), which would end the whole program; a scene "
+                "file only sets its constants and defines build")
+        where, line = path, lines[-1] if lines else None
         text = linecache.getline(str(path), line) if line else ""
     message = f"{shown_path(where)}{f', line {line}' if line else ''}: {what}"
     if text.strip():
@@ -251,7 +350,14 @@ class Setup:
     values: dict
 
     def build(self) -> Model:
-        return self.module.build(**self.values)
+        """The scene's model. A ValueError is the physics refusing these constants; anything else
+        (a teacher's typo inside build, a sys.exit()) is a ConstantError naming the file and line."""
+        try:
+            return self.module.build(**self.values)
+        except ValueError:
+            raise
+        except (Exception, SystemExit) as problem:
+            raise ConstantError(_broken_file_message(Path(self.module.__file__), problem)) from None
 
     def with_values(self, **changes) -> "Setup":
         return Setup(self.name, self.module, self.constants, resolve({**self.values, **changes}))

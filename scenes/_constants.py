@@ -204,11 +204,23 @@ def parse_value(name: str, text: str):
             vector = ()
         if len(vector) != 3:
             raise ConstantError(f"{name} needs a 3-vector written like {name}=0,-1.5,0 (got {text!r})")
+        for part, x in zip(parts, vector):
+            _refuse_underflow(name, part, x)
         return vector
     try:
-        return float(text)
+        value = float(text)
     except ValueError:
         raise ConstantError(f"{name} needs a number (got {text!r})") from None
+    _refuse_underflow(name, text, value)
+    return value
+
+
+def _refuse_underflow(name: str, text: str, value: float) -> None:
+    """`1e-400` is read as 0 (too small for a double), which would switch a force off unasked."""
+    mantissa = text.strip().lower().partition("e")[0]
+    if value == 0 and any(digit in mantissa for digit in "123456789"):
+        raise ConstantError(f"{name} = {text.strip()} is too small for the computer to tell from 0; "
+                            f"write 0 to switch it off, or give at least {_short(SMALLEST)} in size")
 
 
 def check_value(name: str, value, unit: str = "") -> None:

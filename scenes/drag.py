@@ -28,12 +28,12 @@ from ._row import anchors_in_a_row, exact_row, row_anchors, row_loop, row_starts
 
 # ---- constants: edit these (unit: meaning); 0 switches a force off ----
 m = 0.27                   # kg: mass of each ball (a volleyball)
-k = 10.0                   # N/m: spring constant of each spring (ω0 = √(k/m) ≈ 6.1 rad/s, T ≈ 1.0 s)
+k = 10.0                   # N/m: spring constant of each spring
 L0 = 1.0                   # m: relaxed length of each spring
 g = 9.8                    # m/s²: strength of gravity, acting along −y (it only moves the equilibrium)
 b = 0.0229                 # kg/s: linear damping constant of the left ball, in F = −b v
 C = 0.47                   # 1: drag coefficient of the right ball (a sphere), in F = −½ C A ρ |v| v
-A = 0.0314                 # m²: cross-section area of the right ball, π (0.1 m)²
+A = 0.0314                 # m²: cross-section area of the right ball, π r²
 rho = 1.2                  # kg/m³: density of air at room temperature
 x0 = 0.5                   # m: start stretch below equilibrium, the same for both
 spacing = 1.0              # m: distance between the two anchors along x

@@ -19,12 +19,12 @@ from ._row import anchors_in_a_row, exact_row, row_anchors, row_loop, row_starts
 
 # ---- constants: edit these (unit: meaning); 0 switches a force off ----
 m = 1.0                    # kg: mass of each block
-k = 25.0                   # N/m: spring constant of each spring (ω = √(k/m) = 5 rad/s, T ≈ 1.26 s)
+k = 25.0                   # N/m: spring constant of each spring
 L0 = 1.0                   # m: relaxed length of each spring
 x0 = 0.15                  # m: start stretch beyond the relaxed length, the same for all four
 spacing = 0.6              # m: distance between neighbouring anchors, down the wall
-dt = 0.06                  # s: time step Δt, the same for all four (ω Δt = 0.3)
-until = 3.0                # s: how long to run (about two and a half periods)
+dt = 0.06                  # s: time step Δt, the same for all four
+until = 3.0                # s: how long to run
 # ---- end of constants ----
 
 MENU_ORDER = 7               # where it stands in --list and the page's scene menu

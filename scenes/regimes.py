@@ -25,7 +25,7 @@ from ._row import MassList, anchors_in_a_row, exact_row, row_anchors, row_loop, 
 
 # ---- constants: edit these (unit: meaning); 0 switches a force off ----
 m = 1.0                    # kg: mass of each block
-k = 16.0                   # N/m: spring constant of each spring (ω0 = √(k/m) = 4 rad/s)
+k = 16.0                   # N/m: spring constant of each spring
 L0 = 1.0                   # m: relaxed length of each spring
 g = 9.8                    # m/s²: strength of gravity, acting along −y (it only moves the equilibrium)
 b = 8.0                    # kg/s: damping of the middle oscillator, critical 2√(mk) (None: recompute that)

@@ -31,7 +31,7 @@ from ._row import MassList, anchors_in_a_row, exact_row, row_anchors, row_loop, 
 
 # ---- constants: edit these (unit: meaning); 0 switches a force off ----
 m = 1.0                    # kg: mass of each block
-k = 25.0                   # N/m: spring constant of each spring (ω0 = √(k/m) = 5 rad/s)
+k = 25.0                   # N/m: spring constant of each spring
 L0 = 1.0                   # m: relaxed length of each spring
 g = 9.8                    # m/s²: strength of gravity, acting along −y (it only moves the equilibrium)
 F0 = 1.0                   # N: driving force amplitude in F = F0 cos(ω t), up and down
@@ -40,7 +40,7 @@ b_ratio = 2.0              # 1: each further resonance curve has b times this
 curves = 3                 # 1: number of resonance curves (damping constants b, b·ratio, b·ratio², …)
 omega_min = 2.0            # rad/s: driving angular frequency of the leftmost spring
 omega_max = 8.0            # rad/s: driving angular frequency of the rightmost spring
-count = 13                 # 1: number of springs in each row (driving frequencies per curve, 0.5 rad/s apart)
+count = 13                 # 1: number of springs in each row (driving frequencies per curve, omega_min to omega_max)
 spacing = 0.4              # m: distance between neighbouring anchors along x
 settle = 40.0              # s: time for the transient to die away before measuring
 periods = 3.0              # 1: periods of the slowest driving frequency over which to measure
@@ -253,6 +253,35 @@ def extra_json(result) -> dict:
         out["amplitude_note"] = (f"the amplitudes are measured from t = {start:g} s to {end:.4g} s; "
                                  f"run until at least {end:.4g} s (--until or --set until=...)")
     return {"resonance": out}
+
+
+def extra_text(result) -> str:
+    """The resonance curves for the headless report: a table of A against ω, measured from the run
+    and exact, one pair of columns per b (the numbers --json gives, as a teacher reads them)."""
+    v = result.setup.values
+    measured = amplitudes(result.setup, result.model, result.trajectory)
+    omega, b_each, omega_all, b_all = _grid_of(v)
+    exact = curve_amplitude(v, b=b_all, omega=omega_all).reshape(len(b_each), len(omega))
+    start, end = measure_window(v)
+    if measured is None:
+        return (f"amplitudes: none, the run ended before the measuring window (t = {start:g} s to "
+                f"{end:.4g} s) did; run until at least {end:.4g} s (--until or --set until=...)")
+
+    def shown(A):
+        return f"{A:.4g}" if np.isfinite(A) else "unbounded"
+    heads = [f"b = {b_j:.4g} kg/s" for b_j in b_each]
+    width = max(9, *(len(head) for head in heads))
+    lines = [f"steady-state amplitude A (m) against the driving frequency ω, measured from t = {start:g} s "
+             f"to {end:.4g} s; exact A = F0 / √((k − m ω²)² + (b ω)²)",
+             f"{'ω (rad/s)':<10}" + "".join(f"  {head:<{2 * width + 1}}" for head in heads),
+             f"{'':<10}" + "".join(f"  {'measured':<{width}} {'exact':<{width}}" for _ in heads)]
+    for n, omega_n in enumerate(omega):
+        lines.append(f"{omega_n:<10.4g}" + "".join(
+            f"  {shown(measured.amplitude[j, n]):<{width}} {shown(exact[j, n]):<{width}}"
+            for j in range(len(b_each))))
+    if not np.all(np.isfinite(exact)):
+        lines.append(f"unbounded where {_unbounded_words(v)}")
+    return "\n".join(line.rstrip() for line in lines)
 
 
 def _unbounded_words(v) -> str:

@@ -18,7 +18,7 @@ F0 = 0.0                   # N: driving force amplitude in F = F0 cos(ω t)
 omega = 0.0                # rad/s: driving angular frequency ω (rad/s, not Hz; f = ω / 2π)
 drive_axis = (1, 0, 0)     # 1: direction of the driving force
 anchor = (0, 0, 0)         # m: top end of the spring, fixed to the ceiling
-r0 = (0, -1.5, 0)          # m: start position (spring stretched to 1.5 m below the anchor)
+r0 = (0, -1.5, 0)          # m: start position, below the anchor (the spring stretched)
 v0 = (0, 0, 0)             # m/s: start velocity (released from rest)
 dt = 0.1                   # s: time step Δt of the momentum update
 until = 0.2                # s: question time: where is the mass then?

@@ -22,6 +22,10 @@ CHROMIUM_ARGS = ["--no-sandbox", "--use-gl=angle", "--use-angle=swiftshader",
                  "--enable-unsafe-swiftshader", "--disable-background-networking",
                  "--disable-component-update", "--disable-sync", "--no-first-run"]
 TIME = re.compile(r"^\s*t = (-?\d+\.\d+) s\s*$")   # the caption's `t = 12.34 s`
+# Playwright's own default, 30 s for a click, a screenshot or a page load, is exceeded on a busy
+# 2-core machine running the whole suite (software WebGL makes each screenshot take seconds). Each
+# of those waits for an event, so a generous limit costs nothing when the machine is quick.
+PATIENCE_MS = 120_000
 
 
 def require_browser():
@@ -42,9 +46,29 @@ def launched(sync_api, *extra_args):
     with sync_api.sync_playwright() as playwright:
         chromium = playwright.chromium.launch(executable_path=CHROMIUM, args=CHROMIUM_ARGS + list(extra_args))
         try:
-            yield chromium
+            yield patient(chromium)
         finally:
             chromium.close()
+
+
+def patient(chromium):
+    """The browser, whose new pages and contexts wait up to PATIENCE_MS for each event by default."""
+    new_page, new_context = chromium.new_page, chromium.new_context
+
+    def patient_page(*args, **kwargs):
+        page = new_page(*args, **kwargs)
+        page.set_default_timeout(PATIENCE_MS)
+        page.set_default_navigation_timeout(PATIENCE_MS)
+        return page
+
+    def patient_context(*args, **kwargs):
+        context = new_context(*args, **kwargs)
+        context.set_default_timeout(PATIENCE_MS)
+        context.set_default_navigation_timeout(PATIENCE_MS)
+        return context
+
+    chromium.new_page, chromium.new_context = patient_page, patient_context
+    return chromium
 
 
 def screenshot_folder() -> Path:

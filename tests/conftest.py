@@ -61,6 +61,19 @@ def oscillation_energy():
     return _oscillation_energy
 
 
+# ---- a busy machine: the browser tests get longer than pyproject's 300 s each ----
+
+BROWSER_TIMEOUT = 900   # s: starting Jupyter and Chromium, and software WebGL, on a busy 2-core machine
+
+
+def pytest_collection_modifyitems(config, items):
+    """A browser test may set up a notebook server and a browser before its first step (a test run
+    alone by its id does all that itself): pytest-timeout's 300 s is not enough on a busy machine."""
+    for item in items:
+        if item.get_closest_marker("browser") and not item.get_closest_marker("timeout"):
+            item.add_marker(pytest.mark.timeout(BROWSER_TIMEOUT))
+
+
 # ---- using the project leaves the repository as it was ----
 
 def _git_status() -> str | None:

@@ -100,6 +100,9 @@ BAD = [
     ("resonance --headless --set b_ratio=1000 --set curves=5", 2, "more than the 1e+06 kg/s b may be"),
     ("regimes --headless --set k=1e-320", 2, "k must be 0 or at least 1e-9 N/m in size"),
     ("vertical --headless --set v0=0,1e-300,0", 2, "v0 must be 0 or at least 1e-9 m/s in size"),
+    ("vertical --headless --set k=1e-400", 2, "k = 1e-400 is too small for the computer to tell from 0; write 0"),
+    ("vertical --headless --set b=-0.5e-999", 2, "b = -0.5e-999 is too small"),
+    ("vertical --headless --set r0=0,-1.5,1e-400", 2, "r0 = 1e-400 is too small"),
     ("driven --headless --set x0=-3", 2, "a mass starts at its spring's anchor"),
     ("vertical --vpython x.py --set r0=0,0,0", 2, "a mass starts at its spring's anchor"),
     ("pendulum --no-browser --set r0=0,0,0", 2, "a mass starts at its spring's anchor"),
@@ -136,7 +139,8 @@ BAD = [
     # ---- flags that conflict, or do nothing in the chosen mode ----
     ("vertical --json", 2, "--json needs --headless"),
     ("vertical --csv x.csv", 2, "--csv needs --headless"),
-    ("vertical --until 3", 2, "--until needs --headless"),
+    ("vertical --until 3", 2, "--until needs --headless, or --vpython or --webvpython"),
+    ("vertical --vpython x.py --until -1", 2, "--until must be"),
     ("--list --set k=abc", 2, "--list takes no scene or other option (got --set)"),
     ("--list vertical", 2, "--list takes no scene"),
     ("--list --headless", 2, "--list takes no scene or other option (got --headless)"),
@@ -176,6 +180,11 @@ BAD = [
     ("vertical --webvpython x.py --no-browser", 2, "--no-browser is for the browser page"),
     ("integrators --headless --integrator rk4", 2, "would do nothing; leave it out"),
     ("integrators --vpython x.py --integrator euler", 2, "would do nothing"),
+    ("vertical --headless --overwrite", 2, "--overwrite does nothing without a file to write"),
+    ("vertical --vpython vpython.py", 2, "a program called vpython.py cannot run: its `from vpython import *` "
+                                         "would import the program itself"),
+    ("vertical --vpython VPython.py --webvpython web.py", 2, "a program called VPython.py cannot run"),
+    ("--list --overwrite", 2, "--list takes no scene or other option (got --overwrite)"),
 ]
 
 # Inputs that would run for minutes or hours: the engine's cost limit (physics.simulate.check_cost)
@@ -407,3 +416,444 @@ def test_ctrl_c_while_the_browser_view_waits_for_a_browser_is_one_line_and_statu
     assert process.returncode == 130, err
     assert err.splitlines() == ["stopped: interrupted (Ctrl-C); no file was left half-written"], err
     assert os.listdir(tmp_path) == []
+
+
+# ---- issue 20: hardening, round three ----
+
+def run_main(*argv, cwd=None, env=None, timeout=120, **options):
+    """`python main.py ARGV` as a user runs it, with extra environment variables."""
+    streams = {"stdout": subprocess.PIPE, "stderr": subprocess.PIPE, **options}
+    return subprocess.run([sys.executable, str(ROOT / "main.py"), *argv], cwd=cwd or ROOT,
+                          env={**os.environ, **(env or {})}, timeout=timeout, **streams)
+
+
+@pytest.mark.parametrize("encoding, argv", [
+    ("ascii", "vertical --headless"), ("ascii", "vertical --headless --json"), ("ascii", "vertical --steps 2"),
+    ("ascii", "--list"), ("ascii", "integrators --constants"), ("ascii", "--help"),
+    ("ascii", "vertical --headless --set g=-1"), ("cp1252", "damped --steps 2"), ("latin-1", "--help")])
+def test_every_output_works_in_a_terminal_that_cannot_write_the_symbols(encoding, argv):
+    """A Windows console (cp1252), an ASCII pipe or a latin-1 locale once ended every command with
+    'unexpected UnicodeEncodeError': now Δt is written dt, ω omega, √ sqrt, ² ^2, − -."""
+    from reports.terminal import spell
+
+    done = run_main(*argv.split(), env={"PYTHONIOENCODING": encoding})
+    assert done.returncode == (2 if "g=-1" in argv else 0), done.stderr
+    assert b"UnicodeEncodeError" not in done.stderr and b"Traceback" not in done.stderr
+    if encoding == "ascii":   # exactly the UTF-8 output, each symbol spelled out
+        utf8 = run_main(*argv.split(), env={"PYTHONIOENCODING": "utf-8"})
+        assert done.stdout.decode("ascii") == spell(utf8.stdout.decode("utf-8"))
+        assert done.stderr.decode("ascii") == spell(utf8.stderr.decode("utf-8"))
+    else:
+        assert done.stdout.decode(encoding)
+
+
+def test_the_ascii_spellings_read_as_a_student_would_type_them():
+    from reports.terminal import spell
+
+    assert spell("Δt = 0.1 s, ω = √(k/m), g = 9.8 m/s², b/m = 4 s⁻¹, x = −1.7") == \
+        "dt = 0.1 s, omega = sqrt(k/m), g = 9.8 m/s^2, b/m = 4 s^-1, x = -1.7"
+    assert spell("kg·m/s, L̂, û") == "kg*m/s, L, u"
+
+
+def test_a_closed_standard_output_is_one_line_and_status_2_not_a_lost_report(tmp_path):
+    """`main.py vertical --headless >&-` once printed nothing and exited 0."""
+    done = run_main("vertical", "--headless", cwd=tmp_path, stdout=None, preexec_fn=lambda: os.close(1))
+    assert done.returncode == 2
+    assert done.stderr.decode().splitlines() == [
+        "error: cannot print the output: standard output is closed (the command was started with >&- or "
+        "without a console); redirect it to a file"]
+
+
+@pytest.mark.skipif(not os.path.exists("/dev/full"), reason="needs /dev/full (Linux)")
+def test_a_full_disk_under_standard_output_is_one_line_not_a_bug(tmp_path):
+    with open("/dev/full", "w") as full:
+        done = run_main("vertical", "--headless", "--json", cwd=tmp_path, stdout=full)
+    assert done.returncode == 2
+    assert done.stderr.decode().splitlines() == ["error: cannot print the output: No space left on device"]
+
+
+@pytest.mark.parametrize("argv", ["vertical --headless --csv x.csv", "vertical --vpython x.py --webvpython y.py"])
+def test_a_relative_path_from_a_deleted_folder_is_one_line_not_a_bug(argv, tmp_path, monkeypatch, capsys):
+    folder = tmp_path / "gone"
+    folder.mkdir()
+    monkeypatch.chdir(folder)
+    folder.rmdir()
+    assert main.run(argv.split()) == 2
+    out, err = capsys.readouterr()
+    assert err.splitlines() == [f"error: cannot write {'CSV file' if 'csv' in argv else 'the program'} "
+                                f"'x.{'csv' if 'csv' in argv else 'py'}': the folder this command runs in no "
+                                f"longer exists; cd to a folder that exists, or give the full path"]
+    assert os.listdir(tmp_path) == []
+
+
+def test_a_misspelt_matplotlib_backend_does_not_stop_the_figure(tmp_path):
+    """MPLBACKEND=nonsense made matplotlib refuse to load ('unexpected ValueError'); the figure is
+    drawn to a file whatever the backend, so it is left aside."""
+    done = run_main("vertical", "--plot", "v.png", cwd=tmp_path, env={"MPLBACKEND": "nonsense"})
+    assert done.returncode == 0 and done.stderr == b"", done.stderr
+    assert os.listdir(tmp_path) == ["v.png"]
+
+
+def test_a_broken_matplotlib_is_one_line_naming_it(tmp_path):
+    (tmp_path / "matplotlib").mkdir()
+    (tmp_path / "matplotlib" / "__init__.py").write_text("raise RuntimeError('half installed')\n")
+    done = run_main("vertical", "--plot", "v.png", cwd=tmp_path, env={"PYTHONPATH": str(tmp_path)})
+    assert done.returncode == 2
+    lines = done.stderr.decode().splitlines()
+    assert len(lines) == 1 and lines[0].startswith(
+        "error: --plot cannot load matplotlib (RuntimeError: half installed); reinstall it"), lines
+    assert os.listdir(tmp_path) == ["matplotlib"]
+
+
+@pytest.mark.parametrize("argv", ["vertical --vpython main.py", "vertical --headless --csv scenes/damped.py",
+                                  "vertical --vpython scenes/_model.py --overwrite", "vertical --plot README.md",
+                                  "vertical --webvpython requirements.txt --overwrite"])
+def test_the_program_never_writes_over_its_own_files(argv, monkeypatch, capsys):
+    """`--vpython main.py` once replaced main.py with the handout (then `main.py --list` ran the
+    handout and waited for a browser for ever); `--vpython scenes/_model.py` broke every command."""
+    monkeypatch.chdir(ROOT)
+    before = {path: (ROOT / path).read_bytes() for path in ("main.py", "scenes/damped.py", "scenes/_model.py",
+                                                          "README.md", "requirements.txt")}
+    try:
+        assert main.run(argv.split()) == 2
+    finally:   # the old code wrote over them: put them back
+        changed = [path for path, text in before.items() if (ROOT / path).read_bytes() != text]
+        for path in changed:
+            (ROOT / path).write_bytes(before[path])
+    assert changed == []
+    out, err = capsys.readouterr()
+    what, path = argv.split()[-3:-1] if argv.endswith("--overwrite") else argv.split()[-2:]
+    assert err.splitlines() == [f"error: cannot write {dict(csv='CSV file', plot='figure').get(what[2:], 'the program')} "
+                                f"{path!r}: it is one of this program's own files; give another name"]
+
+
+def test_a_python_file_the_program_did_not_write_is_replaced_only_with_overwrite(tmp_path, monkeypatch, capsys):
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "mine.py").write_text("print('a student's own program')\n")
+    for argv in (["vertical", "--vpython", "mine.py"], ["vertical", "--headless", "--csv", "mine.py"]):
+        assert main.run(argv) == 2
+        assert capsys.readouterr().err.splitlines() == [
+            f"error: cannot write {'the program' if '--vpython' in argv else 'CSV file'} 'mine.py': it is a Python "
+            f"file this program did not write; give another name, or add --overwrite to replace it"]
+        assert (tmp_path / "mine.py").read_text() == "print('a student's own program')\n"
+    assert main.run(["vertical", "--vpython", "mine.py", "--overwrite"]) == 0
+    assert main.run(["damped", "--vpython", "mine.py"]) == 0   # now a handout of ours: replaced as asked
+    assert "# damped:" in (tmp_path / "mine.py").read_text(encoding="utf-8")
+    assert main.run(["damped", "--headless", "--csv", "run.csv"]) == 0
+    assert main.run(["damped", "--headless", "--csv", "run.csv"]) == 0   # any other file: replaced as before
+    assert sorted(os.listdir(tmp_path)) == ["mine.py", "run.csv"]
+
+
+def hostile_scenes_folder(folder: Path) -> Path:
+    """A teacher's scenes folder with what once hung or broke every command: a handout (its vpython
+    server waits for a browser), a scene that sleeps as it loads, a named pipe and a link to
+    /dev/stdin called *.py, a 13 MB file, and a scene called catalog.py."""
+    done = run_main("vertical", "--vpython", str(folder / "handout.py"))
+    assert done.returncode == 0, done.stderr
+    (folder / "sleepy.py").write_text('"""Sleeps as it loads."""\nimport time\ntime.sleep(600)\n\n\n'
+                                      'def build(**constants):\n    pass\n')
+    os.mkfifo(folder / "pipe.py")
+    os.symlink("/dev/stdin", folder / "stdin.py")
+    (folder / "huge.py").write_text('"""Huge."""\n' + "#" * 13_000_000 + "\n")
+    (folder / "catalog.py").write_text((ROOT / "scenes" / "vertical.py").read_text().replace("from ._", "from scenes._"))
+    return folder
+
+
+@pytest.mark.skipif(not hasattr(os, "mkfifo"), reason="named pipes are POSIX")
+def test_a_teachers_scenes_folder_is_read_without_running_any_scene(tmp_path):
+    """--list read every scene by running it: each of these hung it, or every command; now the
+    files are read as text (with a size limit), and a scene runs only when it is asked for."""
+    folder = hostile_scenes_folder(tmp_path)
+    env = {"SPRING_SCENES": str(folder)}
+    started = time.monotonic()
+    listed = run_main("--list", env=env, timeout=60, stdin=subprocess.DEVNULL)
+    assert time.monotonic() - started < 20
+    out, err = listed.stdout.decode(), listed.stderr.decode()
+    assert listed.returncode == 2 and "Traceback" not in err
+    assert "sleepy       Sleeps as it loads." in out and "vertical" in out
+    assert not any(name in out for name in ("handout", "pipe", "stdin", "huge", "catalog"))
+    assert sorted(err.splitlines()) == sorted([
+        f"error: {folder / 'catalog.py'}: the name 'catalog' is taken by the simulator's own code "
+        f"(scenes.catalog); rename the file",
+        f"error: {folder / 'handout.py'} is not a scene: it has no build function (`def build(**constants):` "
+        f"after the constants block)",
+        f"error: {folder / 'huge.py'}: it is 13,000,013 bytes, more than a scene file's 1,000,000, so it was not read",
+        f"error: {folder / 'pipe.py'}: it is not a regular file, so it was not read",
+        f"error: {folder / 'stdin.py'}: it is not a regular file, so it was not read"])
+    run = run_main("vertical", "--headless", env=env, timeout=60)
+    assert run.returncode == 0 and run.stderr == b""
+    for name in ("pipe", "handout", "catalog"):
+        chosen = run_main(name, "--headless", env=env, timeout=60)
+        assert chosen.returncode == 2 and len(chosen.stderr.splitlines()) == 1, chosen.stderr
+
+
+def test_the_reserved_scene_names_are_every_name_the_scenes_package_gives_its_own_code():
+    import scenes
+    from scenes import catalog
+
+    own = {name for name, value in vars(scenes).items() if not name.startswith("_")
+           and getattr(value, "__file__", None) not in {str(path) for path in catalog.SCENE_FILES.values()}}
+    assert own <= catalog.RESERVED
+
+
+@pytest.mark.parametrize("body", ["import sys\nsys.exit()\n", "raise SystemExit(3)\n",
+                                  "m = 10.0   # kg: mass\n# ---- end of constants ----\n\n\n"
+                                  "def build(**constants):\n    raise SystemExit(0)\n"])
+def test_a_scene_that_calls_sys_exit_is_a_broken_scene_like_any_other(body, tmp_path):
+    """It used to end the program silently: `--list` printed nothing with exit 0, a run just stopped."""
+    source = '"""Ends the program."""\n' + body
+    if "def build" not in body:
+        source += "\n\ndef build(**constants):\n    pass\n"
+    (tmp_path / "quits.py").write_text(source)
+    env = {"SPRING_SCENES": str(tmp_path)}
+    run = run_main("quits", "--headless", env=env)
+    lines = run.stderr.decode().splitlines()
+    assert run.returncode == 2 and len(lines) == 1, lines
+    assert lines[0].startswith(f"error: {tmp_path / 'quits.py'}, line ") and "calls sys.exit()" in lines[0]
+    listed = run_main("--list", env=env)
+    assert listed.returncode == 0 and b"quits" in listed.stdout and b"vertical" in listed.stdout
+
+
+@pytest.mark.parametrize("length", [241, 255])
+def test_a_legal_long_file_name_is_written(length, tmp_path, monkeypatch, capsys):
+    """Names of 241 to 255 bytes were refused ('File name too long'): the temporary file's name was
+    the target's plus 15 bytes."""
+    monkeypatch.chdir(tmp_path)
+    for flag, extension in (("--csv", ".csv"), ("--vpython", ".py")):
+        name = "a" * (length - len(extension)) + extension
+        argv = ["vertical", "--headless", flag, name] if flag == "--csv" else ["vertical", flag, name]
+        assert main.run(argv) == 0, capsys.readouterr().err
+        assert (tmp_path / name).stat().st_size > 0
+    capsys.readouterr()
+    assert len(os.listdir(tmp_path)) == 2
+
+
+class TerminalStream:
+    """A stream that says it is a terminal, as standard error is when a person runs a command."""
+
+    def __init__(self, interrupt_after=None):
+        self.text, self.writes, self.interrupt_after = "", 0, interrupt_after
+
+    def isatty(self):
+        return True
+
+    def write(self, text):
+        self.text += text
+        self.writes += 1
+        if self.writes == self.interrupt_after:
+            raise KeyboardInterrupt
+
+    def flush(self):
+        pass
+
+
+@pytest.mark.parametrize("interrupt_after", [None, 3])
+def test_the_progress_line_on_a_terminal_is_ended_so_the_next_line_starts_afresh(interrupt_after, monkeypatch):
+    """The redrawn line was never ended: `...t = 5 sdamped: ...`, and the Ctrl-C message glued on too."""
+    import physics.simulate
+    from reports import headless
+    from scenes import configure
+
+    monkeypatch.setattr(physics.simulate, "PROGRESS_EVERY", 0.0)   # a line for every chunk of steps
+    stream = TerminalStream(interrupt_after)
+    setup = configure("damped")
+    try:
+        headless.simulate(setup, until=300.0, every_step=False, progress=stream)
+    except KeyboardInterrupt:
+        assert interrupt_after is not None
+    assert stream.text.startswith("\rrunning: ") and stream.text.count("\rrunning: ") >= 2
+    assert stream.text.endswith(" s\n") and stream.text.count("\n") == 1
+
+
+def test_a_suggested_until_fits_with_room_to_spare():
+    """The refusal suggested the --until that just fitted the estimate, which was then refused
+    (157.691, then 154.67, then 151.147, which ran 95 s against the 60 s limit). Now it fits in half
+    the limit by the estimate, rounded down to two digits (a busy machine can run slower than that)."""
+    from physics.simulate import RunTooLong, check_cost
+    from scenes import configure
+
+    model = configure("vertical", assignments=["dt=1e-5"]).build()
+    engine = model.simulation(None)
+    with pytest.raises(RunTooLong) as refused:
+        check_cost(engine, until=1000.0, limit=0.4)
+    suggested = float(re.search(r"at most ([0-9.e+-]+) s with dt", str(refused.value)).group(1))
+    assert len(f"{suggested:g}".replace(".", "").lstrip("0")) <= 2   # a value to type: two digits
+    per_step = engine.seconds_per_step()
+    assert suggested / 1e-5 * per_step <= 0.5 * 0.4 + 1e-9
+    assert check_cost(engine, until=suggested, limit=0.4) > 0   # asked again: accepted
+
+
+def test_a_run_too_long_for_the_scene_to_shorten_suggests_no_until_it_refuses(tmp_path, monkeypatch, capsys):
+    """resonance --set count=10000 --csv suggested until ≤ 1.56 s, which the scene itself refuses
+    (it measures the amplitudes from t = settle = 40 s on)."""
+    monkeypatch.chdir(tmp_path)
+    assert main.run(["resonance", "--set", "count=10000", "--headless", "--csv", "r.csv"]) == 2
+    line, = capsys.readouterr().err.splitlines()
+    assert "more than the 60 s a run may take; use a larger dt or fewer masses (the scene needs --until of at " \
+           "least 49.4248 s)" in line and "at most" not in line
+    assert os.listdir(tmp_path) == []
+
+
+@pytest.mark.parametrize("method", ["euler-cromer", "verlet"])
+def test_a_step_exactly_at_the_stability_limit_is_refused(method, capsys):
+    """ω·Δt = 2 exactly (vertical: ω = 2 rad/s, dt = 1 s) ran silently, and the motion grew."""
+    from physics.stability import _grows, amplification
+
+    assert _grows(float(amplification(method, omega=2.0, rate=0.0, dt=1.0)[0]), 2.0)
+    assert not _grows(float(amplification(method, omega=2.0, rate=0.0, dt=0.9999999)[0]), 2.0)
+    assert main.run(["vertical", "--headless", "--set", "dt=1", "--until", "10", "--integrator", method]) == 1
+    line, = capsys.readouterr().err.splitlines()
+    assert line == (f"error: the run would blow up, past the stability limit: dt = 1 s, but the spring "
+                    f"(ω = 2 rad/s, √(k/m) for one mass) makes dt < 1 s necessary for {method}, ω·dt < 2")
+
+
+def test_a_dt_just_past_the_limit_is_printed_with_the_digits_that_show_it(capsys):
+    """It read 'dt = 1 s, but … makes dt < 1 s necessary' for dt = 1.0000001 s."""
+    assert main.run(["vertical", "--headless", "--set", "dt=1.0000001", "--until", "10"]) == 1
+    line, = capsys.readouterr().err.splitlines()
+    assert "dt = 1.0000001 s, but the spring" in line and "makes dt < 1 s necessary" in line
+
+
+def test_a_blow_up_caused_by_drag_names_the_drag(capsys):
+    """It said only 'try a smaller dt', where the stability judgement names the drag."""
+    assert main.run("vertical --headless --set C=100 --set A=10 --set rho=1000 --until 10".split()) == 1
+    line, = capsys.readouterr().err.splitlines()
+    assert line.startswith("error: the simulation blew up by t = ")
+    assert "dt = 0.1 s, but the drag (its rate ρCA|v|/m grows with the speed) outgrew what euler-cromer can " \
+           "follow at this dt; try a smaller dt, or less drag" in line
+
+
+def test_an_empty_scene_name_is_an_error_not_the_default_scene(capsys):
+    """`main.py "" --headless` ran vertical."""
+    for name in ("", "  "):
+        assert main.run([name, "--headless"]) == 2
+        out, err = capsys.readouterr()
+        assert out == "" and err.splitlines() == [
+            "error: the scene name is empty: give one, like 'vertical' (run 'python main.py --list' to see them)"]
+
+
+def test_waiting_for_a_browser_is_said_once_not_every_10_s_for_ever(capsys):
+    import threading
+
+    from browser.server import start
+
+    reminder = threading.Thread(target=start.remind, args=("http://127.0.0.1:1/", 0.01, threading.Event()),
+                                daemon=True)
+    reminder.start()
+    reminder.join(timeout=30)
+    alive = reminder.is_alive()
+    assert not alive   # the old reminder never returned
+    assert capsys.readouterr().err.splitlines() == [
+        "Still waiting for a browser: open http://127.0.0.1:1/ (Ctrl-C to quit)"]
+
+
+def test_no_browser_on_the_computer_is_said_once_with_how_to_open_the_page(monkeypatch, capsys):
+    from browser.server import http_server
+
+    monkeypatch.setattr(http_server.webbrowser, "open", lambda url: False)
+    http_server.open_browser("http://127.0.0.1:1/")
+    assert capsys.readouterr().err.splitlines() == [
+        "No browser was found on this computer: open http://127.0.0.1:1/ in a browser yourself (Ctrl-C to quit)"]
+
+
+def test_the_resonance_report_has_the_amplitude_table(capsys):
+    """`resonance --headless` printed 276 lines of per-mass state and no amplitudes."""
+    assert main.run(["resonance", "--headless"]) == 0
+    out = capsys.readouterr().out
+    assert "steady-state amplitude A (m) against the driving frequency ω, measured from t = 40 s to 49.42 s" in out
+    head = next(line for line in out.splitlines() if line.startswith("ω (rad/s)"))
+    assert head.split() == ["ω", "(rad/s)", "b", "=", "0.5", "kg/s", "b", "=", "1", "kg/s", "b", "=", "2", "kg/s"]
+    row = next(line for line in out.splitlines() if line.startswith("5 "))   # ω = ω0 = 5 rad/s: A = F0/(b ω0)
+    assert row.split() == ["5", "0.4", "0.4", "0.2", "0.2", "0.1", "0.1"]
+
+
+@pytest.mark.parametrize("args, options, message", [
+    (("vertical",), {"scenario": "3"}, "scenario needs a whole number, like scenario=3 (got '3')"),
+    (("vertical",), {"preset": 3}, "preset needs a name as text, like preset='Moon gravity' (got 3)"),
+    (("vertical",), {"integrator": ["rk4"]}, "integrator needs a name as text, like integrator='rk4' (got ['rk4'])"),
+    ((123,), {}, "show() needs the scene's name as text, like show('vertical') (got 123)"),
+    (("vertical",), {"k": 10**5000}, "k is too large to be a number the program can use (got an integer of about 5000 digits)"),
+    (("vertical",), {"k": "60"}, "k needs a number, or three numbers for a vector like r0=(0, -1.2, 0) (got '60')"),
+    (("vertical",), {"k": -5}, "k must be from 0 to 1e6 N/m (got -5 N/m)"),
+    (("vertical",), {"integrator": "leapfrog"}, "unknown integrator 'leapfrog'"),
+])
+def test_the_notebooks_show_answers_a_wrong_argument_in_one_line(args, options, message):
+    """Wrong types raised TypeErrors from inside (show(123), integrator=["rk4"], k=10**5000), and a
+    ConstantError printed a 35-line traceback in the notebook: IPython now shows one line."""
+    from browser.notebook import show
+    from scenes import ConstantError
+
+    with pytest.raises(ConstantError) as refused:
+        show(*args, **options)
+    assert message in str(refused.value)
+    assert refused.value._render_traceback_() == [f"ConstantError: {refused.value}"]
+
+
+def test_opening_the_notebook_leaves_git_status_clean():
+    """Jupyter writes examples/.ipynb_checkpoints/ when the notebook is opened."""
+    done = subprocess.run(["git", "check-ignore", "-q", "examples/.ipynb_checkpoints/scenes-checkpoint.ipynb"],
+                          cwd=ROOT)
+    assert done.returncode == 0
+
+
+@pytest.mark.skipif(not Path("/proc/net/tcp").exists(), reason="reads the listening sockets from /proc (Linux)")
+def test_a_handed_out_program_serves_its_page_to_this_computer_only(tmp_path):
+    """Plain vpython listens on 0.0.0.0 (and serves `GET /../file` from anywhere on the disk): the
+    handout's first lines bind its servers to 127.0.0.1. Run with the real vpython, as a student does."""
+    from test_loopback_server import listening_sockets, wait_for_listeners
+    from browser_support import free_port
+
+    program = tmp_path / "vertical.py"
+    assert run_main("vertical", "--vpython", str(program)).returncode == 0
+    env = {**os.environ, "VPYTHON_NO_LAUNCH_BROWSER": "1", "VPYTHON_HTTP_PORT": str(free_port())}
+    process = subprocess.Popen([sys.executable, str(program)], cwd=tmp_path, env=env,
+                               stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    try:
+        wait_for_listeners(process.pid, 2, timeout=60)   # its HTTP and websocket servers
+        found = listening_sockets(process.pid)
+    finally:
+        process.kill()
+        process.wait(timeout=30)
+    assert found and all(address == "127.0.0.1" for _, address, _ in found), found
+
+
+def test_derived_values_follow_the_values_used(capsys):
+    """Comments and --constants kept the defaults' ω = √(k/m) = 5 rad/s and ω Δt = 0.3 after
+    --set k=100; drag's falling preset (k = 0) kept 'ω0 ≈ 6.1 rad/s'; resonance --set k=16 said ω0 = 5."""
+    def output(*argv):
+        assert main.run(list(argv)) == 0
+        return capsys.readouterr().out
+
+    text = output("integrators", "--set", "k=100", "--constants")
+    assert "so: ω0 = √(k/m) = 10 rad/s, T = 2π/ω0 = 0.6283 s, ω0·dt = 0.6" in text
+    assert "5 rad/s" not in text and "0.3" not in text and "1.26" not in text
+    text = output("resonance", "--set", "k=16", "--constants")
+    assert "ω0 = √(k/m) = 4 rad/s" in text and "5 rad/s" not in text
+    k_line, = [line for line in output("drag", "--preset", "falling", "--vpython", "-").splitlines()
+               if line.startswith("k = ")]
+    assert k_line.startswith("k = 0 ") and "6.1" not in k_line and "rad/s" not in k_line
+
+
+def test_a_handout_with_changed_constants_does_not_describe_the_defaults_as_its_own(capsys):
+    """The vertical program said 'a 10 kg mass' with m = 17.4 below, and the page's Download
+    program wrote --set b=52.76362383309168 where the preset's name gives it."""
+    assert main.run(["vertical", "--preset", "critical damping", "--set", "m=17.4", "--vpython", "-"]) == 0
+    lines = capsys.readouterr().out.splitlines()
+    summary = next(n for n, line in enumerate(lines) if line.startswith("# vertical: "))
+    assert lines[summary + 1] == "# (That is the scene as shipped; this case's constants are below.)"
+    assert "# The same case on the simulator's page: python main.py vertical --preset \"critical damping\" " \
+           "--set m=17.4" in lines
+
+
+def test_a_handout_can_run_longer_than_the_question_time_and_plots_from_t_0(capsys):
+    """--until was refused with --vpython (the vertical handout animates 0.2 s, two steps), and the
+    program plotted from the first step on, never t = 0."""
+    assert main.run(["vertical", "--vpython", "-", "--until", "10"]) == 0
+    lines = capsys.readouterr().out.splitlines()
+    assert any(line.startswith("until = 10 ") for line in lines)
+    loop = lines.index("while t < until:")
+    assert "position.plot(t, pos.y)" in lines[:loop]
+    assert main.run(["regimes", "--webvpython", "-"]) == 0
+    lines = capsys.readouterr().out.splitlines()
+    loop = next(n for n, line in enumerate(lines) if line.startswith("while t < until"))
+    assert lines[loop - 2:loop] == ["for i in range(len(pos)):", "    position[i].plot(t, pos[i].y)"]

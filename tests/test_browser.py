@@ -107,7 +107,7 @@ class Program:
 
 def shown_time(page) -> float:
     """The t the caption shows, read from the page's text (`t = 12.34 s`)."""
-    text = page.locator("b").filter(has_text=TIME).first.inner_text(timeout=30_000)
+    text = page.locator("b").filter(has_text=TIME).first.inner_text()
     return float(TIME.match(text).group(1))
 
 
@@ -155,7 +155,7 @@ def test_scene_in_the_browser(browser, scene):
     try:
         url = program.url()
         page = browser.new_page(viewport={"width": 1280, "height": 1100})
-        page.goto(url, timeout=30_000)
+        page.goto(url)
 
         # t advances
         start = shown_time(page)
@@ -164,7 +164,7 @@ def test_scene_in_the_browser(browser, scene):
         # Pause stops it
         wait_for(lambda: shown_time(page) >= 2.0, timeout=60.0, what="t to reach 2 s")
         page.get_by_role("button", name="Pause").click()
-        page.get_by_role("button", name="Run").wait_for(timeout=30_000)
+        page.get_by_role("button", name="Run").wait_for()
         paused = shown_time(page)
 
         # the 3-D canvas and the position graph are drawn (one screenshot: they are slow)
@@ -229,10 +229,10 @@ def test_preset_menu_scene_menu_and_csv_download(browser):
     try:
         url = program.url()
         page = browser.new_page(viewport={"width": 1280, "height": 1100}, accept_downloads=True)
-        page.goto(url, timeout=30_000)
+        page.goto(url)
         wait_for(lambda: shown_time(page) >= 1.0, timeout=60.0, what="t to reach 1 s")
         page.get_by_role("button", name="Pause").click()
-        page.get_by_role("button", name="Run").wait_for(timeout=30_000)
+        page.get_by_role("button", name="Run").wait_for()
         assert shown_time(page) >= 1.0
         assert "g = 9.8 m/s²" in caption_lines(page)
 
@@ -251,7 +251,7 @@ def test_preset_menu_scene_menu_and_csv_download(browser):
 
         # The scene menu: the driven scene replaces the pendulum, in the same page and program.
         menu(page, "resonance").select_option("driven")
-        page.locator("b", has_text=re.compile(r"^driven$")).wait_for(timeout=30_000)
+        page.locator("b", has_text=re.compile(r"^driven$")).wait_for()
         wait_for(lambda: menu(page, "scenario 3").count() == 1, what="the driven scene's presets")
         assert program.process.poll() is None
         assert len(graph_boxes(page)) == 2   # the pendulum's graphs are gone, the driven ones made
@@ -262,7 +262,7 @@ def test_preset_menu_scene_menu_and_csv_download(browser):
         page.get_by_role("button", name="Run").click()
         wait_for(lambda: shown_time(page) >= 2.0, timeout=60.0, what="t to reach 2 s")
         page.get_by_role("button", name="Pause").click()
-        page.get_by_role("button", name="Run").wait_for(timeout=30_000)
+        page.get_by_role("button", name="Run").wait_for()
         paused = shown_time(page)
 
         picture = SCREENSHOTS / "menus.png"
@@ -272,7 +272,7 @@ def test_preset_menu_scene_menu_and_csv_download(browser):
         assert curve_pixels(crop(picture, graph_boxes(page)[0])) > 50, "no curve after switching scene"
 
         # Download CSV: the graphed samples, with the command line's columns.
-        with page.expect_download(timeout=30_000) as download:
+        with page.expect_download() as download:
             page.get_by_role("button", name="Download CSV").click()
         assert download.value.suggested_filename == "driven.csv"
         with open(download.value.path(), newline="") as handle:

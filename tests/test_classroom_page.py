@@ -43,7 +43,7 @@ def slider_value(page, name: str) -> float:
 def open_scene(browser, scene: str, viewport=VIEWPORT):
     program = Program(scene)
     page = browser.new_page(viewport=viewport)
-    page.goto(program.url(), timeout=30_000)
+    page.goto(program.url())
     return program, page
 
 

@@ -764,7 +764,8 @@ def test_resonance_without_damping_only_the_spring_at_omega0_loses_its_exact_ans
     # within ±0.42 m and keep theirs. A(ω0) has no finite value: null, with a note saying why.
     args = ("resonance", "--set", "b=0", "--set", "curves=1")
     done = cli(*args, "--headless", "--json")
-    assert done.returncode == 0 and done.stderr == "", done.stderr      # no RuntimeWarning
+    warnings = [line for line in done.stderr.splitlines() if not line.startswith("running: ")]  # progress on a busy machine
+    assert done.returncode == 0 and warnings == [], done.stderr      # no RuntimeWarning
     out = json.loads(done.stdout)
     stopped = [i for i, body in enumerate(out["bodies"]) if "exact" not in body]
     assert stopped == [6] and all("exact_note" not in out["bodies"][i] for i in range(13) if i != 6)
@@ -781,7 +782,7 @@ def test_resonance_without_damping_only_the_spring_at_omega0_loses_its_exact_ans
     assert "undamped resonance has no steady state" in curve["exact_amplitude_note"]
     assert "notes" not in out                                            # no null without its reason
     text = cli(*args, "--headless")
-    assert text.returncode == 0 and text.stderr == "", text.stderr
+    assert text.returncode == 0 and all(line.startswith("running: ") for line in text.stderr.splitlines()), text.stderr
     block = text.stdout.split("ω = 5 rad/s")[1].split("ω = 5.5 rad/s")[0]
     assert "exact: none at t = 50 s" in block and "r_exact" not in block
     assert text.stdout.count("|r − r_exact|") == 12

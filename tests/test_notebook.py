@@ -34,7 +34,7 @@ from pathlib import Path
 
 import pytest
 
-from browser_support import (CHROMIUM, CHROMIUM_ARGS, TIME, colours, curve_pixels, free_port,
+from browser_support import (CHROMIUM, CHROMIUM_ARGS, TIME, colours, curve_pixels, free_port, patient,
                              pixels_like, screenshot_folder, wait_for)
 from scenes import catalog
 
@@ -161,7 +161,7 @@ def page(jupyter):
 
     base, token = jupyter
     with sync_playwright() as playwright:
-        chromium = playwright.chromium.launch(executable_path=CHROMIUM, args=CHROMIUM_ARGS)
+        chromium = patient(playwright.chromium.launch(executable_path=CHROMIUM, args=CHROMIUM_ARGS))
         try:
             page = chromium.new_page(viewport={"width": 1280, "height": 1500})
             page.goto(f"{base}notebooks/scenes.ipynb?token={token}", timeout=90_000)
@@ -268,6 +268,16 @@ def graph(cell, index: int):
     return cell.locator(".glowscript-graph canvas.base").nth(index)
 
 
+def running_scene_cell(page, name: str):
+    """The cell of scene `name`, with its scene running: run here if an earlier test did not leave
+    it running, so each test can be run alone by its id."""
+    cell = scene_cell(page, name)
+    if shown_time(cell) is None or "Stopped:" in cell.inner_text() or f"{name}:" not in cell.inner_text():
+        run(cell)
+        wait_until_running(cell)
+    return cell
+
+
 def assert_mass_drawn(image, what: str) -> None:
     assert image.height > 400, f"{what}: only {image.height} px of the 3-D canvas could be seen"
     assert mass_pixels(image) > 100, f"{what}: the 3-D canvas shows no mass"
@@ -282,7 +292,7 @@ def test_a_scene_runs_under_its_cell_and_pause_reaches_the_kernel(page):
     assert "k = 40 N/m" in cell.inner_text()  # the scene's own constants, with units
 
     cell.get_by_role("button", name="Pause").click()
-    cell.get_by_role("button", name="Run").wait_for(timeout=30_000)
+    cell.get_by_role("button", name="Run").wait_for()
     paused = shown_time(cell)
     seen = look(cell, cell=cell, canvas=canvas(cell), position=graph(cell, 0))
     assert_mass_drawn(seen["canvas"], "vertical")
@@ -299,7 +309,7 @@ def test_a_scene_runs_under_its_cell_and_pause_reaches_the_kernel(page):
 @browser
 @needs_browser
 def test_running_the_cell_again_starts_the_scene_again_from_0(page):
-    cell = scene_cell(page, "vertical")
+    cell = running_scene_cell(page, "vertical")
     wait_for(lambda: (shown_time(cell) or 0) > 10.0, timeout=60.0, what="t to pass 10 s")
     before = shown_time(cell)  # t only grows while the scene runs, so a smaller t means a new run
     run(cell)
@@ -315,8 +325,7 @@ def test_running_the_cell_again_starts_the_scene_again_from_0(page):
 @needs_browser
 @pytest.mark.parametrize("name, before", [("pendulum", "vertical"), ("resonance", "pendulum")])
 def test_another_scenes_cell_stops_the_one_before_and_runs(page, name, before):
-    old = scene_cell(page, before)
-    assert shown_time(old) is not None, f"{before} should be running before this test"
+    old = running_scene_cell(page, before)
     cell = scene_cell(page, name)
     run(cell)
     wait_until_running(cell)
@@ -344,7 +353,7 @@ def test_another_scenes_cell_stops_the_one_before_and_runs(page, name, before):
 @browser
 @needs_browser
 def test_the_scene_menu_switches_scene_inside_the_cell(page):
-    cell = scene_cell(page, "resonance")
+    cell = running_scene_cell(page, "resonance")
     menu = cell.locator("select").filter(has=page.locator("option", has_text="integrators"))
     menu.select_option("damped")
     wait_for(lambda: "damped:" in cell.inner_text(), timeout=60.0, what="the damped scene's title")

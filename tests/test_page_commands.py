@@ -69,10 +69,40 @@ def test_a_broken_scene_chosen_in_the_scene_menu_is_a_sentence_on_the_page(monke
     def broken(name, **options):
         raise ConstantError(f"scenes/{name}.py, line 13: invalid syntax")
 
-    said = []
+    said, refused = [], []
     view, done = view_with_clicks(("scene", "damped"))
     view.controls.say = said.append
+    view.controls.choice_refused = lambda kind, scene: refused.append((kind, scene))
     monkeypatch.setattr(catalog, "configure", broken)
     view._apply_commands(now=0.0)
     assert done == [] and view.setup.name == "vertical"
     assert said == ["<b>Cannot open that:</b> scenes/damped.py, line 13: invalid syntax"]
+    assert refused == [("scene", "vertical")]   # the menu goes back to the scene that runs (issue 20)
+
+
+def test_a_scene_or_preset_that_cannot_be_built_puts_its_menu_back():
+    """The menu showed the refused scene's name while the old scene ran on (issue 20, item 6)."""
+    for click in (("scene", "damped"), ("preset", "Moon gravity")):
+        refused = []
+        view, done = view_with_clicks(click)
+        view._switch = lambda setup, preset=None: False   # it said why, and built nothing
+        view.controls.choice_refused = lambda kind, scene: refused.append((kind, scene))
+        view._apply_commands(now=0.0)
+        assert refused == [(click[0], "vertical")]
+
+
+def test_what_the_page_says_stays_on_it_until_the_next_run_starts():
+    """The next frame's status line cleared the sentence at once, so a broken scene showed no message."""
+    from browser.controls import Controls
+
+    controls = Controls.__new__(Controls)
+    controls.status_text, controls.notice = SimpleNamespace(text=""), ""
+    controls.scene_menu, controls.preset_menu = SimpleNamespace(selected="damped"), None
+    controls.say("<b>Cannot open that:</b> scenes/damped.py, line 13: invalid syntax")
+    for _ in range(3):
+        controls.show_status(problem=None, runaways=[], slow_dt=None)
+    assert controls.status_text.text == "<b>Cannot open that:</b> scenes/damped.py, line 13: invalid syntax"
+    controls.show_status(problem="it blew up", runaways=[], slow_dt=None)   # a stopped run says so first
+    assert controls.status_text.text == "<b>Stopped:</b> it blew up"
+    controls.choice_refused("scene", "vertical")
+    assert controls.scene_menu.selected == "vertical"

@@ -33,6 +33,13 @@ CONTENT_TYPES = {
 TAB_SCRIPT = Path(__file__).with_name("tab.js")
 
 
+def open_browser(url: str) -> None:
+    """Ask the system's browser to open the page; if there is none, say so once, and how to open it."""
+    if not webbrowser.open(url):
+        print(f"No browser was found on this computer: open {url} in a browser yourself "
+              f"(Ctrl-C to quit)", file=sys.stderr, flush=True)
+
+
 def http_server_class(state: ServerState):
     """A class to stand in for vpython's HTTPServer, serving from the socket start() reserved."""
 
@@ -54,7 +61,7 @@ def http_server_class(state: ServerState):
             self.server_address = self.socket.getsockname()
             self.server_name, self.server_port = LOOPBACK, self.server_address[1]
             if state.open_browser:  # the page's first request queues until serve_forever
-                webbrowser.open(state.url)
+                open_browser(state.url)
 
         def handle_error(self, request, client_address):
             # socketserver prints a traceback for any error in a request. A browser that drops

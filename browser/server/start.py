@@ -3,7 +3,7 @@
 The port is bound and listening before the URL is printed, and vpython's HTTP server takes over
 that very socket: a browser pointed at the URL at once connects, and its request waits in the
 socket's queue while vpython loads. Importing vpython's server blocks until a browser connects
-(vpython waits in a silent loop), so start() reminds on stderr while it waits.
+(vpython waits in a silent loop), so start() reminds on stderr, once, if none has come after a while.
 """
 
 from __future__ import annotations
@@ -73,7 +73,7 @@ def start(*, port: int | None = None, open_browser: bool = True,
 
 
 def announce(state: ServerState, remind_after: float, waiting: threading.Event) -> None:
-    """Print the URL, and remind on stderr every `remind_after` s until `waiting` is set."""
+    """Print the URL, and remind on stderr once if `waiting` is not set after `remind_after` s."""
     os.environ["VPYTHON_HTTP_PORT"] = str(state.reservation.getsockname()[1])
     os.environ["VPYTHON_NO_LAUNCH_BROWSER"] = "1"  # we open 127.0.0.1 ourselves
     print(f"Opening {state.url} in your browser" if state.open_browser else f"Open {state.url} in a browser",
@@ -124,6 +124,8 @@ def _refused_because(exc: OSError) -> str:
 
 
 def remind(url: str, every: float, stop: threading.Event) -> None:
-    while not stop.wait(every):
+    """Say once, `every` seconds after the address was printed, that no browser has come (a line
+    every 10 s without end buried the address)."""
+    if not stop.wait(every):
         print(f"Still waiting for a browser: open {url} (Ctrl-C to quit)",
               file=sys.stderr, flush=True)
