@@ -27,6 +27,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from . import LabError
 from physics.simulate import BlowUpError, every, trajectory
 from scenes import ConstantError, check_value
 from scenes._constants import DECLARED
@@ -45,7 +46,7 @@ TIED = [
 ]
 
 
-class FitError(ValueError):
+class FitError(LabError):
     """A comparison or fit that cannot be made: one line saying why and what to do."""
 
 

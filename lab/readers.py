@@ -25,6 +25,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from . import LabError
+
 MAX_BYTES = 64 * 1024 * 1024     # larger files are refused before they are read
 MAX_ROWS = 200_000               # rows of numbers a file may have (about an hour at 50 samples/s)
 TIME_UNITS = {"s": 1.0, "sec": 1.0, "ms": 1e-3}
@@ -32,7 +34,7 @@ LENGTH_UNITS = {"m": 1.0, "cm": 1e-2, "mm": 1e-3}
 POSITION_WORDS = ("position", "distance", "displacement", "height", "pos")
 
 
-class DataError(ValueError):
+class DataError(LabError):
     """A measured-data file that cannot be read: one line naming the file and the line at fault."""
 
 
