@@ -20,7 +20,7 @@ import subprocess
 import sys
 import time
 
-from . import accuracy, batches, resonance_sweep, single_mass, startup
+from . import accuracy, batches, fit, resonance_sweep, single_mass, startup
 from .common import Settings
 
 BENCHMARKS = {
@@ -30,6 +30,7 @@ BENCHMARKS = {
     "resonance": (resonance_sweep, "part 3: `main.py resonance` with 1,000 frequencies against solve_ivp"),
     "accuracy": (accuracy, "part 4: error after 10 periods against CPU time, with a plot"),
     "startup": (startup, "part 6: wall time of `python main.py vertical --headless`"),
+    "fit": (fit, "part 7: `main.py damped --data FILE --fit k,b` on 1,000 points, as processes"),
 }
 # Not in the full run: minutes of wall time in headless Chromium. Run it as its own command.
 SEPARATE = {
