@@ -164,3 +164,18 @@ def test_fitting_k_with_m_is_refused_in_one_line(tmp_path):
     done = cli("damped", "--data", str(path), "--fit", "k,m")
     assert done.returncode == 2 and "k and m cannot be told apart" in done.stderr
     assert done.stderr.count("\n") == 1 and done.stdout == ""
+
+
+def test_the_example_files_are_the_programs_own_and_each_reads(tmp_path):
+    """examples/data/ is what examples/make_measured.py and --mystery write today, byte for byte."""
+    made = subprocess.run([sys.executable, "examples/make_measured.py", str(tmp_path)], cwd=ROOT,
+                          capture_output=True, text=True, timeout=120)
+    assert made.returncode == 0, made.stderr
+    assert cli("damped", "--mystery", str(tmp_path / "mystery.csv"), "--seed", "2026").returncode == 0
+    committed = sorted(p.name for p in (ROOT / "examples" / "data").iterdir())
+    assert committed == sorted(p.name for p in tmp_path.iterdir())
+    for name in committed:
+        assert (tmp_path / name).read_bytes() == (ROOT / "examples" / "data" / name).read_bytes(), name
+    done = cli("damped", "--data", "examples/data/pasco.csv", "--fit", "k,b", "--set", "dt=0.005", "--json")
+    out = json.loads(done.stdout)
+    assert abs(out["fit"]["k"]["value"] - 55.0) < 0.1 and abs(out["fit"]["b"]["value"] - 2.5) < 0.02
