@@ -179,3 +179,23 @@ def test_the_example_files_are_the_programs_own_and_each_reads(tmp_path):
     done = cli("damped", "--data", "examples/data/pasco.csv", "--fit", "k,b", "--set", "dt=0.005", "--json")
     out = json.loads(done.stdout)
     assert abs(out["fit"]["k"]["value"] - 55.0) < 0.1 and abs(out["fit"]["b"]["value"] - 2.5) < 0.02
+
+
+WITHOUT_SCIPY = ("import runpy, sys\n"
+                 "sys.modules['scipy'] = None\nsys.modules['scipy.optimize'] = None\n"
+                 "sys.argv = ['main.py', *sys.argv[1:]]\n"
+                 "runpy.run_path('main.py', run_name='__main__')\n")
+
+
+def test_without_scipy_the_comparison_runs_and_fit_says_what_to_install():
+    def run(*args):
+        return subprocess.run([sys.executable, "-c", WITHOUT_SCIPY, *args], cwd=ROOT, capture_output=True,
+                              text=True, timeout=120)
+    compared = run("damped", "--data", "examples/data/vernier.csv", "--set", "k=55", "--set", "b=2.5",
+                   "--set", "dt=0.005")
+    assert compared.returncode == 0, compared.stderr
+    assert "RMS residual = 0.00" in compared.stdout
+    fitted = run("damped", "--data", "examples/data/vernier.csv", "--fit", "k,b")
+    assert fitted.returncode == 2 and fitted.stdout == ""
+    assert fitted.stderr == ("error: --fit needs scipy, which is not installed; install it with "
+                             "python -m pip install scipy (everything else runs without it)\n")
