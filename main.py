@@ -193,6 +193,9 @@ def check_lab_options(args) -> None:
     if len(commands) > 1:
         raise UsageError(f"{commands[0]} and {commands[1]} are separate jobs; give one of them")
     command = commands[0] if commands else None
+    for flag, attribute in (("--list", "list"), ("--constants", "constants")):
+        if command and _given(args, attribute):
+            raise UsageError(f"{flag} only lists, so {command} would do nothing; leave out one of them")
     allowed = {"--data": {"fit", "data_column", "run", "coordinate"},
                "--mystery": {"seed", "coordinate"}, "--show-answer": {"seed", "coordinate"}}.get(command, set())
     for flag, attribute in LAB_OPTIONS:
@@ -221,6 +224,7 @@ def _given(args, attribute) -> bool:
 
 def check_options(args) -> None:
     """Combinations and ranges argparse cannot check by itself: each flag must do something."""
+    check_lab_options(args)
     runs_headless = headless_run(args)
     if args.list:
         others = [flag for flag, attribute in (("--constants", "constants"), ("--set", "assignments"),
@@ -237,7 +241,6 @@ def check_options(args) -> None:
             if _given(args, attribute):
                 raise UsageError(f"--constants only prints the constants, so {flag} would do nothing; "
                                  f"leave out one of them")
-    check_lab_options(args)
     if lab_command(args) is not None:
         return
     for flag, given in (("--json", args.json), ("--csv", args.csv is not None)):

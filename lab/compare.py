@@ -267,6 +267,10 @@ def compare(setup, t, y, *, integrator=None, coordinate="y", fit=()) -> Comparis
         elif name == "b":
             start[j] = _decay(t, y, m) or start[j]
     problem = _Problem(setup, t, y, names=names, integrator=integrator, axis=AXES[coordinate])
+    still = problem.run(start, 1.0)
+    if np.ptp(still.r) <= 1e-12 * (1.0 + np.max(np.abs(still.r))):
+        raise FitError(f"the model's {coordinate} does not move in scene {setup.name!r}, so there is nothing "
+                       f"to compare; choose the coordinate that moves with --coordinate")
     t_offset, position_offset = _start_offsets(problem, start, t, y)
     theta = np.array([*start, t_offset, position_offset])
     theta = _offsets_only(problem, theta)
@@ -279,12 +283,15 @@ def compare(setup, t, y, *, integrator=None, coordinate="y", fit=()) -> Comparis
         stuck = [(names + ["t_offset", "position_offset"])[j] for j in np.flatnonzero(~(scale > 0))]
         raise FitError(f"the data cannot fix {', '.join(stuck)}: changing it does not change the model "
                        f"at the data's times")
-    singular = np.linalg.svd(J / scale, compute_uv=False)
+    _, singular, directions = np.linalg.svd(J / scale, full_matrices=False)
     condition = singular[0] / singular[-1] if singular[-1] > 0 else math.inf
     if condition > CONDITION_LIMIT:
-        raise FitError(f"{', '.join(names) or 'the offsets'} cannot be told apart from this data (the fit's "
-                       f"Jacobian has condition number {condition:.1e}): the motion changes the same way "
-                       f"for a change of one as of another; set all but one with --set")
+        together = np.abs(directions[-1])         # the change of values that changes nothing
+        tied = [(names + ["t_offset", "position_offset"])[j] for j in np.flatnonzero(together > 0.1 * together.max())]
+        raise FitError(f"{' and '.join(tied)} cannot be told apart from this data (the fit's Jacobian has "
+                       f"condition number {condition:.1e}): a change of one can be undone by a change of "
+                       f"the other{'s' if len(tied) > 2 else ''}; set {'it' if len(tied) == 1 else 'all but one'} "
+                       f"with --set")
     dof = len(t) - len(theta)
     s2 = float(residual @ residual) / dof if dof > 0 else math.nan
     covariance = np.linalg.pinv((J / scale).T @ (J / scale)) / np.outer(scale, scale) * s2
