@@ -14,7 +14,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .compare import AXES, ModelRun
+from .compare import AXES, FitError, ModelRun
 from .formats import vernier
 
 HIDDEN = ("k", "b")                   # what the students find
@@ -43,6 +43,12 @@ def choose(setup, *, seed: int, given=()) -> dict:
     """The hidden constants from the seed: k from half to twice the scene's, and b for a damping
     ratio from 0.02 to 0.12 of critical (a swing that visibly dies away); `given` names the ones
     the teacher set, which are kept."""
+    missing = [name for name in ("m", *HIDDEN) if name not in setup.constants]
+    if missing:
+        raise FitError(f"scene {setup.name!r} has no {' or '.join(missing)}; a mystery spring needs a scene "
+                       f"of one mass on a spring with m, k and b (vertical, damped, driven)")
+    if not float(setup.values["k"]) > 0:
+        raise FitError("a mystery spring needs a spring: k must be greater than 0 N/m")
     rng = np.random.default_rng(seed)
     m, k_scene = float(setup.values["m"]), float(setup.values["k"])
     k = _round(k_scene * 2.0 ** rng.uniform(-1.0, 1.0))
