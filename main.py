@@ -9,6 +9,10 @@
         [--json] [--csv FILE]
     python main.py SCENE --steps N        the first N momentum updates as a table to check by hand
     python main.py SCENE --plot FILE.png  a figure of the position and energy graphs (needs matplotlib)
+    python main.py SCENE --data FILE      the model against a measured run: offsets, RMS residual
+        [--fit k,b] [--data-column NAME] [--run N] [--coordinate x|y|z] [--json] [--plot FILE.png]
+    python main.py SCENE --mystery FILE [--seed N]   a measured-looking run with hidden k and b
+    python main.py SCENE --show-answer --seed N      the hidden k and b of that mystery file
 
 --preset NAME applies one of the scene's presets ("Moon gravity", "critical damping", ...; --constants
 lists them) in the browser and headless alike, after --scenario and before --set.
@@ -53,6 +57,9 @@ EXAMPLES = """examples:
   python main.py damped --preset "critical damping"    no overshoot, in the browser
   python main.py vertical --steps 2                   the first two updates, to check by hand
   python main.py regimes --plot regimes.png           the page's damping figure
+  python main.py damped --data examples/data/vernier.csv --fit k,b --set dt=0.001
+                                                      fit k and b to a motion detector's run
+  python main.py damped --mystery spring.csv --seed 12   a mystery spring for class
 """
 
 

@@ -80,7 +80,7 @@ def as_json(result, measured, *, integrator=None) -> dict:
     model = result.setup
     return {"scene": model.name, "data": measured.path, "data_read": measured.choice,
             "coordinate": result.coordinate, "dt": model.values.get("dt"),
-            "integrator": integrator or "scene default", "fit": fit,
+            "integrator": model.build().methods(integrator)[0], "fit": fit,
             "rms_residual": clean(result.rms), "rms_residual_unit": "m", "data_points": result.points}
 
 
