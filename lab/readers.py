@@ -190,8 +190,18 @@ def read(path: str, *, column: str | None = None, run: int | None = None,
             raw = handle.read()
     except OSError as problem:
         _fail(path, None, f"cannot read it: {problem.strerror or problem}")
-    lines = decode(raw, path).splitlines()
-    return _parse(lines, path, column=column, run=run, coordinate=coordinate)
+    return from_bytes(raw, path, column=column, run=run, coordinate=coordinate)
+
+
+def from_bytes(raw: bytes, name: str, *, column: str | None = None, run: int | None = None,
+               coordinate: str = "y") -> Measured:
+    """The same as read(), for a file's bytes already in hand (a page's upload); `name` names it
+    in messages."""
+    if len(raw) > MAX_BYTES:
+        _fail(name, None, f"the file is {len(raw) / 1e6:.0f} MB, more than the {MAX_BYTES // 2**20} MB "
+                          f"this program reads; keep the part of the run you need")
+    lines = decode(raw, name).splitlines()
+    return _parse(lines, name, column=column, run=run, coordinate=coordinate)
 
 
 def _parse(lines, path, *, column, run, coordinate) -> Measured:

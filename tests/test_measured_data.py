@@ -162,3 +162,15 @@ def test_constants_the_data_cannot_separate_are_found_from_the_jacobian():
     setup = catalog.configure("damped", assignments=["dt=0.01"])
     with pytest.raises(FitError, match="g and L0 cannot be told apart from this data"):
         compare(setup, t, y + np.random.default_rng(1).normal(0, 0.001, t.size), fit=["g", "L0"])
+
+
+def test_bytes_in_hand_read_as_the_file_does(points, tmp_path):
+    """readers.from_bytes is what a page's upload would call: the same points as reading the file."""
+    t, y = points
+    raw = formats.loggerpro(t, y).encode("utf-16")
+    path = tmp_path / "run.txt"
+    path.write_bytes(raw)
+    from_file, in_hand = readers.read(str(path)), readers.from_bytes(raw, "upload.txt")
+    assert from_file.t == pytest.approx(in_hand.t) and from_file.position == pytest.approx(in_hand.position)
+    with pytest.raises(readers.DataError, match=r"^upload.txt line 4: time 0.1 does not increase"):
+        readers.from_bytes(b"t,y\n0,1\n0.1,2\n0.1,3\n0.2,4\n", "upload.txt")
