@@ -157,14 +157,24 @@ def check_names(setup, names) -> list[str]:
 
 
 def _frequency(t, y) -> float | None:
-    """The data's angular frequency from its crossings of the median, rad/s (None if under 3)."""
-    centred = y - np.median(y[len(y) // 2:])
-    sign = np.signbit(centred)
-    crossings = np.flatnonzero(sign[1:] != sign[:-1])
-    if len(crossings) < 3:
+    """The data's strongest angular frequency, rad/s: the peak of its spectrum (resampled evenly,
+    padded four times, the peak refined by a parabola through its three bins); None if it has none
+    above the lowest frequencies."""
+    interval = float(np.median(np.diff(t)))
+    if not interval > 0 or len(t) < 8:
         return None
-    times = t[crossings]
-    return math.pi * (len(times) - 1) / (times[-1] - times[0])
+    even = np.arange(t[0], t[-1], interval)
+    centred = np.interp(even, t, y)
+    centred = centred - np.mean(centred)
+    size = 4 * len(even)
+    power = np.abs(np.fft.rfft(centred, n=size)) ** 2
+    lowest = 8                                      # bins below two cycles over the record
+    if len(power) <= lowest + 2:
+        return None
+    peak = lowest + int(np.argmax(power[lowest:-1]))
+    a, b, c = np.log(power[peak - 1:peak + 2] + 1e-300)
+    shift = 0.5 * (a - c) / (a - 2 * b + c) if a - 2 * b + c < 0 else 0.0
+    return 2 * math.pi * (peak + shift) / (size * interval)
 
 
 def _decay(t, y, m) -> float | None:

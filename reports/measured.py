@@ -6,6 +6,7 @@ from __future__ import annotations
 import math
 import os
 import secrets
+import shlex
 import sys
 
 import numpy as np
@@ -122,6 +123,11 @@ def _given(args) -> set:
     return {assignment.partition("=")[0].strip() for assignment in args.assignments}
 
 
+def _sets(args) -> str:
+    """The --set options given, to repeat with --show-answer (the answer depends on them)."""
+    return "".join(f" --set {shlex.quote(assignment)}" for assignment in args.assignments)
+
+
 def run_mystery(args, setup) -> int:
     """--mystery FILE [--seed N]: write the run, say what the students are told, keep the answer."""
     path = args.mystery
@@ -136,7 +142,7 @@ def run_mystery(args, setup) -> int:
     start = f", released from rest at r0 = {tuple(r0)} m" if r0 is not None else ""
     print(f"wrote {path}: {len(run.t)} samples at {run.rate} per second (Vernier CSV) of a spring with "
           f"m = {run.known['m'][0]:g} kg{start}; {' and '.join(run.answer)} are the mystery "
-          f"(seed {seed}: python main.py {setup.name} --show-answer --seed {seed} prints them)",
+          f"(seed {seed}: python main.py {setup.name} --show-answer --seed {seed}{_sets(args)} prints them)",
           file=sys.stderr)
     return 0
 
