@@ -156,25 +156,40 @@ def check_names(setup, names) -> list[str]:
     return names
 
 
-def _frequency(t, y) -> float | None:
-    """The data's strongest angular frequency, rad/s: the peak of its spectrum (resampled evenly,
-    padded four times, the peak refined by a parabola through its three bins); None if it has none
-    above the lowest frequencies."""
+def _frequencies(t, y) -> list[float]:
+    """Candidate angular frequencies of the data's swing, rad/s, strongest first: the two highest
+    peaks of its spectrum, and of its spectrum times the frequency (the step at a release from rest
+    leaks into the lowest frequencies, white noise into the highest, so neither alone is safe).
+    The data are resampled evenly and padded four times; each peak is refined by a parabola."""
     interval = float(np.median(np.diff(t)))
     if not interval > 0 or len(t) < 8:
-        return None
+        return []
     even = np.arange(t[0], t[-1], interval)
     centred = np.interp(even, t, y)
     centred = centred - np.mean(centred)
     size = 4 * len(even)
-    power = np.abs(np.fft.rfft(centred, n=size)) ** 2
+    plain = np.abs(np.fft.rfft(centred, n=size)) ** 2
     lowest = 8                                      # bins below two cycles over the record
-    if len(power) <= lowest + 2:
-        return None
-    peak = lowest + int(np.argmax(power[lowest:-1]))
-    a, b, c = np.log(power[peak - 1:peak + 2] + 1e-300)
-    shift = 0.5 * (a - c) / (a - 2 * b + c) if a - 2 * b + c < 0 else 0.0
-    return 2 * math.pi * (peak + shift) / (size * interval)
+    if len(plain) <= lowest + 2:
+        return []
+    found = []
+    for power in (plain, plain * np.arange(len(plain))):
+        inner = power[lowest:-1]
+        peaks = [i for i in range(1, len(inner) - 1) if inner[i - 1] < inner[i] >= inner[i + 1]]
+        for i in sorted(peaks, key=lambda i: -inner[i])[:2]:
+            peak = lowest + i
+            a, b, c = np.log(power[peak - 1:peak + 2] + 1e-300)
+            shift = 0.5 * (a - c) / (a - 2 * b + c) if a - 2 * b + c < 0 else 0.0
+            omega = 2 * math.pi * (peak + shift) / (size * interval)
+            if all(abs(omega - other) > 0.02 * other for other in found):
+                found.append(omega)
+    return found
+
+
+def _frequency(t, y) -> float | None:
+    """The data's strongest angular frequency, rad/s (None if it has none)."""
+    found = _frequencies(t, y)
+    return found[0] if found else None
 
 
 def _decay(t, y, m) -> float | None:
@@ -253,7 +268,7 @@ def _start_offsets(problem, theta_constants, t, y):
         cost = float(np.sum((model + offset - y) ** 2))
         if cost < best[0]:
             best = (cost, float(t_offset), offset)
-    return best[1], best[2]
+    return best[1], best[2], best[0]
 
 
 def compare(setup, t, y, *, integrator=None, coordinate="y", fit=()) -> Comparison:
@@ -266,26 +281,46 @@ def compare(setup, t, y, *, integrator=None, coordinate="y", fit=()) -> Comparis
     names = check_names(setup, fit) if fit else []
     if len(t) < len(names) + 4:
         raise FitError(f"{len(t)} points cannot fix {len(names) + 2} values (the constants and two offsets)")
-    start = [float(setup.values[name]) for name in names]
     m = float(setup.values.get("m", 1.0))
-    omega = _frequency(t, y)
-    for j, name in enumerate(names):     # a start near the data's own swing, so the fit finds it
-        if name == "k" and omega:
-            start[j] = m * omega ** 2
-        elif name == "m" and omega and setup.values.get("k"):
-            start[j] = setup.values["k"] / omega ** 2
-        elif name == "b":
-            start[j] = _decay(t, y, m) or start[j]
     problem = _Problem(setup, t, y, names=names, integrator=integrator, axis=AXES[coordinate])
-    still = problem.run(start, 1.0)
+
+    def start_from(omega):
+        """A start near the data's own swing at angular frequency omega, so the fit finds it."""
+        start = [float(setup.values[name]) for name in names]
+        for j, name in enumerate(names):
+            if name == "k" and omega:
+                start[j] = m * omega ** 2
+            elif name == "m" and omega and setup.values.get("k"):
+                start[j] = setup.values["k"] / omega ** 2
+            elif name == "b":
+                start[j] = _decay(t, y, m) or start[j]
+        return start
+
+    candidates = _frequencies(t, y) if {"k", "m"} & set(names) else []
+    starts = [(start_from(omega), omega) for omega in candidates] or [(start_from(None), None)]
+    still = problem.run(starts[0][0], 1.0)
     if np.ptp(still.r) <= 1e-12 * (1.0 + np.max(np.abs(still.r))):
         raise FitError(f"the model's {coordinate} does not move in scene {setup.name!r}, so there is nothing "
                        f"to compare; choose the coordinate that moves with --coordinate")
-    t_offset, position_offset = _start_offsets(problem, start, t, y)
+    best = None
+    for start, omega in starts:           # the candidate frequency whose model matches the data best
+        t_offset, position_offset, cost = _start_offsets(problem, start, t, y)
+        if best is None or cost < best[0]:
+            best = (cost, start, omega, t_offset, position_offset)
+    _, start, omega, t_offset, position_offset = best
+    # k and m may move a factor of 10 from the data's own frequency: further is a swing the data
+    # does not show, and a stiff spring there would cost the fit minutes of tiny steps.
+    reach = {j: (start[j] / 10, start[j] * 10) for j, name in enumerate(names)
+             if name in ("k", "m") and omega and start[j] > 0}
     theta = np.array([*start, t_offset, position_offset])
     theta = _offsets_only(problem, theta)
     if names:
-        theta = _least_squares(problem, theta)
+        theta = _least_squares(problem, theta, reach)
+        for j, (low, high) in reach.items():
+            if not low * 1.001 < theta[j] < high / 1.001:
+                raise FitError(f"the fit of {names[j]} ran to {theta[j]:.4g} {setup.constants[names[j]].unit}, "
+                               f"ten times from what the data's frequency suggests ({start[j]:.4g}): the data "
+                               f"show too little of the swing to fit it; check --set m, r0 and the column read")
     J = problem.jacobian(theta)
     residual = problem.residuals(theta)
     scale = np.linalg.norm(J, axis=0)
@@ -356,7 +391,7 @@ class MissingScipy(FitError):
                          "python -m pip install scipy (everything else runs without it)")
 
 
-def _least_squares(problem, theta):
+def _least_squares(problem, theta, reach):
     """scipy's least_squares over every value, within each constant's declared range."""
     try:
         from scipy.optimize import least_squares
@@ -365,6 +400,8 @@ def _least_squares(problem, theta):
     p = len(problem.names)
     low = np.array([DECLARED[name].low for name in problem.names] + [-np.inf, -np.inf])
     high = np.array([DECLARED[name].high for name in problem.names] + [np.inf, np.inf])
+    for j, (lo, hi) in reach.items():
+        low[j], high[j] = max(low[j], lo), min(high[j], hi)
     inside = 1e-9 * np.maximum(np.abs(theta[:p]), 1.0)        # strictly inside, as trf starts
     theta = theta.copy()
     theta[:p] = np.clip(theta[:p], low[:p] + inside, high[:p] - inside)

@@ -41,8 +41,9 @@ def _round(x: float, digits: int = 3) -> float:
 
 def choose(setup, *, seed: int, given=()) -> dict:
     """The hidden constants from the seed: k from half to twice the scene's, and b for a damping
-    ratio from 0.02 to 0.12 of critical (a swing that visibly dies away); `given` names the ones
-    the teacher set, which are kept."""
+    ratio from 0.02 to 0.12 of critical (a swing that visibly dies away), at most one that leaves a
+    twentieth of the swing at the end of the record; `given` names the ones the teacher set, which
+    are kept."""
     missing = [name for name in ("m", *HIDDEN) if name not in setup.constants]
     if missing:
         raise FitError(f"scene {setup.name!r} has no {' or '.join(missing)}; a mystery spring needs a scene "
@@ -54,6 +55,8 @@ def choose(setup, *, seed: int, given=()) -> dict:
     k = _round(k_scene * 2.0 ** rng.uniform(-1.0, 1.0))
     zeta = rng.uniform(0.02, 0.12)
     k = float(setup.values["k"]) if "k" in given else k
+    # The swing must last most of the record to be measured: a decay rate ζω of at most 3/DURATION.
+    zeta = min(zeta, 3.0 / (DURATION * math.sqrt(k / m)))
     b = float(setup.values["b"]) if "b" in given else _round(zeta * 2.0 * math.sqrt(m * k))
     return {"k": k, "b": b}
 
