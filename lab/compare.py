@@ -169,7 +169,7 @@ def _frequencies(t, y) -> list[float]:
     centred = centred - np.mean(centred)
     size = 4 * len(even)
     plain = np.abs(np.fft.rfft(centred, n=size)) ** 2
-    lowest = 8                                      # bins below two cycles over the record
+    lowest = 4                                      # bins below one cycle over the record
     if len(plain) <= lowest + 2:
         return []
     found = []
@@ -297,13 +297,13 @@ def compare(setup, t, y, *, integrator=None, coordinate="y", fit=()) -> Comparis
         return start
 
     candidates = _frequencies(t, y) if {"k", "m"} & set(names) else []
-    starts = [(start_from(omega), omega) for omega in candidates] or [(start_from(None), None)]
+    starts = [(start_from(None), None)] + [(start_from(omega), omega) for omega in candidates]
     still = problem.run(starts[0][0], 1.0)
     if np.ptp(still.r) <= 1e-12 * (1.0 + np.max(np.abs(still.r))):
         raise FitError(f"the model's {coordinate} does not move in scene {setup.name!r}, so there is nothing "
                        f"to compare; choose the coordinate that moves with --coordinate")
     best = None
-    for start, omega in starts:           # the candidate frequency whose model matches the data best
+    for start, omega in starts:           # the constants as set, or a candidate frequency: the best match
         t_offset, position_offset, cost = _start_offsets(problem, start, t, y)
         if best is None or cost < best[0]:
             best = (cost, start, omega, t_offset, position_offset)
