@@ -9,6 +9,10 @@
         [--json] [--csv FILE]
     python main.py SCENE --steps N        the first N momentum updates as a table to check by hand
     python main.py SCENE --plot FILE.png  a figure of the position and energy graphs (needs matplotlib)
+    python main.py SCENE --data FILE      the model against a measured run: offsets, RMS residual
+        [--fit k,b] [--data-column NAME] [--run N] [--coordinate x|y|z] [--json] [--plot FILE.png]
+    python main.py SCENE --mystery FILE [--seed N]   a measured-looking run with hidden k and b
+    python main.py SCENE --show-answer --seed N      the hidden k and b of that mystery file
 
 --preset NAME applies one of the scene's presets ("Moon gravity", "critical damping", ...; --constants
 lists them) in the browser and headless alike, after --scenario and before --set.
@@ -41,6 +45,7 @@ from physics.integrators import DEFAULT_INTEGRATOR, INTEGRATORS  # noqa: E402
 from physics.simulate import BlowUpError  # noqa: E402
 from scenes import catalog  # noqa: E402
 from scenes import ConstantError, check_value  # noqa: E402
+from lab import LabError  # noqa: E402
 
 
 EXAMPLES = """examples:
@@ -53,6 +58,9 @@ EXAMPLES = """examples:
   python main.py damped --preset "critical damping"    no overshoot, in the browser
   python main.py vertical --steps 2                   the first two updates, to check by hand
   python main.py regimes --plot regimes.png           the page's damping figure
+  python main.py damped --data examples/data/vernier.csv --fit k,b --set dt=0.001
+                                                      fit k and b to a motion detector's run
+  python main.py damped --mystery spring.csv --seed 12   a mystery spring for class
 """
 
 
@@ -101,6 +109,23 @@ def build_parser() -> argparse.ArgumentParser:
     parser.add_argument("--overwrite", action="store_true",
                         help="let --csv, --plot, --vpython or --webvpython replace an existing Python file "
                              "this program did not write (its own files are never replaced)")
+    data = parser.add_argument_group("a real spring (measured data, the fit, a mystery spring)")
+    data.add_argument("--data", metavar="FILE",
+                      help="compare the model with a measured position against time (Tracker, Vernier, "
+                           "PASCO, Logger Pro or --csv file): fits a time and a position offset, prints "
+                           "the RMS residual; with --plot, draws both")
+    data.add_argument("--fit", metavar="NAMES", help="with --data: also fit these constants, e.g. k,b")
+    data.add_argument("--data-column", metavar="NAME",
+                      help="with --data: the position column to read (a unique part of its header, or "
+                           "its number from 1)")
+    data.add_argument("--run", type=int, metavar="N", help="with --data: read run N of several (default 1)")
+    data.add_argument("--coordinate", choices=("x", "y", "z"),
+                      help="with --data: the model's coordinate to compare (default: the scene's plotted one)")
+    data.add_argument("--mystery", metavar="FILE",
+                      help="write a measured-looking run of a spring with hidden k and b (Vernier CSV)")
+    data.add_argument("--seed", type=int, metavar="N", help="with --mystery or --show-answer: which mystery")
+    data.add_argument("--show-answer", action="store_true",
+                      help="with --seed N: print the hidden constants of that mystery spring")
     parser.add_argument("--no-browser", action="store_true",
                         help="print the page's URL instead of opening a browser")
     parser.add_argument("--port", type=int, metavar="P", help="port for the browser page")
@@ -158,8 +183,52 @@ OUTPUT_FILES = (("--csv", "csv"), ("--plot", "plot"), *PROGRAM_OPTIONS)
 
 
 def headless_run(args) -> bool:
-    """Whether the command runs without the browser: --headless, and --steps and --plot, which imply it."""
-    return args.headless or args.steps is not None or args.plot is not None
+    """Whether the command runs without the browser: --headless, and --steps and --plot, which imply it
+    (and --data, --mystery and --show-answer, which never open the page)."""
+    return (args.headless or args.steps is not None or args.plot is not None
+            or lab_command(args) is not None)
+
+
+LAB_OPTIONS = (("--fit", "fit"), ("--data-column", "data_column"), ("--run", "run"),
+               ("--coordinate", "coordinate"), ("--seed", "seed"))
+
+
+def lab_command(args) -> str | None:
+    """Which of --data, --mystery and --show-answer was given (None: none of them)."""
+    given = [flag for flag, attribute in (("--data", "data"), ("--mystery", "mystery"),
+                                          ("--show-answer", "show_answer")) if _given(args, attribute)]
+    return given[0] if given else None
+
+
+def check_lab_options(args) -> None:
+    """--data, --mystery and --show-answer: one at a time, with only the flags that do something."""
+    commands = [flag for flag, attribute in (("--data", "data"), ("--mystery", "mystery"),
+                                             ("--show-answer", "show_answer")) if _given(args, attribute)]
+    if len(commands) > 1:
+        raise UsageError(f"{commands[0]} and {commands[1]} are separate jobs; give one of them")
+    command = commands[0] if commands else None
+    for flag, attribute in (("--list", "list"), ("--constants", "constants")):
+        if command and _given(args, attribute):
+            raise UsageError(f"{flag} only lists, so {command} would do nothing; leave out one of them")
+    allowed = {"--data": {"fit", "data_column", "run", "coordinate"},
+               "--mystery": {"seed", "coordinate"}, "--show-answer": {"seed", "coordinate"}}.get(command, set())
+    for flag, attribute in LAB_OPTIONS:
+        if _given(args, attribute) and attribute not in allowed:
+            needs = "--data" if attribute != "seed" else "--mystery or --show-answer"
+            raise UsageError(f"{flag} needs {needs}" + (f" (it does nothing with {command})" if command else ""))
+    if command is None:
+        return
+    if command == "--show-answer" and args.seed is None:
+        raise UsageError("--show-answer needs --seed N, the seed the mystery file was written with")
+    if args.run is not None and args.run < 1:
+        raise UsageError(f"--run needs a whole number of 1 or more (got {args.run})")
+    others = [(flag, attribute) for flag, attribute in (("--csv", "csv"), ("--steps", "steps"),
+                                                        ("--until", "until"), *PROGRAM_OPTIONS, *BROWSER_ONLY)]
+    if command != "--data":
+        others += [("--json", "json"), ("--plot", "plot"), ("--integrator", "integrator")]
+    for flag, attribute in others:
+        if _given(args, attribute):
+            raise UsageError(f"{flag} does nothing with {command}; leave out one of them")
 
 
 def _given(args, attribute) -> bool:
@@ -169,6 +238,7 @@ def _given(args, attribute) -> bool:
 
 def check_options(args) -> None:
     """Combinations and ranges argparse cannot check by itself: each flag must do something."""
+    check_lab_options(args)
     runs_headless = headless_run(args)
     if args.list:
         others = [flag for flag, attribute in (("--constants", "constants"), ("--set", "assignments"),
@@ -186,6 +256,8 @@ def check_options(args) -> None:
             if _given(args, attribute):
                 raise UsageError(f"--constants only prints the constants, so {flag} would do nothing; "
                                  f"leave out one of them")
+    if lab_command(args) is not None:
+        return
     for flag, given in (("--json", args.json), ("--csv", args.csv is not None)):
         if given and not args.headless:
             raise UsageError(f"{flag} needs --headless (it describes a run without the browser)")
@@ -353,6 +425,12 @@ def main(argv=None) -> int:
             print(presets_report(setup))
             return 0
         model = build_model(args, setup)
+        if lab_command(args) is not None:
+            from reports import measured
+
+            run_lab = {"--data": measured.run_data, "--mystery": measured.run_mystery,
+                       "--show-answer": measured.show_answer}[lab_command(args)]
+            return run_lab(args, setup)
         runs_headless = headless_run(args)
         if args.vpython is not None or args.webvpython is not None:
             write_programs(args, setup, model, warn=not runs_headless)   # then a headless run too, if asked
@@ -360,7 +438,7 @@ def main(argv=None) -> int:
                 return 0
         if runs_headless:
             return run_headless(args, setup, model)
-    except (ConstantError, UsageError, files.OutputError) as problem:
+    except (ConstantError, UsageError, files.OutputError, LabError) as problem:
         print(f"error: {problem}", file=sys.stderr)
         return 2
     except BlowUpError as problem:

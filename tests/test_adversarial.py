@@ -185,6 +185,18 @@ BAD = [
                                          "would import the program itself"),
     ("vertical --vpython VPython.py --webvpython web.py", 2, "a program called VPython.py cannot run"),
     ("--list --overwrite", 2, "--list takes no scene or other option (got --overwrite)"),
+    # ---- measured data, the fit and the mystery spring (issue 19; the files: test_measured_cli.py) ----
+    ("damped --fit k,b", 2, "--fit needs --data"),
+    ("damped --data missing.csv", 2, "missing.csv: cannot read it"),
+    ("damped --data missing.csv --data-column 2 --run 0", 2, "--run needs a whole number"),
+    ("damped --data missing.csv --coordinate w", 2, "invalid choice"),
+    ("damped --data missing.csv --until 3", 2, "--until does nothing with --data"),
+    ("damped --mystery m.csv --show-answer --seed 1", 2, "separate jobs"),
+    ("damped --seed 3 --headless", 2, "--seed needs --mystery or --show-answer"),
+    ("damped --show-answer", 2, "--show-answer needs --seed"),
+    ("damped --mystery m.csv --json", 2, "--json does nothing with --mystery"),
+    ("regimes --mystery m.csv --seed 1", 2, "has 3 masses"),
+    ("integrators --show-answer --seed 1", 2, "has no b"),
 ]
 
 # Inputs that would run for minutes or hours: the engine's cost limit (physics.simulate.check_cost)

@@ -1,0 +1,414 @@
+"""The model against a measured run: the offsets, the RMS residual, and a least-squares fit.
+
+The measured file has its own clock and its own zero, so every comparison fits two offsets,
+
+    data(t) ≈ model(t − t_offset) + position_offset,
+
+where t_offset is the data's clock reading at the model's t = 0 (the release) and position_offset
+the data's reading where the model's coordinate is 0. Before its release the model's mass is
+held still at its start position. `--fit k,b` fits named constants too, by least squares
+(scipy.optimize.least_squares).
+
+The model is the engine's own run (physics.simulate.Simulation) with the chosen integrator and Δt:
+at the engine's step times it is exactly the engine's positions, and between two steps a cubic
+Hermite curve through the two positions and velocities. That curve is much closer to the engine
+than the engine is to the exact motion (its error is of order Δt⁴, the integrator's of order Δt),
+and it lets the data keep its own sample times, so one run per set of constants serves every t_offset.
+
+Standard uncertainties come from the Jacobian J of the residuals at the fit: the covariance is
+s² (JᵀJ)⁻¹ with s² = Σ residual² / (N − number of fitted values), as for any least-squares fit with
+independent noise of the same size on every point. Constants that the data cannot tell apart
+(k and m: x(t) depends on k/m only) are refused with one line instead of a meaningless fit.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from . import LabError
+from physics.simulate import BlowUpError, every, trajectory
+from scenes import ConstantError, check_value
+from scenes._constants import DECLARED
+
+AXES = {"x": 0, "y": 1, "z": 2}
+MAX_STEPS_PER_RUN = 2_000_000     # a fit runs the engine dozens of times: each run stays this short
+CONDITION_LIMIT = 1e8             # beyond this the fitted values cannot be told apart
+# Constants that enter the motion only in a combination: fitting two of a group is meaningless.
+TIED = [
+    ({"m", "k"}, "the motion depends on k/m, not on k and m apart (gravity gives every mass the same g)"),
+    ({"m", "b"}, "the motion depends on b/m, not on b and m apart"),
+    ({"m", "F0"}, "the motion depends on F0/m, not on F0 and m apart"),
+    ({"C", "A"}, "drag depends on the product C·A·ρ only"),
+    ({"C", "rho"}, "drag depends on the product C·A·ρ only"),
+    ({"A", "rho"}, "drag depends on the product C·A·ρ only"),
+]
+
+
+class FitError(LabError):
+    """A comparison or fit that cannot be made: one line saying why and what to do."""
+
+
+@dataclass(frozen=True)
+class Estimate:
+    """A fitted value with its standard uncertainty, in `unit`."""
+
+    value: float
+    uncertainty: float
+    unit: str
+
+
+@dataclass
+class Comparison:
+    """The measured points (t, data: the file's clock, s, and zero, m) against the model there (m)."""
+
+    t: np.ndarray
+    data: np.ndarray
+    model: np.ndarray
+    coordinate: str
+    fitted: dict = field(default_factory=dict)      # name → Estimate, for --fit NAMES
+    t_offset: Estimate | None = None
+    position_offset: Estimate | None = None
+    setup: object = None                            # the scene with the fitted values set
+    notes: list = field(default_factory=list)
+
+    @property
+    def residual(self) -> np.ndarray:
+        return self.data - self.model
+
+    @property
+    def rms(self) -> float:
+        return float(np.sqrt(np.mean(self.residual ** 2)))
+
+    @property
+    def points(self) -> int:
+        return len(self.t)
+
+
+class ModelRun:
+    """The engine's run of one set of constants, along one coordinate, readable at any time.
+
+    r(τ) and dr/dτ at model times τ: the engine's step values, joined by cubic Hermite curves
+    through each step's position and velocity; before τ = 0 the mass is held at its start.
+    """
+
+    def __init__(self, setup, *, integrator, axis: int, until: float):
+        model = setup.build()
+        if model.state.count != 1:
+            raise FitError(f"scene {setup.name!r} has {model.state.count} masses; measured data is "
+                           f"compared with a scene of one mass (vertical, damped, driven)")
+        if until / model.dt > MAX_STEPS_PER_RUN:
+            raise FitError(f"the data span {until:.4g} s, which is {until / model.dt:,.0f} steps of "
+                           f"dt = {model.dt:g} s per run of the model, more than the {MAX_STEPS_PER_RUN:,} "
+                           f"a fit may take; use a larger dt or a shorter stretch of data")
+        engine = model.simulation(integrator)
+        try:
+            samples = engine.run_until(until, record=every(1))
+        except BlowUpError as problem:
+            raise FitError(f"the model blew up with {_constants_said(setup)}: {problem}") from None
+        path = trajectory(engine, samples, with_energy=False)
+        self.dt = engine.dt
+        self.end = float(path.t[-1])
+        self.r = path.r[:, 0, axis]
+        self.v = path.v[:, 0, axis]
+
+    def at(self, tau: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """(r, dr/dτ) at model times τ, s: m and m/s."""
+        held = tau < 0
+        x = np.clip(tau, 0.0, self.end) / self.dt
+        i = np.minimum(np.floor(x).astype(int), len(self.r) - 2)
+        s = x - i
+        r0, r1, v0, v1 = self.r[i], self.r[i + 1], self.v[i] * self.dt, self.v[i + 1] * self.dt
+        s2, s3 = s * s, s * s * s
+        r = (2 * s3 - 3 * s2 + 1) * r0 + (s3 - 2 * s2 + s) * v0 + (3 * s2 - 2 * s3) * r1 + (s3 - s2) * v1
+        slope = ((6 * s2 - 6 * s) * r0 + (3 * s2 - 4 * s + 1) * v0 + (6 * s - 6 * s2) * r1
+                 + (3 * s2 - 2 * s) * v1) / self.dt
+        return np.where(held, self.r[0], r), np.where(held, 0.0, slope)
+
+
+def _constants_said(setup, names=None) -> str:
+    names = names or ("k", "b", "m")
+    return ", ".join(f"{n} = {setup.values[n]:.6g} {setup.constants[n].unit}" for n in names
+                     if n in setup.values and isinstance(setup.values[n], (int, float)))
+
+
+def check_names(setup, names) -> list[str]:
+    """The constants --fit may fit: numbers of the scene (not dt or until), none tied to another."""
+    names = [name.strip() for name in names if name.strip()]
+    if not names:
+        raise FitError("--fit needs the names of constants to fit, e.g. --fit k,b")
+    for name in names:
+        if name not in setup.constants:
+            raise FitError(f"--fit {name}: scene {setup.name!r} has no constant {name!r} "
+                           f"(python main.py {setup.name} --constants lists them)")
+        if name in ("dt", "until") or not isinstance(setup.values[name], (int, float)) \
+                or DECLARED[name].vector or DECLARED[name].whole:
+            raise FitError(f"--fit {name}: only a physical constant with one number (k, b, m, g, ...) "
+                           f"can be fitted")
+        if names.count(name) > 1:
+            raise FitError(f"--fit names {name!r} twice")
+    for group, why in TIED:
+        if group <= set(names):
+            pair = " and ".join(sorted(group))
+            raise FitError(f"--fit {','.join(names)}: {pair} cannot be told apart from a measured "
+                           f"position: {why}; set one with --set (weigh the mass: --set m=...) and fit the other")
+    return names
+
+
+def _frequencies(t, y) -> list[float]:
+    """Candidate angular frequencies of the data's swing, rad/s, strongest first: the two highest
+    peaks of its spectrum, and of its spectrum times the frequency (the step at a release from rest
+    leaks into the lowest frequencies, white noise into the highest, so neither alone is safe).
+    The data are resampled evenly and padded four times; each peak is refined by a parabola."""
+    interval = float(np.median(np.diff(t)))
+    if not interval > 0 or len(t) < 8:
+        return []
+    even = np.arange(t[0], t[-1], interval)
+    centred = np.interp(even, t, y)
+    centred = centred - np.mean(centred)
+    size = 4 * len(even)
+    plain = np.abs(np.fft.rfft(centred, n=size)) ** 2
+    lowest = 4                                      # bins below one cycle over the record
+    if len(plain) <= lowest + 2:
+        return []
+    found = []
+    for power in (plain, plain * np.arange(len(plain))):
+        inner = power[lowest:-1]
+        peaks = [i for i in range(1, len(inner) - 1) if inner[i - 1] < inner[i] >= inner[i + 1]]
+        for i in sorted(peaks, key=lambda i: -inner[i])[:2]:
+            peak = lowest + i
+            a, b, c = np.log(power[peak - 1:peak + 2] + 1e-300)
+            shift = 0.5 * (a - c) / (a - 2 * b + c) if a - 2 * b + c < 0 else 0.0
+            omega = 2 * math.pi * (peak + shift) / (size * interval)
+            if all(abs(omega - other) > 0.02 * other for other in found):
+                found.append(omega)
+    return found
+
+
+def _frequency(t, y) -> float | None:
+    """The data's strongest angular frequency, rad/s (None if it has none)."""
+    found = _frequencies(t, y)
+    return found[0] if found else None
+
+
+def _decay(t, y, m) -> float | None:
+    """A damping constant from how the swing shrinks between the first and last quarter, kg/s."""
+    quarter = max(len(t) // 4, 2)
+    centred = y - np.median(y[len(y) // 2:])
+    first, last = np.std(centred[:quarter]), np.std(centred[-quarter:])
+    if first <= 0 or last <= 0 or first <= last:
+        return None
+    gap = np.mean(t[-quarter:]) - np.mean(t[:quarter])
+    return 2.0 * m * math.log(first / last) / gap
+
+
+class _Problem:
+    """The residuals data − model as a function of [fitted constants..., t_offset, position_offset]."""
+
+    def __init__(self, setup, t, y, *, names, integrator, axis):
+        self.setup, self.t, self.y = setup, t, y
+        self.names, self.integrator, self.axis = names, integrator, axis
+        self._runs: dict = {}
+
+    def run(self, constants, until: float) -> ModelRun:
+        key = tuple(float(c) for c in constants)
+        cached = self._runs.get(key)
+        if cached is None or cached.end < until:
+            changes = dict(zip(self.names, key))
+            for name, value in changes.items():
+                try:
+                    check_value(name, value, self.setup.constants[name].unit)
+                except ConstantError as problem:
+                    raise FitError(f"the fit went out of range: {problem}") from None
+            if len(self._runs) > 8:
+                self._runs.clear()
+            cached = ModelRun(self.setup.with_values(**changes), integrator=self.integrator,
+                              axis=self.axis, until=max(until, 0.0) + 2 * self.setup.values.get("dt", 0.01))
+            self._runs[key] = cached
+        return cached
+
+    def model(self, theta):
+        p = len(self.names)
+        tau = self.t - theta[p]
+        return self.run(theta[:p], float(tau[-1])).at(tau)
+
+    def residuals(self, theta):
+        r, _ = self.model(theta)
+        return r + theta[-1] - self.y
+
+    def jacobian(self, theta):
+        p = len(self.names)
+        J = np.empty((len(self.t), p + 2))
+        base, slope = self.model(theta)
+        for j in range(p):
+            h = 1e-6 * max(abs(theta[j]), 1e-3)
+            moved = np.array(theta, dtype=float)
+            moved[j] += h
+            J[:, j] = (self.model(moved)[0] - base) / h
+        J[:, p] = -slope
+        J[:, p + 1] = 1.0
+        return J
+
+
+def _start_offsets(problem, theta_constants, t, y):
+    """t_offset and position_offset to start from: the release time that matches the data best,
+    searched over a grid of 1/50 period (linear interpolation, the position offset from the mean)."""
+    span = t[-1] - t[0]
+    omega = _frequency(t, y) or 2 * math.pi / span
+    period = 2 * math.pi / omega
+    earliest, latest = t[0] - 0.5 * span - period, t[0] + 0.5 * span
+    run = problem.run(theta_constants, t[-1] - earliest)
+    grid = np.arange(0.0, run.end + run.dt / 2, run.dt)[: len(run.r)]
+    best = (math.inf, t[0], 0.0)
+    for t_offset in np.arange(earliest, latest, period / 50):
+        tau = t - t_offset
+        model = np.where(tau < 0, run.r[0], np.interp(tau, grid, run.r))
+        offset = float(np.mean(y - model))
+        cost = float(np.sum((model + offset - y) ** 2))
+        if cost < best[0]:
+            best = (cost, float(t_offset), offset)
+    return best[1], best[2], best[0]
+
+
+def compare(setup, t, y, *, integrator=None, coordinate="y", fit=()) -> Comparison:
+    """The scene against the measured points t (s), y (m): offsets, RMS, and the fitted constants.
+
+    fit   names of constants to fit (check_names); empty compares with the constants as set.
+    Raises FitError (one line) for a fit that cannot be made, MissingScipy without scipy.
+    """
+    t, y = np.asarray(t, dtype=float), np.asarray(y, dtype=float)
+    names = check_names(setup, fit) if fit else []
+    if len(t) < len(names) + 4:
+        raise FitError(f"{len(t)} points cannot fix {len(names) + 2} values (the constants and two offsets)")
+    m = float(setup.values.get("m", 1.0))
+    problem = _Problem(setup, t, y, names=names, integrator=integrator, axis=AXES[coordinate])
+
+    def start_from(omega):
+        """A start near the data's own swing at angular frequency omega, so the fit finds it."""
+        start = [float(setup.values[name]) for name in names]
+        for j, name in enumerate(names):
+            if name == "k" and omega:
+                start[j] = m * omega ** 2
+            elif name == "m" and omega and setup.values.get("k"):
+                start[j] = setup.values["k"] / omega ** 2
+            elif name == "b":
+                start[j] = _decay(t, y, m) or start[j]
+        return start
+
+    candidates = _frequencies(t, y) if {"k", "m"} & set(names) else []
+    starts = [(start_from(None), None)] + [(start_from(omega), omega) for omega in candidates]
+    still = problem.run(starts[0][0], 1.0)
+    if np.ptp(still.r) <= 1e-12 * (1.0 + np.max(np.abs(still.r))):
+        raise FitError(f"the model's {coordinate} does not move in scene {setup.name!r}, so there is nothing "
+                       f"to compare; choose the coordinate that moves with --coordinate")
+    best = None
+    for start, omega in starts:           # the constants as set, or a candidate frequency: the best match
+        t_offset, position_offset, cost = _start_offsets(problem, start, t, y)
+        if best is None or cost < best[0]:
+            best = (cost, start, omega, t_offset, position_offset)
+    _, start, omega, t_offset, position_offset = best
+    # k and m may move a factor of 10 from the data's own frequency: further is a swing the data
+    # does not show, and a stiff spring there would cost the fit minutes of tiny steps.
+    reach = {j: (start[j] / 10, start[j] * 10) for j, name in enumerate(names)
+             if name in ("k", "m") and omega and start[j] > 0}
+    theta = np.array([*start, t_offset, position_offset])
+    theta = _offsets_only(problem, theta)
+    if names:
+        theta = _least_squares(problem, theta, reach)
+        for j, (low, high) in reach.items():
+            if not low * 1.001 < theta[j] < high / 1.001:
+                raise FitError(f"the fit of {names[j]} ran to {theta[j]:.4g} {setup.constants[names[j]].unit}, "
+                               f"ten times from what the data's frequency suggests ({start[j]:.4g}): the data "
+                               f"show too little of the swing to fit it; check --set m, r0 and the column read")
+    J = problem.jacobian(theta)
+    residual = problem.residuals(theta)
+    scale = np.linalg.norm(J, axis=0)
+    if np.any(scale == 0) or not np.all(np.isfinite(J)):
+        stuck = [(names + ["t_offset", "position_offset"])[j] for j in np.flatnonzero(~(scale > 0))]
+        raise FitError(f"the data cannot fix {', '.join(stuck)}: changing it does not change the model "
+                       f"at the data's times")
+    _, singular, directions = np.linalg.svd(J / scale, full_matrices=False)
+    condition = singular[0] / singular[-1] if singular[-1] > 0 else math.inf
+    if condition > CONDITION_LIMIT:
+        together = np.abs(directions[-1])         # the change of values that changes nothing
+        tied = [(names + ["t_offset", "position_offset"])[j] for j in np.flatnonzero(together > 0.1 * together.max())]
+        raise FitError(f"{' and '.join(tied)} cannot be told apart from this data (the fit's Jacobian has "
+                       f"condition number {condition:.1e}): a change of one can be undone by a change of "
+                       f"the other{'s' if len(tied) > 2 else ''}; set {'it' if len(tied) == 1 else 'all but one'} "
+                       f"with --set")
+    dof = len(t) - len(theta)
+    s2 = float(residual @ residual) / dof if dof > 0 else math.nan
+    covariance = np.linalg.pinv((J / scale).T @ (J / scale)) / np.outer(scale, scale) * s2
+    sigma = np.sqrt(np.maximum(np.diag(covariance), 0.0))
+    fitted = {name: Estimate(float(theta[j]), float(sigma[j]), setup.constants[name].unit)
+              for j, name in enumerate(names)}
+    final = setup.with_values(**{name: float(theta[j]) for j, name in enumerate(names)})
+    model = problem.residuals(theta) + y
+    notes = []
+    interval = float(np.median(np.diff(t)))
+    dt = float(final.values.get("dt", 0.0))
+    if dt > interval:
+        notes.append(f"note: the model's dt = {dt:g} s is longer than the data's sample interval "
+                     f"{interval:.3g} s, so the integrator's own error is in the comparison; a smaller dt "
+                     f"(--set dt={_smaller(interval)}) follows the real motion more closely")
+    return Comparison(t=t, data=y, model=model, coordinate=coordinate, fitted=fitted,
+                      t_offset=Estimate(float(theta[-2]), float(sigma[-2]), "s"),
+                      position_offset=Estimate(float(theta[-1]), float(sigma[-1]), "m"),
+                      setup=final, notes=notes)
+
+
+def _smaller(interval: float) -> str:
+    return f"{10 ** math.floor(math.log10(interval / 10)):g}"
+
+
+def _offsets_only(problem, theta, iterations: int = 30):
+    """Gauss-Newton on the two offsets alone (numpy only), from the grid search's start."""
+    theta = np.array(theta, dtype=float)
+    p = len(problem.names)
+    for _ in range(iterations):
+        residual = problem.residuals(theta)
+        _, slope = problem.model(theta)
+        J = np.column_stack([-slope, np.ones_like(slope)])
+        step, *_ = np.linalg.lstsq(J, -residual, rcond=None)
+        trial = theta.copy()
+        trial[p:] += step
+        if np.sum(problem.residuals(trial) ** 2) > np.sum(residual ** 2):
+            step = step / 4
+            trial = theta.copy()
+            trial[p:] += step
+            if np.sum(problem.residuals(trial) ** 2) > np.sum(residual ** 2):
+                break
+        theta = trial
+        if np.all(np.abs(step) <= 1e-12 * (1 + np.abs(theta[p:]))):
+            break
+    return theta
+
+
+class MissingScipy(FitError):
+    def __init__(self):
+        super().__init__("--fit needs scipy, which is not installed; install it with "
+                         "python -m pip install scipy (everything else runs without it)")
+
+
+def _least_squares(problem, theta, reach):
+    """scipy's least_squares over every value, within each constant's declared range."""
+    try:
+        from scipy.optimize import least_squares
+    except ImportError:
+        raise MissingScipy() from None
+    p = len(problem.names)
+    low = np.array([DECLARED[name].low for name in problem.names] + [-np.inf, -np.inf])
+    high = np.array([DECLARED[name].high for name in problem.names] + [np.inf, np.inf])
+    for j, (lo, hi) in reach.items():
+        low[j], high[j] = max(low[j], lo), min(high[j], hi)
+    inside = 1e-9 * np.maximum(np.abs(theta[:p]), 1.0)        # strictly inside, as trf starts
+    theta = theta.copy()
+    theta[:p] = np.clip(theta[:p], low[:p] + inside, high[:p] - inside)
+    with np.errstate(all="ignore"):
+        solution = least_squares(problem.residuals, theta, jac=problem.jacobian, bounds=(low, high),
+                                 method="trf", x_scale="jac", ftol=1e-10, xtol=1e-10, gtol=1e-10,
+                                 max_nfev=200)
+    if not np.all(np.isfinite(solution.x)):
+        raise FitError("the fit did not converge to finite values; check the constants set with --set")
+    return solution.x

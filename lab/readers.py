@@ -1,0 +1,382 @@
+"""Reading a measured position against time, from whatever program recorded it.
+
+A motion detector or a video (Tracker, Vernier Graphical Analysis, PASCO Capstone, Logger Pro) and
+this program's own --csv all write the same thing: a few lines naming the columns, then rows of
+numbers. The reader finds
+
+    the text      UTF-8 (with or without a byte-order mark), UTF-16 (as Excel saves "Unicode
+                  text"), or Windows-1252; CRLF or LF line ends
+    the rows      the first run of lines that are all numbers (or empty cells), separated by tabs,
+                  semicolons, commas or spaces; a decimal comma (0,25) where the separator is ; or tab
+    the header    up to three lines above the rows: names, symbols, units (Logger Pro writes all three)
+    the series    each position column (x, y, z, Position, Distance, ...) with the time column to its
+                  left; several runs side by side (PASCO: `Position (m) Run #2`) are several series
+    the units     from the header: s or ms, and m, cm or mm; a header with no unit is read as s and m
+
+Anything it cannot read is a :class:`DataError` whose message is one line naming the file and the
+line at fault. Nothing is loaded from a bad file.
+"""
+from __future__ import annotations
+
+import math
+import os
+import re
+from dataclasses import dataclass
+
+import numpy as np
+
+from . import LabError
+
+MAX_BYTES = 64 * 1024 * 1024     # larger files are refused before they are read
+MAX_ROWS = 200_000               # rows of numbers a file may have (about an hour at 50 samples/s)
+TIME_UNITS = {"s": 1.0, "sec": 1.0, "ms": 1e-3}
+LENGTH_UNITS = {"m": 1.0, "cm": 1e-2, "mm": 1e-3}
+POSITION_WORDS = ("position", "distance", "displacement", "height", "pos")
+
+
+class DataError(LabError):
+    """A measured-data file that cannot be read: one line naming the file and the line at fault."""
+
+
+@dataclass(frozen=True)
+class Series:
+    """One position column and the time column it goes with (column numbers from 0)."""
+
+    time: int
+    position: int
+    name: str          # the position column's header, as written
+    coordinate: str    # "x", "y", "z", or "" when the header does not say
+
+
+@dataclass(frozen=True)
+class Measured:
+    """The chosen series of a measured file: t in s and position in m, in the file's own clock and zero.
+
+    points is the number of rows used; skipped the rows left out because a cell of the series was
+    empty; choice says in words which column was read and how to pick another.
+    """
+
+    path: str
+    t: np.ndarray
+    position: np.ndarray
+    choice: str
+    skipped: int = 0
+
+
+def _fail(path: str, line: int | None, what: str):
+    where = f"{path} line {line}" if line else path
+    raise DataError(f"{where}: {what}")
+
+
+# ---- text ----
+
+def decode(raw: bytes, path: str) -> str:
+    """The file's text: UTF-16 (with its byte-order mark, or without one when every other byte is 0),
+    UTF-8 (a BOM is dropped), else Windows-1252. A binary file is refused, naming its line."""
+    if raw.startswith((b"\xff\xfe", b"\xfe\xff")):
+        encoding = "utf-16"
+    elif len(raw) >= 4 and raw[1::2].count(0) > 0.4 * len(raw) / 2 and raw[0::2].count(0) == 0:
+        encoding = "utf-16-le"
+    elif len(raw) >= 4 and raw[0::2].count(0) > 0.4 * len(raw) / 2 and raw[1::2].count(0) == 0:
+        encoding = "utf-16-be"
+    else:
+        encoding = None
+    if encoding:
+        try:
+            text = raw.decode(encoding)
+        except UnicodeDecodeError as problem:
+            _fail(path, raw[:problem.start].count(b"\n\x00") + 1, "not readable as UTF-16 text")
+    else:
+        try:
+            text = raw.decode("utf-8-sig")
+        except UnicodeDecodeError:
+            text = raw.decode("cp1252", errors="replace")
+    text = text.lstrip("\ufeff")
+    for number, line in enumerate(text.splitlines(), start=1):
+        if any(ord(c) < 32 and c not in "\t\r\n\f\v" for c in line) or "\ufffd" in line:
+            _fail(path, number, "not a text file of numbers (it holds binary data); "
+                                "export the data as text (CSV or tab-separated) and try again")
+    return text
+
+
+def _separator(line: str) -> str | None:
+    """The separator a line uses: tab, semicolon, comma, or None for runs of spaces."""
+    for mark in ("\t", ";", ","):
+        if mark in line:
+            return mark
+    return None
+
+
+def _cells(line: str, separator: str | None) -> list[str]:
+    parts = line.split(separator) if separator else line.split()
+    return [part.strip().strip('"').strip() for part in parts]
+
+
+def _number(cell: str, decimal_comma: bool) -> float | None:
+    """A cell as a float, None if empty; raises ValueError for text (and for nan or inf)."""
+    if cell == "":
+        return None
+    if decimal_comma:
+        cell = cell.replace(",", ".")
+    value = float(cell)
+    if not math.isfinite(value):
+        raise ValueError(cell)
+    return value
+
+
+def _is_numbers(cells: list[str], decimal_comma: bool) -> bool:
+    try:
+        values = [_number(cell, decimal_comma) for cell in cells]
+    except ValueError:
+        return False
+    return sum(value is not None for value in values) >= 1
+
+
+# ---- the header ----
+
+UNIT = re.compile(r"[(\[]\s*([^()\[\]]*?)\s*[)\]]")
+
+
+def _unit_of(name: str) -> str | None:
+    found = UNIT.search(name)
+    return found.group(1) if found else None
+
+
+def _bare(name: str) -> str:
+    """`Latest: Position (m)` → `position`; `x (cm)` → `x`; `Time (s) Run #1` → `time run #1`."""
+    name = UNIT.sub("", name).lower()
+    name = re.sub(r"^[^:]*:\s*", "", name)          # `Latest: ` / `Run 1: ` before the name
+    return " ".join(name.split())
+
+
+def _is_time(name: str) -> bool:
+    bare = _bare(name)
+    return bare == "t" or bare.startswith("time")
+
+
+def _coordinate(name: str) -> str | None:
+    """"x", "y" or "z" for a position column, "" for one that does not say which, None for others."""
+    bare = _bare(name)
+    first = bare.split()[0] if bare else ""
+    if first in ("x", "y", "z"):
+        return first
+    if any(bare.startswith(word) for word in POSITION_WORDS):
+        return ""
+    return None
+
+
+def _runs(name: str) -> str:
+    found = re.search(r"run\s*#?\s*(\d+)", name, re.IGNORECASE)
+    return found.group(1) if found else ""
+
+
+# ---- the file ----
+
+def read(path: str, *, column: str | None = None, run: int | None = None,
+         coordinate: str = "y") -> Measured:
+    """The measured position against time in `path` (see the module's docstring).
+
+    column   a header to read (a unique part of it, any case) or a column number from 1
+    run      the run to read, 1 for the first (the default is the first run)
+    coordinate  "x", "y" or "z": preferred where the file has several (Tracker writes x and y)
+    Raises DataError with one line naming the file and the line at fault.
+    """
+    try:
+        size = os.path.getsize(path)
+        if size > MAX_BYTES:
+            _fail(path, None, f"the file is {size / 1e6:.0f} MB, more than the {MAX_BYTES // 2**20} MB "
+                              f"this program reads; keep the part of the run you need")
+        with open(path, "rb") as handle:
+            raw = handle.read()
+    except OSError as problem:
+        _fail(path, None, f"cannot read it: {problem.strerror or problem}")
+    return from_bytes(raw, path, column=column, run=run, coordinate=coordinate)
+
+
+def from_bytes(raw: bytes, name: str, *, column: str | None = None, run: int | None = None,
+               coordinate: str = "y") -> Measured:
+    """The same as read(), for a file's bytes already in hand (a page's upload); `name` names it
+    in messages."""
+    if len(raw) > MAX_BYTES:
+        _fail(name, None, f"the file is {len(raw) / 1e6:.0f} MB, more than the {MAX_BYTES // 2**20} MB "
+                          f"this program reads; keep the part of the run you need")
+    lines = decode(raw, name).splitlines()
+    return _parse(lines, name, column=column, run=run, coordinate=coordinate)
+
+
+def _parse(lines, path, *, column, run, coordinate) -> Measured:
+    # The rows: from the first line of two or more numbers to the end of the file.
+    start = None
+    for number, line in enumerate(lines):
+        separator = _separator(line)
+        comma = separator in ("\t", ";")
+        cells = _cells(line, separator)
+        if len(cells) >= 1 and line.strip() and _is_numbers(cells, comma):
+            start = number
+            break
+    if start is None:
+        _fail(path, max(1, len(lines)), "no rows of numbers found; the file needs a header "
+                                        "(time and position) and then one row of numbers per sample")
+    separator = _separator(lines[start])
+    comma = separator in ("\t", ";")
+    width = len(_cells(lines[start], separator))
+    if width < 2:
+        _fail(path, start + 1, "only one column of numbers; the file needs time and position columns")
+
+    header_lines = []
+    for number in range(start - 1, -1, -1):
+        line = lines[number]
+        if not line.strip():
+            if header_lines:
+                break
+            continue
+        cells = _cells(line, separator)
+        if len(cells) < 2 and header_lines:
+            break
+        header_lines.insert(0, (number, cells))
+        if len(header_lines) == 3:
+            break
+    names, units = _header(header_lines, width, path, start)
+
+    rows_end = len(lines)
+    while rows_end > start and not lines[rows_end - 1].strip():
+        rows_end -= 1
+    if rows_end - start > MAX_ROWS:
+        _fail(path, start + MAX_ROWS + 1, f"more than {MAX_ROWS:,} rows of numbers, the most this program "
+                                          f"reads; keep the part of the run you need (or sample less often)")
+    table = np.full((rows_end - start, width), np.nan)
+    for row, number in enumerate(range(start, rows_end)):
+        line = lines[number]
+        if not line.strip():
+            _fail(path, number + 1, "an empty line among the rows of numbers")
+        cells = _cells(line, separator)
+        if _separator(line) != separator:
+            if len(line.split()) == 1 and _separator(line) is None:
+                _fail(path, number + 1, f"only one cell, but the header and the first row have {width}")
+            _fail(path, number + 1, f"separated by {_said(_separator(line))}, but the lines above by "
+                                    f"{_said(separator)} (mixed separators)")
+        if len(cells) > width:
+            _fail(path, number + 1, f"{len(cells)} cells, but the header and the first row have {width}")
+        for place, cell in enumerate(cells):
+            try:
+                value = _number(cell, comma)
+            except ValueError:
+                _fail(path, number + 1, f"{cell[:20]!r} in column {place + 1} ({names[place]!r}) is not a number")
+            if value is not None:
+                table[row, place] = value
+
+    series = _series(names, path, header_lines[-1][0] + 1 if header_lines else start + 1)
+    chosen, said = _choose(series, names, column=column, run=run, coordinate=coordinate,
+                           path=path, line=header_lines[-1][0] + 1 if header_lines else start + 1)
+    t_unit, x_unit = units[chosen.time], units[chosen.position]
+    t = table[:, chosen.time] * TIME_UNITS[t_unit or "s"]
+    x = table[:, chosen.position] * LENGTH_UNITS[x_unit or "m"]
+    present = ~np.isnan(t) & ~np.isnan(x)
+    last = np.flatnonzero(present)
+    if last.size < 3:
+        _fail(path, start + 1, f"fewer than 3 rows with both {names[chosen.time]!r} and "
+                               f"{names[chosen.position]!r}; nothing to compare with")
+    t, x, line_numbers = t[present], x[present], np.arange(start + 1, rows_end + 1)[present]
+    step = np.diff(t)
+    if np.any(step <= 0):
+        bad = int(np.flatnonzero(step <= 0)[0]) + 1
+        _fail(path, int(line_numbers[bad]), f"time {t[bad] / TIME_UNITS[t_unit or 's']:g} does not increase "
+                                            f"from the row above ({t[bad - 1] / TIME_UNITS[t_unit or 's']:g}); "
+                                            f"the rows must be in order of time")
+    skipped = int(last[-1] + 1 - last.size)
+    if not t_unit or not x_unit:
+        said += "; no unit in the header, read as s and m"
+    if skipped:
+        said += f"; {skipped} row{'s' if skipped > 1 else ''} with an empty cell left out"
+    return Measured(path=path, t=t, position=x, choice=said, skipped=skipped)
+
+
+def _said(separator) -> str:
+    return {"\t": "tabs", ";": "semicolons", ",": "commas", None: "spaces"}[separator]
+
+
+def _header(header_lines, width, path, start):
+    """Each column's name and unit ("" where the header gives none) from the lines above the rows."""
+    if not header_lines:
+        _fail(path, start + 1, "no header line above the numbers; the file needs one naming the "
+                               "columns (time and position, e.g. t,x or Time (s),Position (m))")
+    names = [""] * width
+    units = [""] * width
+    for number, cells in reversed(header_lines):     # the line nearest the numbers names best
+        cells = (cells + [""] * width)[:width]
+        if all(cell in TIME_UNITS or cell in LENGTH_UNITS or cell == "" or "/" in cell for cell in cells) \
+                and any(cells) and number == header_lines[-1][0] and len(header_lines) > 1:
+            units = [cell if cell in TIME_UNITS or cell in LENGTH_UNITS else "?" + cell if cell else ""
+                     for cell in cells]
+            continue
+        for place, cell in enumerate(cells):
+            if cell and not names[place]:
+                names[place] = cell
+    for place, name in enumerate(names):
+        unit = units[place] or _unit_of(name) or ""
+        kind = "time" if _is_time(name) else "position" if _coordinate(name) is not None else None
+        known = TIME_UNITS if kind == "time" else LENGTH_UNITS
+        if kind and unit and unit.lstrip("?") not in known:
+            _fail(path, header_lines[-1][0] + 1,
+                  f"unknown unit {unit.lstrip('?')!r} for column {name!r}; this program reads "
+                  f"{'s or ms' if kind == 'time' else 'm, cm or mm'}")
+        units[place] = unit if kind else ""
+        names[place] = name or f"column {place + 1}"
+    return names, units
+
+
+def _series(names, path, line) -> list[Series]:
+    found = []
+    time = None
+    for place, name in enumerate(names):
+        if _is_time(name):
+            time = place
+            continue
+        coordinate = _coordinate(name)
+        if coordinate is not None and time is not None:
+            found.append(Series(time=time, position=place, name=name, coordinate=coordinate))
+    if time is None:
+        _fail(path, line, f"no time column in the header ({', '.join(repr(n) for n in names[:6])}); "
+                          f"name it t or Time (s)")
+    if not found:
+        _fail(path, line, f"no position column after the time column ({', '.join(repr(n) for n in names[:6])}); "
+                          f"name it x, y or Position (m), or pick one with --data-column")
+    return found
+
+
+def _choose(series, names, *, column, run, coordinate, path, line):
+    """The series asked for (or the first, preferring the scene's coordinate), and a sentence saying so."""
+    if column is not None:
+        if column.strip().isdigit():
+            place = int(column) - 1
+            if not 0 <= place < len(names):
+                _fail(path, line, f"--data-column {column}: the file has columns 1 to {len(names)}")
+            matches = [s for s in series if s.position == place]
+        else:
+            matches = [s for s in series if column.lower() in s.name.lower()]
+        if len(matches) != 1:
+            _fail(path, line, f"--data-column {column!r} matches {len(matches)} position columns of "
+                              f"{', '.join(repr(s.name) for s in series)}; give a unique part of one")
+        pool = matches
+    else:
+        pool = series
+    runs = sorted({_runs(s.name) for s in pool}, key=lambda r: int(r) if r else 0)
+    if run is not None:
+        if len(runs) == 1 and run == 1:
+            pass
+        elif runs == [""] or not 1 <= run <= len(runs):
+            _fail(path, line, f"--run {run}: the file has {len(runs) if runs != [''] else 1} run"
+                              f"{'s' if len(runs) > 1 else ''}")
+        else:
+            pool = [s for s in pool if _runs(s.name) == runs[run - 1]]
+    else:
+        pool = [s for s in pool if _runs(s.name) == runs[0]]
+    preferred = [s for s in pool if s.coordinate == coordinate] or pool
+    chosen = preferred[0]
+    said = f"read {names[chosen.position]!r} against {names[chosen.time]!r}"
+    if len(runs) > 1:
+        number = runs.index(_runs(chosen.name)) + 1
+        said += f" (run {number} of {len(runs)}; --run N reads another)"
+    elif len(series) > 1 and column is None:
+        said += f" ({len(series)} position columns; --data-column NAME reads another)"
+    return chosen, said

@@ -1,0 +1,154 @@
+"""The command line's reports on measured data: --data (with --fit, --plot, --json), --mystery and
+--show-answer. The reading, comparing and fitting are in lab/; this module says what came out.
+"""
+from __future__ import annotations
+
+import math
+import os
+import secrets
+import shlex
+import sys
+
+import numpy as np
+
+from export.files import OutputError, atomic_file, check_writable, write_text
+from export.numbers import clean
+from lab import compare, mystery, readers
+from reports import headless
+
+
+def coordinate_of(args, setup) -> str:
+    """The coordinate compared: --coordinate, else the one the scene plots (vertical: y; driven: x)."""
+    if getattr(args, "coordinate", None):
+        return args.coordinate
+    plotted = getattr(setup.module, "VIEW", {}).get("plot", "y")
+    return plotted if plotted in compare.AXES else "y"
+
+
+def measured_value(estimate) -> str:
+    """`54.997 ± 0.003 N/m`: the uncertainty to two significant digits, the value to the same place."""
+    value, sigma, unit = estimate.value, estimate.uncertainty, estimate.unit
+    if not (math.isfinite(sigma) and sigma > 0):
+        return f"{value:.6g} {unit}"
+    decimals = max(0, 1 - math.floor(math.log10(sigma)))
+    return f"{value:.{decimals}f} ± {sigma:.{decimals}f} {unit}"
+
+
+def run_data(args, setup) -> int:
+    """--data FILE: read it, compare (and fit), then print text or JSON and draw --plot."""
+    coordinate = coordinate_of(args, setup)
+    measured = readers.read(args.data, column=args.data_column, run=args.run, coordinate=coordinate)
+    if args.plot is not None:
+        check_writable(args.plot, what="figure")
+        from reports import plotting
+
+        plotting.check_format(args.plot)
+    names = args.fit.split(",") if args.fit else ()
+    result = compare.compare(setup, measured.t, measured.position, integrator=args.integrator,
+                             coordinate=coordinate, fit=names)
+    for note in result.notes:
+        print(note, file=sys.stderr)
+    if args.plot is not None:
+        plot(result, measured, args.plot, integrator=args.integrator)
+    if args.json:
+        print(headless.to_json(as_json(result, measured, integrator=args.integrator)))
+    else:
+        print(text(result, measured))
+    return 0
+
+
+def text(result, measured) -> str:
+    """One line each: the file and what was read, every fitted value, the offsets, the RMS residual."""
+    lines = [f"data: {measured.path}: {measured.choice}"]
+    for name, estimate in result.fitted.items():
+        lines.append(f"{name} = {measured_value(estimate)}")
+    lines.append(f"t_offset = {measured_value(result.t_offset)}  (the data's clock at the model's t = 0)")
+    lines.append(f"position_offset = {measured_value(result.position_offset)}  (the data's reading "
+                 f"where the model's {result.coordinate} = 0)")
+    lines.append(f"RMS residual = {result.rms:.3g} m ({result.rms * 1000:.3g} mm) over "
+                 f"{result.points} points")
+    return "\n".join(lines)
+
+
+def _entry(estimate) -> dict:
+    return {"value": clean(estimate.value), "uncertainty": clean(estimate.uncertainty), "unit": estimate.unit}
+
+
+def as_json(result, measured, *, integrator=None) -> dict:
+    fit = {name: _entry(estimate) for name, estimate in result.fitted.items()}
+    fit["t_offset"] = _entry(result.t_offset)
+    fit["position_offset"] = _entry(result.position_offset)
+    model = result.setup
+    return {"scene": model.name, "data": measured.path, "data_read": measured.choice,
+            "coordinate": result.coordinate, "dt": model.values.get("dt"),
+            "integrator": model.build().methods(integrator)[0], "fit": fit,
+            "rms_residual": clean(result.rms), "rms_residual_unit": "m", "data_points": result.points}
+
+
+def plot(result, measured, path: str, *, integrator=None) -> None:
+    """The measured points, the model's curve through them, and the residuals below, to `path`."""
+    from reports.plotting import _pyplot
+
+    plt = _pyplot()
+    t_offset, offset = result.t_offset.value, result.position_offset.value
+    smooth = np.linspace(result.t[0], result.t[-1], max(2000, 4 * result.points))
+    run = compare.ModelRun(result.setup, integrator=integrator, axis=compare.AXES[result.coordinate],
+                           until=float(smooth[-1] - t_offset) + 1.0)
+    curve = run.at(smooth - t_offset)[0] + offset
+    fig, (ax, ax_res) = plt.subplots(2, 1, figsize=(8, 7), sharex=True, height_ratios=(3, 1))
+    ax.plot(result.t, result.data, "o", ms=3, color="#0072B2", label=f"measured ({os.path.basename(measured.path)})")
+    ax.plot(smooth, curve, "-", lw=1.5, color="#D55E00", label="model")
+    fitted = ", ".join(f"{n} = {e.value:.4g} {e.unit}" for n, e in result.fitted.items())
+    ax.set_title(f"{result.setup.name}{': ' + fitted if fitted else ''}; RMS residual "
+                 f"{result.rms:.3g} m over {result.points} points")
+    ax.set_ylabel(f"position {result.coordinate} (m, the data's zero)")
+    ax.legend(loc="best", fontsize="small")
+    ax.grid(alpha=0.3)
+    ax_res.plot(result.t, result.residual * 1000, ".", ms=3, color="#0072B2")
+    ax_res.axhline(0.0, color="black", lw=0.8)
+    ax_res.set_ylabel("data − model (mm)")
+    ax_res.set_xlabel("t (s, the data's clock)")
+    ax_res.grid(alpha=0.3)
+    fig.tight_layout()
+    try:
+        with atomic_file(path, what="figure") as temporary:
+            fig.savefig(temporary, dpi=110, format=path.rsplit(".", 1)[-1].lower())
+    finally:
+        plt.close(fig)
+
+
+# ---- the mystery spring ----
+
+def _given(args) -> set:
+    return {assignment.partition("=")[0].strip() for assignment in args.assignments}
+
+
+def _sets(args) -> str:
+    """The --set options given, to repeat with --show-answer (the answer depends on them)."""
+    return "".join(f" --set {shlex.quote(assignment)}" for assignment in args.assignments)
+
+
+def run_mystery(args, setup) -> int:
+    """--mystery FILE [--seed N]: write the run, say what the students are told, keep the answer."""
+    path = args.mystery
+    if os.path.lexists(path):
+        raise OutputError(f"--mystery {path!r}: the file exists; give a new name (the program "
+                          f"never overwrites a file it did not make)")
+    check_writable(path, what="mystery file")
+    seed = args.seed if args.seed is not None else secrets.randbelow(9000) + 1000
+    run = mystery.make(setup, seed=seed, given=_given(args), coordinate=coordinate_of(args, setup))
+    write_text(path, mystery.text(run), what="mystery file")
+    r0 = run.known.get("r0", (None, ""))[0]
+    start = f", released from rest at r0 = {tuple(r0)} m" if r0 is not None else ""
+    print(f"wrote {path}: {len(run.t)} samples at {run.rate} per second (Vernier CSV) of a spring with "
+          f"m = {run.known['m'][0]:g} kg{start}; {' and '.join(run.answer)} are the mystery "
+          f"(seed {seed}: python main.py {setup.name} --show-answer --seed {seed}{_sets(args)} prints them)",
+          file=sys.stderr)
+    return 0
+
+
+def show_answer(args, setup) -> int:
+    """--show-answer --seed N: the constants the mystery file with that seed was made with."""
+    run = mystery.make(setup, seed=args.seed, given=_given(args), coordinate=coordinate_of(args, setup))
+    print(mystery.answer_line(run, args.seed))
+    return 0
