@@ -33,7 +33,7 @@ GRAPH_SHARE = 0.45       # of the window's width, for the graph column, within G
 GAP = 16                 # px: between the view's column and the graphs'
 
 STYLE = """
-body { font-size: %(body)dpx; margin: 8px; overflow-x: hidden; }
+body { font-size: %(body)dpx; }
 button, select, input { font-size: %(body)dpx !important; }
 button { padding: 2px 10px; }
 #glowscript > div { white-space: pre-wrap !important; }
@@ -64,6 +64,9 @@ SCRIPT = """
   var ASPECT = %(aspect)s, GRAPH_WIDTH = %(graph_width)s, SHARE = %(share)s, GAP = %(gap)s,
       FACTOR = %(factor)s, TITLE_PX = [%(body)d, %(projector)d];
   if (window.smProjector === undefined) window.smProjector = %(projector_on)s;
+  // In a Jupyter notebook the scene is one cell's output: the notebook lays out its page and owns
+  // its keys (Space, R and arrows move between cells), so only the text sizes apply there.
+  var inNotebook = !!document.querySelector('.jp-Notebook, .jp-Cell, #notebook-container');
   function objects(test) {
     var found = [];
     if (typeof glowObjs === 'undefined') return found;
@@ -104,6 +107,7 @@ SCRIPT = """
     if (typeof fontsize !== 'undefined') fontsize = TITLE_PX[window.smProjector ? 1 : 0];
     var button = document.getElementById('sm-projector');
     if (button) button.textContent = window.smProjector ? 'Projector: on (P)' : 'Projector: off (P)';
+    if (inNotebook) return;
     var W = document.documentElement.clientWidth - 16, H = window.innerHeight;
     var gw = Math.round(Math.min(GRAPH_WIDTH[1], Math.max(GRAPH_WIDTH[0], SHARE * W)));
     var left = Math.max(300, W - gw - GAP);
@@ -132,7 +136,7 @@ SCRIPT = """
     });
   }
   window.smLayout = layout;
-  if (!window.smInstalled) {
+  if (!window.smInstalled && !inNotebook) {
     window.smInstalled = true;
     window.addEventListener('resize', layout);
     setInterval(layout, 700);
