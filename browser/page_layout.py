@@ -43,6 +43,9 @@ button { padding: 2px 10px; }
 .glowscript-graph .tickLabels, .glowscript-graph .tickLabel { font-size: %(body)dpx !important; color: #000 !important; }
 .sm-legend { font-size: %(body)dpx; min-height: 4px; line-height: 1.25; }
 .sm-legend table { font-size: %(body)dpx !important; color: #000; border-collapse: collapse; }
+.sm-key { display: flex; flex-wrap: wrap; align-items: center; }
+.sm-key table, .sm-key tbody, .sm-key tr { display: contents; }
+.sm-key td { display: inline-block; }
 .sm-legend td.legendLabel { padding: 0 14px 0 4px; white-space: nowrap; }
 .sm-legend td.legendColorBox > div { border: none !important; }
 .sm-legend td.legendColorBox > div > div { border-width: 8px !important; }
@@ -93,7 +96,7 @@ SCRIPT = """
     if (heading.innerHTML !== title) heading.innerHTML = title;
     var key = box.querySelector('.sm-key');
     var legend = g.graph_options.legend || (g.graph_options.legend = {});
-    if (legend.container !== key) { legend.container = key; legend.noColumns = 4; g.__changed = true; }
+    if (legend.container !== key) { legend.container = key; legend.noColumns = 99; g.__changed = true; }
   }
   function thicken(g) {
     (g.graph_series || []).forEach(function (s) {
