@@ -111,6 +111,9 @@ SCRIPT = """
     var button = document.getElementById('sm-projector');
     if (button) button.textContent = window.smProjector ? 'Projector: on (P)' : 'Projector: off (P)';
     if (inNotebook) return;
+    // Always a vertical scrollbar: one that came and went would change the width, the layout the
+    // height, and the scrollbar again, so the controls would jump about.
+    document.documentElement.style.overflowY = 'scroll';
     var W = document.documentElement.clientWidth - 16, H = window.innerHeight;
     var gw = Math.round(Math.min(GRAPH_WIDTH[1], Math.max(GRAPH_WIDTH[0], SHARE * W)));
     var left = Math.max(300, W - gw - GAP);
