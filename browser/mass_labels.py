@@ -13,6 +13,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 LABELLED_MASSES = 6   # more masses than this (and no rows): no labels, they would cover the picture
+SHORT_LINE = 12       # characters: a longer name is broken at its first space
 
 
 @dataclass(frozen=True)
@@ -42,11 +43,13 @@ def two_lines(label: str) -> str:
     """`under-damped (b = 0.8 kg/s)` → `under-damped` over `b = 0.8 kg/s`; `linear, b = …` likewise."""
     if " (" in label and label.endswith(")"):
         head, tail = label[:-1].split(" (", 1)
-        return f"{head}\n{tail}"
-    if ", " in label:
+    elif ", " in label:
         head, tail = label.split(", ", 1)
-        return f"{head}\n{tail}"
-    return label
+    else:
+        return label
+    if len(head) > SHORT_LINE:  # `critically damped` ran into its neighbours' labels
+        head = head.replace(" ", "\n", 1)
+    return f"{head}\n{tail}"
 
 
 def _row_labels(labels: list[str], rows: list[int]) -> list[MassLabel]:

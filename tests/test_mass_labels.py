@@ -33,9 +33,11 @@ def test_the_methods_regimes_and_drags_are_named_on_their_masses():
                             ("drag", ["linear", "quadratic"])):
         _, labels = labels_of(scene)
         assert [label.index for label in labels] == list(range(len(expected)))
-        assert [label.text.split("\n")[0] for label in labels] == expected
+        shown = [label.text.replace("\n", " ") for label in labels]
+        assert all(text == name or text.startswith(name + " b") for text, name in zip(shown, expected)), shown
         assert all(label.follows for label in labels)
     assert two_lines("under-damped (b = 0.8 kg/s)") == "under-damped\nb = 0.8 kg/s"
+    assert two_lines("critically damped (b = 8 kg/s)") == "critically\ndamped\nb = 8 kg/s"
 
 
 def test_resonance_names_each_row_by_its_b_and_the_front_row_by_omega():
