@@ -47,8 +47,9 @@ class Scene3D:
         thickness = 0.4 * radius
         pad = 2 * radius
         low, high = low - radius, high + radius  # the spheres' own size
-        if np.ptp(anchors[:, 2]) > 0:             # rows: room on the left for each row's label
-            low = low - [0.12 * float(high[0] - low[0]), 0, 0]
+        if np.ptp(anchors[:, 2]) > 0:             # rows: room on the left for each row's label,
+            size = high - low                      # and under the front row for its ω labels
+            low = low - [0.3 * float(size[0]), 0.35 * float(size[1]), 0]
         centre = 0.5 * (low + high)
         if view["support"] == "wall":
             wall_x = float(anchors[:, 0].min())
