@@ -129,6 +129,8 @@ def build_parser() -> argparse.ArgumentParser:
     parser.add_argument("--no-browser", action="store_true",
                         help="print the page's URL instead of opening a browser")
     parser.add_argument("--port", type=int, metavar="P", help="port for the browser page")
+    parser.add_argument("--projector", action="store_true",
+                        help="open the page in projector mode: text of 22 px or more, thicker lines")
     return parser
 
 
@@ -175,7 +177,7 @@ def presets_report(setup) -> str:
     return "\n".join(lines)
 
 
-BROWSER_ONLY = (("--port", "port"), ("--no-browser", "no_browser"))
+BROWSER_ONLY = (("--port", "port"), ("--no-browser", "no_browser"), ("--projector", "projector"))
 RUN_OPTIONS = (("--headless", "headless"), ("--json", "json"), ("--csv", "csv"), ("--plot", "plot"),
                ("--steps", "steps"), ("--until", "until"), ("--integrator", "integrator"))
 PROGRAM_OPTIONS = (("--vpython", "vpython"), ("--webvpython", "webvpython"))
@@ -461,7 +463,7 @@ def main(argv=None) -> int:
         preset = next((label for label, _ in catalog.presets(setup)
                        if label.startswith(f"scenario {args.scenario}:")), None)
     sys.exit(show(setup, model, integrator=integrator, port=args.port,
-                  open_browser=not args.no_browser, preset=preset))
+                  open_browser=not args.no_browser, preset=preset, projector=args.projector))
 
 
 class Terminated(BaseException):

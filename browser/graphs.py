@@ -57,6 +57,10 @@ class Graphs:
         self.recorded: deque = deque()  # the samples the graphs show, for Download CSV
         self.curves = []  # (gcurve, Trace, what it plots)
         self.colours = mass_colours(model, view)  # each mass's, as in the 3-D view
+        # the masses the position graph shows (VIEW["graphed"]: resonance's few chosen springs)
+        self.graphed = list(view["graphed"](model)) if view.get("graphed") else list(range(model.state.count))
+        # VIEW["hold"]: the graphs stop at the end of their window instead of scrolling
+        self.hold = bool(view.get("hold"))
         has_own = hasattr(setup.module, "view_graph")
         self.size = (NARROW_GRAPH_WIDTH if has_own else GRAPH_SIZE[0], GRAPH_SIZE[1])
         # The scene's own graph is made first and filled at once, so it comes first on the page
@@ -121,27 +125,30 @@ class Graphs:
         vp = self.vp
         width, height = self.size
         names = ", ".join("xyz"[axis] for axis in self.axes)
-        legend = model.state.count <= LEGEND_MASSES  # a long row's legend would hide the graph
-        title = "Position" if legend else f"Position of each of the {model.state.count} masses"
+        count = len(self.graphed)
+        legend = count <= LEGEND_MASSES  # a long row's legend would hide the graph
+        title = ("Position" if count == model.state.count else f"Position of {count} of the "
+                 f"{model.state.count} masses") if legend else f"Position of each of the {count} masses"
         graph = vp.graph(title=title, xtitle="t (s)", ytitle=f"{names} (m)",
                          width=width, height=height, align="left", fast=True, xmin=0, xmax=self.span)
         many = model.state.count > 1
-        for i, label in enumerate(model.labels):
+        for n, i in enumerate(self.graphed):
+            label = model.labels[i]
             for axis in self.axes:
                 name = "xyz"[axis] + (f" {label}" if many or len(self.axes) > 1 else " (simulation)")
                 name = name if legend else ""
                 colour = vp.vector(*shade(self.colours[i], self.axes.index(axis)))
                 self._curve(graph, name, colour, ("r", i, axis),
-                            width=simulation_width(i, model.state.count, crowded=not legend))
+                            width=simulation_width(n, count, crowded=not legend))
         return graph
 
     def _add_exact_curves(self, model) -> None:
         """Made after the simulated curves, so drawn on top: thin and dark inside the thick ones."""
-        legend = model.state.count <= LEGEND_MASSES
-        for i, label in enumerate(model.labels):
+        legend = len(self.graphed) <= LEGEND_MASSES
+        for n, i in enumerate(self.graphed):
             for axis in self.axes:
                 # one legend entry for all the exact curves: they share a colour
-                name = f"{'xyz'[axis]} exact" if i == 0 and legend else ""
+                name = f"{'xyz'[axis]} exact" if n == 0 and legend else ""
                 self._curve(self.position_graph, name, self.vp.vector(*EXACT_COLOUR), ("exact", i, axis),
                             width=EXACT_WIDTH)
 
@@ -202,6 +209,8 @@ class Graphs:
         matter  the masses the position axis follows: not those that may run away
                 (live.may_run_away), whose own energy does not widen the energy axis either
         """
+        if self.hold:
+            samples = [sample for sample in samples if sample.t <= self.span + 1e-9]
         if not samples and not redraw:
             return
         self._record(samples)

@@ -13,11 +13,15 @@ import numpy as np
 
 from export.palette import mass_colours
 
+from .mass_labels import mass_labels
+
 CANVAS_SIZE = (900, 440)  # px
 TRAIL_POINTS = 300        # points kept in a trail: the last 15 s at one point per graph sample (0.05 s)
 SUPPORT_COLOUR = (0.6, 0.6, 0.65)
 SPRING_COLOUR = (0.85, 0.85, 0.9)
 BACKGROUND = (0.12, 0.13, 0.16)
+LABEL_HEIGHT = 18         # px: the masses' labels, as the page's smallest text
+ROWS_PITCH = 0.45         # the camera looks down this much (forward's y to its z) on rows one behind another
 
 
 class Scene3D:
@@ -43,6 +47,9 @@ class Scene3D:
         thickness = 0.4 * radius
         pad = 2 * radius
         low, high = low - radius, high + radius  # the spheres' own size
+        if np.ptp(anchors[:, 2]) > 0:             # rows: room on the left for each row's label,
+            size = high - low                      # and under the front row for its ω labels
+            low = low - [0.3 * float(size[0]), 0.35 * float(size[1]), 0]
         centre = 0.5 * (low + high)
         if view["support"] == "wall":
             wall_x = float(anchors[:, 0].min())
@@ -54,13 +61,19 @@ class Scene3D:
         else:
             ceiling_y = float(anchors[:, 1].max())
             span_x = float(high[0] - low[0]) + 2 * pad
-            support = vp.box(pos=vp.vector(centre[0], ceiling_y + thickness / 2, centre[2]),
-                             size=vp.vector(span_x, thickness, 2 * radius), color=vp.vector(*SUPPORT_COLOUR))
+            depth = float(np.ptp(anchors[:, 2])) + 2 * radius  # rows one behind another hang from it too
+            support = vp.box(pos=vp.vector(centre[0], ceiling_y + thickness / 2, float(np.mean(anchors[:, 2]))),
+                             size=vp.vector(span_x, thickness, depth), color=vp.vector(*SUPPORT_COLOUR))
             low = np.minimum(low, [centre[0] - span_x / 2, low[1], low[2]])
             high = np.maximum(high, [centre[0] + span_x / 2, ceiling_y + thickness, high[2]])
+        self.wall = view["support"] == "wall"
+        # Rows one behind another (resonance) hid each other from the front: look down on them a little.
+        self.pitch = ROWS_PITCH if np.ptp(anchors[:, 2]) > 0 else 0.0
+        canvas.forward = vp.vector(0, -self.pitch, -1)
         self.support_box = (np.asarray(_array(support.pos) - 0.5 * _array(support.size)),
                             np.asarray(_array(support.pos) + 0.5 * _array(support.size)))
         self.centre, self.range, self.max_range = self._frame_camera(low - 0.3 * radius, high + 0.3 * radius)
+        self.home, self.home_range = self.centre, self.range
         # A long row gets fewer turns per spring: each turn is many triangles for the browser.
         coils = max(4, min(view["coils"], round(4 * view["coils"] / len(anchors))))
         self.springs, self.masses = [], []
@@ -76,7 +89,25 @@ class Scene3D:
         self.trails = [vp.curve(color=vp.vector(*colour), radius=0.06 * radius, retain=TRAIL_POINTS)
                        for colour in colours] if view["trail"] else []
         self.runaway_labels: dict = {}  # mass index -> its label, once it has run away
-        self.shapes = [support, *self.springs, *self.masses, *self.trails]
+        self.following = False          # the camera follows the masses (they left the widest view)
+        self.last_open: dict = {}       # mass index -> its last position inside the picture, m
+        self.labels = [(spec, self._make_label(spec, model.state.r[spec.index], view))
+                       for spec in mass_labels(model, view)]
+        self.shapes = [support, *self.springs, *self.masses, *self.trails, *(label for _, label in self.labels)]
+
+    def _make_label(self, spec, r, view):
+        """A mass's label (browser/mass_labels.py): white text beside it, out of its spring's way."""
+        vp = self.vp
+        pixels = 0.5 * CANVAS_SIZE[1] / self.range * self.radius  # the sphere's radius on the page, px
+        xoffset, yoffset = 0, 0
+        if spec.side == "left":
+            xoffset = -(pixels + 60)
+        elif view["support"] == "wall" and spec.side == "above":
+            xoffset = pixels + 70      # beyond a mass on a horizontal spring, in the open
+        else:
+            yoffset = -(pixels + 24)   # under a hanging mass: its spring is above it
+        return vp.label(pos=vec(vp, r), text=spec.text, xoffset=xoffset, yoffset=yoffset, height=LABEL_HEIGHT,
+                        color=vp.vector(1, 1, 1), box=False, line=False, opacity=0)
 
     def reframe(self, model) -> None:
         """Frame the new motion and the support once, after a new constant: in or out, as it needs.
@@ -94,6 +125,7 @@ class Scene3D:
         low = np.minimum(low - 1.3 * radius, self.support_box[0])
         high = np.maximum(high + 1.3 * radius, self.support_box[1])
         self.centre, self.range, self.max_range = self._frame_camera(low, high)
+        self.home, self.home_range = self.centre, self.range
 
     def _frame_camera(self, low, high) -> tuple[np.ndarray, float, float]:
         """Point the camera at the box from low to high; returns its centre, range and the range
@@ -103,8 +135,9 @@ class Scene3D:
         box = high - low
         canvas.autoscale = False
         canvas.center = vec(self.vp, 0.5 * (low + high))
-        # range is the distance from the centre to the nearer (here: top and bottom) edge
-        reach = 0.55 * max(box[1], box[0] * height / width, 1e-3)
+        # range is the distance from the centre to the nearer (here: top and bottom) edge; looking
+        # down on rows adds their depth to the height the picture must show
+        reach = 0.55 * max(box[1] + getattr(self, "pitch", 0.0) * box[2], box[0] * height / width, 1e-3)
         canvas.range = reach
         return 0.5 * (low + high), reach, 2 * reach
 
@@ -113,14 +146,30 @@ class Scene3D:
         for label in self.runaway_labels.values():
             label.visible = False
         self.runaway_labels = {}
+        self.last_open = {}
         for trail in self.trails:
             trail.clear()
+        for _, label in self.labels:
+            label.visible = True
+        self.following = False
+        if not np.array_equal(self.centre, self.home):  # the camera followed a fall: back to the start
+            self.centre, self.range = self.home, self.home_range
+            self.vp.scene.center, self.vp.scene.range = vec(self.vp, self.home), self.range
 
     def extend_trails(self, samples, runaways) -> None:
-        """Add the graph samples' positions to each mass's trail (not to a mass that ran away)."""
-        if not self.trails or not samples:
+        """Add the graph samples' positions to each mass's trail (not to a mass that ran away), and
+        keep each mass's last position in the open, where a runaway is frozen."""
+        if not samples:
             return
         r = np.array([s.r for s in samples])
+        for i in range(r.shape[1]):
+            if i not in runaways:
+                for where in r[::-1, i]:
+                    if self._in_the_open(where):
+                        self.last_open[i] = where
+                        break
+        if not self.trails:
+            return
         for i, trail in enumerate(self.trails):
             points = [vec(self.vp, where) for where in r[:, i] if np.all(np.isfinite(where))]
             if points and i not in runaways:
@@ -130,12 +179,17 @@ class Scene3D:
         """Move the masses and springs to the run's state now; follow the masses that matter."""
         vp, state, anchors = self.vp, live.state, live.model.anchors
         for i, (mass, spring, anchor, r) in enumerate(zip(self.masses, self.springs, anchors, state.r)):
-            if i in live.runaways:  # frozen: shown, and labelled, where it leaves the picture
-                r = self._inside_frame(anchor, r)
+            if i in live.runaways:  # frozen: shown, and labelled, where it was last in the open
+                r = self.last_open[i] if i in self.last_open else self._inside_frame(anchor, r)
                 self._label_runaway(i, r, live)
             if np.all(np.isfinite(r)):
                 mass.pos = vec(vp, r)
                 spring.axis = vec(vp, r - anchor)  # the helix runs from the anchor to the mass
+        for spec, label in self.labels:
+            if spec.index in live.runaways:
+                label.visible = False  # its runaway label names it
+            elif spec.follows and np.all(np.isfinite(state.r[spec.index])):
+                label.pos = vec(vp, state.r[spec.index])
         self._keep_in_view(state.r[matter])
 
     def take_down(self) -> None:
@@ -147,6 +201,13 @@ class Scene3D:
         self.shapes = []
         vp.scene.forward, vp.scene.up = vp.vector(0, 0, -1), vp.vector(0, 1, 0)
 
+    def _in_the_open(self, r) -> bool:
+        """Whether a mass at r is inside the picture and not in or behind the wall."""
+        width, height = CANVAS_SIZE
+        half = np.array([self.range * width / height, self.range]) - 1.5 * self.radius
+        inside = np.all(np.isfinite(r)) and np.all(np.abs(r[:2] - self.centre[:2]) <= half)
+        return bool(inside and not (self.wall and r[0] < self.support_box[1][0] + 1.5 * self.radius))
+
     def _inside_frame(self, anchor, r):
         """The point where the line from the anchor to r leaves the picture (r itself if inside), m."""
         width, height = CANVAS_SIZE
@@ -156,6 +217,8 @@ class Scene3D:
         for axis in (0, 1):
             if abs(d[axis]) > 1e-12:
                 edge = self.centre[axis] + math.copysign(half[axis], d[axis])
+                if axis == 0 and d[0] < 0 and self.wall:  # frozen in the open, in front of the wall
+                    edge = max(edge, self.support_box[1][0] + 1.5 * self.radius)
                 scale = min(scale, max(0.0, (edge - anchor[axis]) / d[axis]))
         return anchor + scale * d if np.all(np.isfinite(d)) else anchor
 
@@ -172,7 +235,8 @@ class Scene3D:
         self.shapes.append(label)
 
     def _keep_in_view(self, r) -> None:
-        """Zoom out (never in) if a mass that matters leaves the framed region, up to max_range.
+        """Zoom out (never in) if a mass that matters leaves the framed region, up to max_range;
+        once the masses leave even that (a fall with no spring), follow them from close by.
 
         A mass the scene expects may run away (euler) is not followed: it leaves the picture, is
         frozen and labelled, instead of shrinking every other mass to a dot.
@@ -183,7 +247,15 @@ class Scene3D:
         width, height = CANVAS_SIZE
         reach = np.abs(finite - self.centre).max(axis=0)
         needed = max(reach[1], reach[0] * height / width) + self.radius
-        if self.range < needed and self.range < self.max_range:
+        self.following = self.following or needed > self.max_range
+        if self.following:  # out of even the widest view (falling, no spring): the camera follows them,
+            low, high = finite.min(axis=0), finite.max(axis=0)  # close enough to see the balls
+            self.centre = 0.5 * (low + high)
+            span = high - low + 8 * self.radius
+            self.range = 0.55 * max(span[1], span[0] * height / width)
+            self.vp.scene.center = vec(self.vp, self.centre)
+            self.vp.scene.range = self.range
+        elif self.range < needed and self.range < self.max_range:
             self.range = min(1.5 * needed, self.max_range)
             self.vp.scene.range = self.range
 

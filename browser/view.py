@@ -27,6 +27,7 @@ from .clock import LiveRun, RealTimeClock, StepBudget
 from .controls import (PRESET_PROMPT, SPEEDS, Controls, constants_text, csv_href, program_href,
                        scene_menu_choices, slider_names, slider_range, symbol, time_decimals)
 from .graphs import SAMPLE_EVERY, Graphs, csv_text
+from .page_layout import PROJECTOR_BUTTON, page_head
 from .scene3d import Scene3D
 
 # What other modules and the tests use; the helpers are defined in the part they belong to.
@@ -34,18 +35,15 @@ __all__ = ["show", "SceneView", "DEFAULT_VIEW", "csv_text", "constants_text", "s
            "slider_names", "slider_range", "symbol", "time_decimals"]
 
 FRAME_RATE = 50           # frames per second the loop aims for
-# Larger text than vpython's default, for a projector at the back of a classroom.
-# A row of graphs that wraps leaves room under the x-axis titles for the next row's titles.
-PAGE_STYLE = ("<style>body { font-size: 17px; } button, select { font-size: 17px; }"
-              " .glowscript-graph { margin-bottom: 36px; }</style>")
 
 
 def show(setup, model, *, integrator: str, port: int | None, open_browser: bool,
-         preset: str | None = None) -> int:
+         preset: str | None = None, projector: bool = False) -> int:
     """Show a scene in the browser and run it in real time until the page is closed.
 
     model   the scene's model, built from `setup` (the command line has built and checked it)
     preset  the label of the preset already applied to `setup` (--preset), shown in the menu.
+    projector  start in projector mode (--projector; browser/page_layout.py)
 
     Returns 2 (after a one-line message) if the server cannot start. Otherwise the program ends
     through SystemExit(0) when the tab closes, and Ctrl-C (while waiting for a browser or while
@@ -55,7 +53,8 @@ def show(setup, model, *, integrator: str, port: int | None, open_browser: bool,
 
     try:
         server = start(port=port, open_browser=open_browser)
-        SceneView(setup=setup, model=model, integrator=integrator, server=server, preset=preset).run_forever()
+        SceneView(setup=setup, model=model, integrator=integrator, server=server, preset=preset,
+                  projector=projector).run_forever()
     except ServerError as problem:
         print(f"error: {problem}", file=sys.stderr)
         return 2
@@ -78,10 +77,12 @@ class SceneView:
             since the page was last heard from, and how often it has been loaded
     """
 
-    def __init__(self, *, setup, model, integrator: str, server, preset: str | None = None):
+    def __init__(self, *, setup, model, integrator: str, server, preset: str | None = None,
+                 projector: bool = False):
         import vpython as vp  # already imported, loopback-only, by loopback_server.start
 
         self.vp, self.server = vp, server
+        self.projector = projector
         self.integrator = integrator
         self.speed = "1×"
         self.running = True
@@ -99,7 +100,8 @@ class SceneView:
         """The 3-D picture, the controls and the graphs of self.setup, in the order the page shows them."""
         setup, model = self.setup, self.live.model
         view = {**DEFAULT_VIEW, **getattr(setup.module, "VIEW", {})}
-        title = PAGE_STYLE + f"<b style='font-size:130%'>{setup.name}</b>: {_summary(setup.module)}\n"
+        title = (page_head(projector=self.projector) + f"<b style='font-size:130%'>{setup.name}</b>: "
+                 f"{_summary(setup.module)}{PROJECTOR_BUTTON}\n")
         scene = Scene3D(self.vp, model=model, view=view, title=title)
         controls = Controls(self.vp, setup=setup, view=view, integrators=model.integrators,
                             integrator=self.integrator, speed=self.speed, preset=preset)

@@ -16,17 +16,27 @@ How curves stay apart on a projector:
 """
 from __future__ import annotations
 
-MASS_COLOURS = [(1.0, 0.55, 0.1), (0.25, 0.65, 1.0), (0.3, 0.85, 0.35), (0.95, 0.35, 0.6),
-                (0.8, 0.75, 0.2), (0.65, 0.45, 0.95)]      # orange, blue, green, pink, yellow, purple
-CURVE_COLOURS = [(0.1, 0.3, 0.9), (0.85, 0.1, 0.1), (0.1, 0.6, 0.1), (0.6, 0.2, 0.8),
-                 (0.5, 0.5, 0.5)]                           # blue, red, green, purple, grey: a family of
+# The Okabe–Ito palette (Okabe and Ito, "Color Universal Design", 2008): eight colours chosen so that
+# people with any of the common colour-vision deficiencies tell them apart. tests/test_palette.py
+# checks it under simulated deuteranopia and protanopia.
+ORANGE, SKY_BLUE, BLUISH_GREEN = (0.902, 0.624, 0.0), (0.337, 0.706, 0.914), (0.0, 0.620, 0.451)
+YELLOW, BLUE, VERMILION = (0.941, 0.894, 0.259), (0.0, 0.447, 0.698), (0.835, 0.369, 0.0)
+REDDISH_PURPLE, BLACK = (0.800, 0.475, 0.655), (0.0, 0.0, 0.0)
+OKABE_ITO = [ORANGE, SKY_BLUE, BLUISH_GREEN, YELLOW, BLUE, VERMILION, REDDISH_PURPLE, BLACK]
+
+# Yellow is left out of the masses and curves: on a white graph it barely shows from the back row.
+MASS_COLOURS = [ORANGE, SKY_BLUE, BLUISH_GREEN, REDDISH_PURPLE, VERMILION, BLUE]
+CURVE_COLOURS = [BLUE, VERMILION, BLUISH_GREEN, REDDISH_PURPLE, (0.5, 0.5, 0.5)]
+                                                            # blue, vermilion, green, purple, grey: a family of
                                                             # curves, such as resonance's A(ω) per b
 LIVE_COLOUR = MASS_COLOURS[0]                               # a scene graph's dots that follow the run
                                                             # (resonance's springs now): orange, no curve's
 EXACT_COLOUR = (0.1, 0.1, 0.1)                              # near black
-ENERGY_COLOURS = {"K": (0.85, 0.1, 0.1), "U": (0.1, 0.3, 0.9), "E": (0.0, 0.0, 0.0),
-                  "E_minus_W_nc": (0.1, 0.6, 0.1)}          # red, blue, black, green
+ENERGY_COLOURS = {"K": VERMILION, "U": BLUE, "E": BLACK,
+                  "E_minus_W_nc": BLUISH_GREEN}             # vermilion, blue, black, green
 ENERGY_LABELS = {"K": "K", "U": "U", "E": "E = K + U", "E_minus_W_nc": "E − W_nc"}
+# x, y and z of one mass (pendulum): the mass's own colour, then these, so the three never look alike
+AXIS_COLOURS = [BLUE, REDDISH_PURPLE, BLUISH_GREEN, VERMILION]
 
 EXACT_WIDTH = 1            # px: the exact solution, thin, on top
 SIMULATION_WIDTH = 6       # px: the last (or only) mass's simulated curve
@@ -60,9 +70,13 @@ def mass_colours(model, view: dict) -> list[tuple[float, float, float]]:
 
 
 def shade(colour, rank: int) -> tuple[float, float, float]:
-    """The colour, darker for the second and third coordinate of one mass (x, y, z in `pendulum`)."""
-    factor = 1.0 - 0.3 * rank
-    return tuple(c * factor for c in colour)
+    """The colour of coordinate `rank` of a mass whose colour is `colour` (x, y, z in `pendulum`):
+    the mass's own for the first, then the first AXIS_COLOURS that is not the mass's own, so the
+    curves of x, y and z have three different Okabe–Ito hues, not three shades of one."""
+    if rank == 0:
+        return tuple(colour)
+    others = [c for c in AXIS_COLOURS if c != tuple(colour)]
+    return others[(rank - 1) % len(others)]
 
 
 def energy_label(key: str, *, from_rest: bool = False) -> str:

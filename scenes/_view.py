@@ -11,6 +11,10 @@ A scene file ends with VIEW, a few lines naming what to draw; both front ends th
     sliders  the constants that get one (else m, k and the forces switched on)
     coils    turns per helix
     window   seconds the graphs show before they scroll
+    hold     True: the graphs stop at `window` seconds instead of scrolling, so a motion that
+             settles (regimes) keeps its start in view
+    graphed  a function of the model giving the masses the position graph shows (resonance: a few
+             chosen springs, not all 39); None: every mass
     rows     a function of the model giving each mass's row (resonance: one row of springs per b);
              a row's masses share its colour (export/palette.py mass_colours)
 """
@@ -19,4 +23,4 @@ from __future__ import annotations
 MAX_DRAWN_MASSES = 2000     # a sphere and a helix each: more would stall the page on a school laptop
 
 DEFAULT_VIEW = {"support": "ceiling", "plot": "y", "trail": False, "exact": True, "coils": 12,
-                "window": 30.0}
+                "window": 30.0, "hold": False, "graphed": None}

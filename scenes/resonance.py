@@ -304,6 +304,18 @@ def rows(model) -> np.ndarray:
     return np.rint(-model.anchors[:, 2] / ROW_DEPTH).astype(int)
 
 
+def graphed(model) -> list[int]:
+    """The springs the position graph shows: in each row, the one driven nearest ω0 = √(k/m), at
+    resonance, so the graph compares how far each b lets it swing (39 curves made a solid band)."""
+    m = model.state.m.ravel()
+    spring, driving = (next(f for f in model.forces if isinstance(f, kind)) for kind in (Spring, Driving))
+    k = np.broadcast_to(np.asarray(spring.k, dtype=float).ravel(), m.shape)
+    omega = np.broadcast_to(np.asarray(driving.omega, dtype=float).ravel(), m.shape)
+    row = rows(model)
+    return [int(min(np.flatnonzero(row == j), key=lambda i: abs(omega[i] - np.sqrt(k[i] / m[i]))))
+            for j in sorted(set(row.tolist()))]
+
+
 def view_graph(setup) -> dict:
     """The page's resonance graph (browser/graphs.py): amplitude against driving frequency.
 
@@ -344,4 +356,4 @@ def view_graph(setup) -> dict:
 # The resonance graph shows the amplitudes; each spring's exact curve would only crowd the position graph.
 # Each row of springs in the colour of its b's line (rows).
 VIEW = {"support": "ceiling", "plot": "y", "trail": False, "exact": False, "sliders": ["b", "F0", "m", "k"],
-        "rows": rows}
+        "rows": rows, "graphed": graphed}

@@ -5,7 +5,7 @@
   (vpython 7.6.5's page dropped a slider's first value; browser/controls.py primes it).
 * In `integrators` euler's mass runs away alone: the page names it and the time, the other three
   run on and stay large spheres; after a new k in `vertical` the mass is framed again, not shrunk.
-* At 1400 px the resonance page's three graphs share one row.
+* At 1400 px the resonance page's three graphs stand in one column beside the 3-D view.
 * Every graph ticks its y axis at even steps of 1, 2 or 5 × 10ⁿ (read from the tick labels).
 * Where the simulation agrees with the exact solution (rk4, damped), both curves show: the thick
   simulated curve in the mass's colour, the thin dark exact one inside it; the two balls of `drag`,
@@ -207,13 +207,22 @@ def test_after_a_new_k_the_mass_is_framed_again_not_shrunk(browser, tmp_path):
         program.stop()
 
 
-def test_at_1400_px_the_resonance_graphs_share_one_row(browser):
+GRAPH_BOXES = """() => Array.from(document.querySelectorAll('.glowscript-graph canvas.base')).map(e => {
+    const b = e.getBoundingClientRect(); return {x: b.x, y: b.y, width: b.width, height: b.height}; })"""
+
+
+def test_at_1400_px_the_resonance_graphs_stand_in_one_column_beside_the_view(browser):
+    """browser/page_layout.py: the graphs in a column right of the 3-D view (they shared one row
+    under it, below the fold of a laptop's window, before issue 18)."""
     program, page = open_scene(browser, "resonance")
     try:
         wait_for(lambda: shown_time(page) >= 1.0, timeout=90.0, what="t to reach 1 s")
-        tops = [round(box["y"]) for box in graph_boxes(page)]
-        assert len(tops) == 3 and len(set(tops)) == 1, f"graph tops at {tops}"
-        right = max(box["x"] + box["width"] for box in graph_boxes(page))
+        boxes = wait_for(lambda: len(b := page.evaluate(GRAPH_BOXES)) == 3 and len({round(x["x"]) for x in b}) == 1
+                         and b, timeout=30.0, what="the three graphs in one column")
+        canvas = page.locator(".glowscript-canvas-wrapper canvas").first.bounding_box()
+        assert all(box["x"] >= canvas["x"] + canvas["width"] for box in boxes)
+        assert [box["y"] for box in boxes] == sorted(box["y"] for box in boxes)
+        right = max(box["x"] + box["width"] for box in boxes)
         assert right <= VIEWPORT["width"]
     finally:
         page.close()

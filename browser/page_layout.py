@@ -1,0 +1,202 @@
+"""How the page sits in the window, read from the back of a room: sizes, text, legends and keys.
+
+vpython 7.6.5 draws a fixed-size 3-D canvas, its caption under it and each graph under the last,
+so at 1280 × 800 the graphs started below the fold. This module's CSS and a short script (sent
+once with the page's title; jQuery runs scripts in the HTML it inserts) lay the page out in the
+browser, where the window's size is known, and again whenever the window is resized:
+
+* the 3-D view at the top left, as wide as the window leaves it (its shape stays
+  scene3d.CANVAS_SIZE's, so the camera framing worked out in Python still holds), the controls
+  under it, and the graphs in a column on the right: at 1280 × 800 the view and the position
+  graph are both on screen, and at 1024 × 768 nothing scrolls sideways;
+* text at least BODY_PX (18 px) — body, buttons, menus, axis ticks, legends, graph titles — and in
+  projector mode (the page's Projector button, key P, or `--projector`) at least PROJECTOR_PX
+  (22 px), with every graph line LINE_FACTOR times thicker and black on white;
+* each graph's legend in a line of its own above the graph, never over its data;
+* keys: Space runs or pauses, → steps, R resets, + and − change the speed, P projector mode; every
+  control is reached with Tab and shows a thick outline when it has the focus.
+
+The graphs keep the height browser/graphs.py gives them (flot's tick spacing depends on it, and
+browser/axes.py picks round ticks for that height); only their widths follow the window.
+"""
+from __future__ import annotations
+
+import json
+
+from .scene3d import CANVAS_SIZE
+
+BODY_PX = 18             # px: the smallest text on the page
+PROJECTOR_PX = 22        # px: the smallest text in projector mode
+LINE_FACTOR = 1.6        # graph lines this much thicker in projector mode
+GRAPH_WIDTH = (420, 760)  # px: the graph column's narrowest and widest
+GRAPH_SHARE = 0.45       # of the window's width, for the graph column, within GRAPH_WIDTH
+GAP = 16                 # px: between the view's column and the graphs'
+
+STYLE = """
+body { font-size: %(body)dpx; }
+button, select, input { font-size: %(body)dpx !important; }
+button { padding: 2px 10px; }
+#glowscript > div { white-space: pre-wrap !important; }
+#glowscript .glowscript-canvas-wrapper { margin-bottom: 4px; }
+#sm-graphs { position: absolute; top: 8px; }
+#sm-graphs .glowscript-graph { float: none !important; display: block; margin: 0 0 6px 0 !important; }
+.glowscript-graph .tickLabels, .glowscript-graph .tickLabel { font-size: %(body)dpx !important; color: #000 !important; }
+.sm-legend { font-size: %(body)dpx; min-height: 4px; line-height: 1.25; }
+.sm-legend table { font-size: %(body)dpx !important; color: #000; border-collapse: collapse; }
+.sm-key { display: flex; flex-wrap: wrap; align-items: center; }
+.sm-key table, .sm-key tbody, .sm-key tr { display: contents; }
+.sm-key td { display: inline-block; }
+.sm-legend td.legendLabel { padding: 0 14px 0 4px; white-space: nowrap; }
+.sm-legend td.legendColorBox > div { border: none !important; }
+.sm-legend td.legendColorBox > div > div { border-width: 8px !important; }
+#sm-projector { margin-left: 16px; font-size: %(body)dpx; }
+button:focus-visible, select:focus-visible, .ui-slider-handle:focus, #sm-projector:focus-visible
+  { outline: 4px solid #0072b2 !important; outline-offset: 2px; }
+body.sm-projector, body.sm-projector button, body.sm-projector select,
+body.sm-projector .sm-legend, body.sm-projector .sm-legend table,
+body.sm-projector .glowscript-graph .tickLabels, body.sm-projector .glowscript-graph .tickLabel
+  { font-size: %(projector)dpx !important; }
+body.sm-projector { background: #fff; color: #000; font-weight: 600; }
+body.sm-projector button, body.sm-projector select { border: 2px solid #000; color: #000; background: #fff; }
+"""
+
+# The script: lays the page out (now, on every resize, and whenever vpython adds a graph), moves each
+# graph's legend above it, makes lines thicker in projector mode, and listens to the keys.
+SCRIPT = """
+(function () {
+  var ASPECT = %(aspect)s, GRAPH_WIDTH = %(graph_width)s, SHARE = %(share)s, GAP = %(gap)s,
+      FACTOR = %(factor)s, TITLE_PX = [%(body)d, %(projector)d];
+  if (window.smProjector === undefined) window.smProjector = %(projector_on)s;
+  // In a Jupyter notebook the scene is one cell's output: the notebook lays out its page and owns
+  // its keys (Space, R and arrows move between cells), so only the text sizes apply there.
+  var inNotebook = !!document.querySelector('.jp-Notebook, .jp-Cell, #notebook-container');
+  function objects(test) {
+    var found = [];
+    if (typeof glowObjs === 'undefined') return found;
+    for (var i = 0; i < glowObjs.length; i++) if (glowObjs[i] && test(glowObjs[i])) found.push(glowObjs[i]);
+    return found;
+  }
+  function column() {
+    var right = document.getElementById('sm-graphs');
+    if (!right) { right = document.createElement('div'); right.id = 'sm-graphs'; document.body.appendChild(right); }
+    return right;
+  }
+  function headerFor(g) {
+    var el = g.container && g.container[0];
+    if (!el) return;
+    var box = el.previousElementSibling;
+    if (!box || !box.classList.contains('sm-legend')) {
+      box = document.createElement('div'); box.className = 'sm-legend';
+      box.innerHTML = '<div class="sm-title"></div><div class="sm-key"></div>';
+      el.parentNode.insertBefore(box, el);
+    }
+    var title = '<b>' + (g.title || '') + '</b>' +
+        (g.ytitle ? ': ' + g.ytitle + (g.xtitle ? ' against ' + g.xtitle : '') : '');
+    var heading = box.querySelector('.sm-title');
+    if (heading.innerHTML !== title) heading.innerHTML = title;
+    var key = box.querySelector('.sm-key');
+    var legend = g.graph_options.legend || (g.graph_options.legend = {});
+    if (legend.container !== key) { legend.container = key; legend.noColumns = 99; g.__changed = true; }
+  }
+  function thicken(g) {
+    (g.graph_series || []).forEach(function (s) {
+      if (s.__smWidth === undefined) s.__smWidth = s.width;
+      var want = window.smProjector ? s.__smWidth * FACTOR : s.__smWidth;
+      if (s.width !== want) s.width = want;
+    });
+  }
+  function layout() {
+    document.body.classList.toggle('sm-projector', !!window.smProjector);
+    if (typeof fontsize !== 'undefined') fontsize = TITLE_PX[window.smProjector ? 1 : 0];
+    var button = document.getElementById('sm-projector');
+    if (button) button.textContent = window.smProjector ? 'Projector: on (P)' : 'Projector: off (P)';
+    if (inNotebook) return;
+    // Always a vertical scrollbar: one that came and went would change the width, the layout the
+    // height, and the scrollbar again, so the controls would jump about.
+    document.documentElement.style.overflowY = 'scroll';
+    var W = document.documentElement.clientWidth - 16, H = window.innerHeight;
+    var gw = Math.round(Math.min(GRAPH_WIDTH[1], Math.max(GRAPH_WIDTH[0], SHARE * W)));
+    var left = Math.max(300, W - gw - GAP);
+    var cw = left, ch = Math.round(cw / ASPECT);
+    if (ch > 0.6 * H) { ch = Math.round(0.6 * H); cw = Math.round(ch * ASPECT); }
+    var main = document.getElementById('glowscript');
+    if (main) main.style.width = left + 'px';
+    objects(function (o) { return o.__canvas_element; }).forEach(function (c) {
+      if (c.width !== cw) c.width = cw;
+      if (c.height !== ch) c.height = ch;
+    });
+    var right = column();
+    right.style.left = (8 + left + GAP) + 'px';
+    document.querySelectorAll('#glowscript > .glowscript-graph').forEach(function (el) {
+      right.appendChild(el);
+    });
+    right.querySelectorAll('.sm-legend').forEach(function (box) {
+      var next = box.nextElementSibling;
+      if (!next || !next.classList.contains('glowscript-graph')) box.remove();
+    });
+    objects(function (o) { return o.graph_options && o.container; }).forEach(function (g) {
+      if (g.__deleted) return;
+      if (g.width !== gw) g.width = gw;
+      headerFor(g);
+      thicken(g);
+    });
+  }
+  window.smLayout = layout;
+  if (!window.smInstalled && !inNotebook) {
+    window.smInstalled = true;
+    window.addEventListener('resize', layout);
+    setInterval(layout, 700);
+    document.addEventListener('keydown', function (e) {
+      if (e.ctrlKey || e.altKey || e.metaKey) return;
+      var t = e.target, tag = t.tagName;
+      if (tag === 'INPUT' || tag === 'SELECT' || tag === 'TEXTAREA') return;
+      var onControl = tag === 'BUTTON' || (t.classList && t.classList.contains('ui-slider-handle'));
+      function press(names) {
+        var buttons = document.querySelectorAll('button');
+        for (var i = 0; i < buttons.length; i++)
+          if (names.indexOf(buttons[i].textContent.trim()) >= 0) { buttons[i].click(); return true; }
+        return false;
+      }
+      function speed(step) {
+        var menus = document.querySelectorAll('select');
+        for (var i = 0; i < menus.length; i++) {
+          var texts = Array.prototype.map.call(menus[i].options, function (o) { return o.text; });
+          if (texts.indexOf('1×') < 0) continue;
+          var n = Math.min(menus[i].options.length - 1, Math.max(0, menus[i].selectedIndex + step));
+          if (n !== menus[i].selectedIndex) {
+            menus[i].selectedIndex = n;
+            menus[i].dispatchEvent(new Event('change', {bubbles: true}));
+          }
+          return true;
+        }
+        return false;
+      }
+      var done = false;
+      if (e.key === ' ' && tag !== 'BUTTON') done = press(['Run', 'Pause']);
+      else if (e.key === 'ArrowRight' && !onControl) done = press(['Step']);
+      else if (e.key === 'r' || e.key === 'R') done = press(['Reset']);
+      else if (e.key === '+' || e.key === '=') done = speed(1);
+      else if (e.key === '-' || e.key === '−' || e.key === '_') done = speed(-1);
+      else if (e.key === 'p' || e.key === 'P') { window.smProjector = !window.smProjector; layout(); done = true; }
+      if (done) e.preventDefault();
+    });
+  }
+  layout();
+})();
+"""
+
+PROJECTOR_BUTTON = ("<button id='sm-projector' type='button' onclick='window.smProjector = !window.smProjector;"
+                    " window.smLayout && window.smLayout()'>Projector (P)</button>")
+
+KEYS_HINT = "Keys: Space run/pause, → step, R reset, + and − speed, P projector, Tab moves between controls."
+
+
+def page_head(*, projector: bool = False) -> str:
+    """The style and script the page's title carries: the layout above, starting in projector
+    mode if asked (`--projector`); a page already shown keeps the mode its viewer chose."""
+    numbers = {"body": BODY_PX, "projector": PROJECTOR_PX}
+    script = SCRIPT % {**numbers, "aspect": json.dumps(CANVAS_SIZE[0] / CANVAS_SIZE[1]),
+                       "graph_width": json.dumps(list(GRAPH_WIDTH)), "share": json.dumps(GRAPH_SHARE),
+                       "gap": json.dumps(GAP), "factor": json.dumps(LINE_FACTOR),
+                       "projector_on": json.dumps(bool(projector))}
+    return f"<style>{STYLE % numbers}</style><script>{script}</script>"
