@@ -318,7 +318,8 @@ def as_json(result: Result) -> dict:
     Multi-mass scenes give r, p, v as one 3-vector per mass and add "bodies". "exact" holds the
     closed form at the final time and the size of the error, where a closed form exists. Where
     it stopped holding before the final time, "exact" is left out and "exact_note" says why, with
-    "exact_valid_until" the time it stopped holding, s. In a row each mass is judged on its own:
+    "exact_valid_until" the time it stopped holding, s (null, with a line in "notes", where it
+    holds to the end or there is no closed form). F_net is the net force at the final time. In a row each mass is judged on its own:
     a body whose closed form stopped holding has no "exact" but its own "exact_note" and
     "exact_valid_until", and the top-level ones count such masses and give the first time. A scene
     module may add its own keys with a function extra_json(result) -> dict.
@@ -328,13 +329,14 @@ def as_json(result: Result) -> dict:
     v = velocity(p, m)
     single = len(m) == 1
     pick = (lambda a: a[0].tolist()) if single else (lambda a: a.tolist())
+    F_net = net_force(model.forces, traj.t[-1], r, v, m)   # at the final time, as --headless prints it
     out = {
         "scene": setup.name,
         "t": float(traj.t[-1]),
         "steps": result.steps,
         "dt": float(model.dt),
         "integrator": integrator_json(result.methods),
-        "r": pick(r), "p": pick(p), "v": pick(v),
+        "r": pick(r), "p": pick(p), "v": pick(v), "F_net": pick(F_net),
     }
     exact = result.exact()
     known = [exact is not None and bool(np.all(np.isfinite(exact[0][i]))) for i in range(len(m))]
@@ -343,10 +345,16 @@ def as_json(result: Result) -> dict:
     if result.exact_note():  # a closed form exists, but stopped holding before the final time
         out["exact_note"] = result.exact_note()
         out["exact_valid_until"] = result.exact_valid_until()
+    else:  # every key of "units" is present: null, with a note saying why
+        out["exact_valid_until"] = None
+        out.setdefault("notes", []).append(
+            "exact_valid_until: null, " + ("the closed form holds up to the final time" if model.exact is not None
+                                           else "this scene has no closed form"))
     if not single:
         notes, valid_until = result.exact_notes(), result.exact_valid_until_each()
         out["bodies"] = [
             {"label": label, "m": float(m[i]), "r": r[i].tolist(), "p": p[i].tolist(), "v": v[i].tolist(),
+             "F_net": F_net[i].tolist(),
              **({"exact": _exact_entry(r[i], v[i], exact[0][i], exact[1][i])} if known[i] else {}),
              **({"exact_note": notes[i], "exact_valid_until": float(valid_until[i])} if notes[i] else {})}
             for i, label in enumerate(result.labels)]
