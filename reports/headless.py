@@ -32,11 +32,12 @@ from physics.stability import judge
 from physics.state import velocity
 from export.files import STDOUT, atomic_file
 from export.numbers import CSV_HEADER, ENERGY_KEYS, clean, clean_time
+from export.step_update import NO_VALUE, SIGNIFICANT, number, update_force, vector  # noqa: F401 (used by tests)
+from export.step_update import cleaned as _cleaned
 from scenes import ConstantError
 
 UNITS = {"t": "s", "dt": "s", "r": "m", "v": "m/s", "p": "kg·m/s", "F_net": "N", "energy": "J",
          "exact_valid_until": "s"}
-SIGNIFICANT = 6
 
 
 # A run is refused before it starts if the engine estimates it longer than MAX_RUN_SECONDS
@@ -50,37 +51,6 @@ class TooManySteps(ConstantError):
 
 
 # ---- numbers and vectors as a student writes them ----
-
-NO_VALUE = "(no value)"  # what a quantity that overflowed or is undefined prints instead of inf or nan
-
-
-def number(x: float, digits: int = SIGNIFICANT) -> str:
-    """x to `digits` significant figures, with no '-0'; NO_VALUE for inf and nan."""
-    if not math.isfinite(float(x)):
-        return NO_VALUE
-    text = f"{float(x):.{digits}g}"
-    return "0" if text in ("-0", "0", "-0.0") else text
-
-
-def _cleaned(value):
-    """Every float in a JSON-ready structure to FILE_DIGITS significant digits."""
-    if isinstance(value, float):
-        return clean(value) if math.isfinite(value) else value
-    if isinstance(value, dict):
-        return {key: _cleaned(item) for key, item in value.items()}
-    if isinstance(value, list):
-        return [_cleaned(item) for item in value]
-    return value
-
-
-def vector(v, unit: str = "", digits: int = SIGNIFICANT) -> str:
-    """`< 0, -1.73088, 0 > m`: components far below the vector's size (round-off) show as 0."""
-    v = np.asarray(v, dtype=float)
-    size = float(np.max(np.abs(v))) if v.size else 0.0
-    shown = np.where(np.abs(v) < 1e-12 * size, 0.0, v)
-    text = "< " + ", ".join(number(c, digits) for c in shown) + " >"
-    return f"{text} {unit}".rstrip()
-
 
 # ---- the run ----
 
@@ -456,13 +426,10 @@ def step_table(setup, *, model=None, integrator: str | None = None, steps: int) 
     dt = model.dt
     traj = trajectory(engine, engine.advance(steps, record=every(1)), with_energy=False)
     v = traj.v
-    # Euler-Cromer (the page) and Euler kick once with the force at the start of the step; the
-    # other methods' F_net is their average force (p_f − p_i)/Δt.
-    at_start = np.array([INTEGRATORS[name].kicks_once for name in engine.methods])[:, None]
     rows = []
     for n in range(1, len(traj.t)):
-        F_start = net_force(model.forces, traj.t[n - 1], traj.r[n - 1], v[n - 1], traj.m)
-        F_net = np.where(at_start, F_start, (traj.p[n] - traj.p[n - 1]) / dt)
+        F_net = update_force(model.forces, engine.methods, t_i=traj.t[n - 1], r_i=traj.r[n - 1],
+                             p_i=traj.p[n - 1], p_f=traj.p[n], m=traj.m, dt=dt)
         for i, label in enumerate(model.labels):
             rows.append({"step": n, "body": label, "t": clean_time(traj.t[n], dt), "F_net": _cleaned(F_net[i].tolist()),
                          "p_f": _cleaned(traj.p[n, i].tolist()), "v_f": _cleaned(v[n, i].tolist()),
