@@ -35,6 +35,7 @@ if __name__ == "__main__":  # run() takes over once everything is loaded
     signal.signal(signal.SIGTERM, _stop_while_loading)
 
 from export import files  # noqa: E402
+from export.arrows import parse_arrows  # noqa: E402
 from reports import headless  # noqa: E402
 from physics.integrators import DEFAULT_INTEGRATOR, INTEGRATORS  # noqa: E402
 from physics.simulate import BlowUpError  # noqa: E402
@@ -97,6 +98,11 @@ def build_parser() -> argparse.ArgumentParser:
                         help="write the scene as a standalone VPython program to hand out ('-': print it)")
     parser.add_argument("--webvpython", metavar="FILE.py",
                         help="the same program for Web VPython (glowscript.org, trinket)")
+    parser.add_argument("--arrows", metavar="LIST",
+                        help="arrows on each mass, in the page and the program: any of p,F_net,forces,split "
+                             "(default: the scene's own; vertical, damped, driven and pendulum show p,F_net)")
+    parser.add_argument("--no-arrows", action="store_const", const="", dest="arrows",
+                        help="no arrows (the same as --arrows '')")
     parser.add_argument("--no-browser", action="store_true",
                         help="print the page's URL instead of opening a browser")
     parser.add_argument("--port", type=int, metavar="P", help="port for the browser page")
@@ -202,6 +208,14 @@ def check_options(args) -> None:
         if args.steps is not None and args.csv is None and args.plot is None:
             raise UsageError("--until does nothing with --steps alone (the table stops after N steps); "
                              "leave out one of them")
+    if args.arrows is not None:
+        try:
+            args.arrows = parse_arrows(args.arrows)
+        except ValueError as problem:
+            raise UsageError(str(problem)) from None
+        if runs_headless and not programs:
+            raise UsageError("--arrows is for the page and the program (--vpython, --webvpython), and a "
+                             "headless run draws none; leave it out")
     if args.steps is not None and args.steps < 1:
         raise UsageError(f"--steps needs a whole number of 1 or more (got {args.steps})")
     if args.port is not None and not 1 <= args.port <= 65535:
@@ -363,7 +377,7 @@ def main(argv=None) -> int:
         preset = next((label for label, _ in catalog.presets(setup)
                        if label.startswith(f"scenario {args.scenario}:")), None)
     sys.exit(show(setup, model, integrator=integrator, port=args.port,
-                  open_browser=not args.no_browser, preset=preset))
+                  open_browser=not args.no_browser, preset=preset, arrows=args.arrows))
 
 
 class Terminated(BaseException):

@@ -12,7 +12,8 @@ each mass's centre,
 An arrow's length is its quantity divided by a scale, "arrow of 1 m = 20 kg·m/s": one scale for
 momentum and one for every force, chosen once per run from the largest magnitudes a short headless
 run of the engine meets, rounded up to 1, 2 or 5 × 10ⁿ so the legend can be read and two arrows
-compared. Nothing here imports vpython.
+compared. The force scale is chosen from F_net, the arrow the lesson is about; a single force
+(gravity on a hanging mass) may be drawn longer than F_net ever is. Nothing here imports vpython.
 """
 from __future__ import annotations
 
@@ -28,7 +29,7 @@ from physics.state import velocity
 ARROWS = ("p", "F_net", "forces", "split")   # what --arrows and the page's check boxes may name
 ARROW_LABELS = {"p": "p", "F_net": "F_net", "forces": "forces", "split": "F∥ and F⊥"}
 ROUND_STEPS = (1.0, 2.0, 5.0)
-REACH = 0.35          # the longest arrow, as a fraction of the size of the motion and its support
+REACH = 0.5           # the longest arrow, as a fraction of the size of the motion and its support
 SCALE_RUN = 10.0      # s: how far the short run that chooses the scales looks ahead
 SCALE_STEPS = 4000    # at most this many steps of it
 TOO_LONG = 2.0        # an arrow this many times REACH is out of the picture: the next Reset rescales
@@ -91,9 +92,15 @@ def forces_each(forces, t: float, r, v, m) -> list[np.ndarray]:
     return [np.asarray(force(t, r, v, m), dtype=float) for force in forces]
 
 
+FORCE_NAMES = {"Spring": "spring", "SpringBetween": "spring", "Gravity": "gravity",
+               "LinearDamping": "damping", "QuadraticDrag": "drag", "Driving": "driving"}
+
+
 def force_name(force) -> str:
-    """A force's name for its arrow: its class's `name` if it declares one, else the class name."""
-    return getattr(force, "name", type(force).__name__)
+    """A force's name for its arrow label: `spring`, `gravity`, ... (a force of a new kind: its
+    own `name`, else its class name)."""
+    kind = type(force).__name__
+    return getattr(force, "name", FORCE_NAMES.get(kind, kind))
 
 
 def split(F_net, p) -> tuple[np.ndarray, np.ndarray]:
@@ -111,7 +118,7 @@ def split(F_net, p) -> tuple[np.ndarray, np.ndarray]:
 
 
 def largest(model, *, integrator: str | None = None) -> tuple[float, float, float]:
-    """The largest |p| (kg·m/s), force (N: F_net or any single force) and size of the motion (m)
+    """The largest |p| (kg·m/s), |F_net| (N) and size of the motion (m)
     over a short run of the engine from the model's start (SCALE_RUN s, at most SCALE_STEPS steps).
 
     Masses the scene expects to run away are left out, and a run that blows up is judged on the
@@ -133,10 +140,8 @@ def largest(model, *, integrator: str | None = None) -> tuple[float, float, floa
     for n in range(len(t)):
         if not np.all(np.isfinite(r[n][kept])):
             break
-        v = velocity(p[n], m)
-        each = forces_each(model.forces, t[n], r[n], v, m)
-        F = [net_force(model.forces, t[n], r[n], v, m), *each]
-        F_max = max(F_max, *(float(np.max(np.linalg.norm(f[kept], axis=-1))) for f in F))
+        F_net = net_force(model.forces, t[n], r[n], velocity(p[n], m), m)
+        F_max = max(F_max, float(np.max(np.linalg.norm(F_net[kept], axis=-1))))
         p_max = max(p_max, float(np.max(np.linalg.norm(p[n][kept], axis=-1))))
     points = np.concatenate([np.reshape(r[:, kept], (-1, 3)), model.anchors[kept]])
     points = points[np.all(np.isfinite(points), axis=1)]

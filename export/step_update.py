@@ -1,9 +1,11 @@
 """One step of the momentum update written out with its numbers, as the page's notation has it.
 
     F_net = < 0, -78, 0 > N
-    p_f = p_i + F_net Δt = < 0, 0, 0 > + < 0, -7.8, 0 > = < 0, -7.8, 0 > kg·m/s
+    p_f = p_i + F_net Δt = < 0, 0, 0 > + < 0, -7.8, 0 >
+        = < 0, -7.8, 0 > kg·m/s
     v_f = p_f / m = < 0, -0.78, 0 > m/s
-    r_f = r_i + v_f Δt = < 0, -1.578, 0 > m
+    r_f = r_i + v_f Δt = < 0, -1.5, 0 > + < 0, -0.078, 0 >
+        = < 0, -1.578, 0 > m
 
 The command line's step table (`--steps`, reports/headless.py) and the page's Step read-out
 (browser/) both write numbers through :func:`number` and :func:`vector`, after the same rounding
@@ -12,6 +14,7 @@ to 15 significant digits (:func:`cleaned`), so the two agree digit for digit.
 from __future__ import annotations
 
 import math
+import textwrap
 
 import numpy as np
 
@@ -22,6 +25,7 @@ from physics.state import velocity
 from .numbers import clean, clean_time
 
 SIGNIFICANT = 6
+RULE_WIDTH = 90      # characters a line of the rule in words takes before it wraps
 NO_VALUE = "(no value)"  # what a quantity that overflowed or is undefined prints instead of inf or nan
 
 
@@ -77,15 +81,17 @@ def step_lines(*, method: str, dt: float, t_f: float, m: float, F_net, p_i, p_f,
     v_f = velocity(np.asarray(p_f, float)[None], np.array([m]))[0]
     impulse = np.asarray(F_net, float) * dt
     kicks_once = INTEGRATORS[method].kicks_once
-    lines = [f"t = {number(clean_time(t_f, dt))} s, {method}: {INTEGRATORS[method].rule}",
+    lines = [f"t = {number(clean_time(t_f, dt))} s, {method}:",
+             *textwrap.wrap(INTEGRATORS[method].rule, RULE_WIDTH, break_on_hyphens=False),
              ("F_net = " if kicks_once else "F_net = (p_f − p_i)/Δt, its average force = ") + shown(F_net, "N"),
-             f"p_f = p_i + F_net Δt = {shown(p_i)} + {shown(impulse)} = {shown(p_f, 'kg·m/s')}",
+             f"p_f = p_i + F_net Δt = {shown(p_i)} + {shown(impulse)}",
+             f"    = {shown(p_f, 'kg·m/s')}",
              f"v_f = p_f / m = {shown(v_f, 'm/s')}"]
     if method == "euler-cromer":
-        lines.append(f"r_f = r_i + v_f Δt = {shown(r_i)} + {shown(v_f * dt)} = {shown(r_f, 'm')}")
+        lines += [f"r_f = r_i + v_f Δt = {shown(r_i)} + {shown(v_f * dt)}", f"    = {shown(r_f, 'm')}"]
     elif method == "euler":
         v_i = velocity(np.asarray(p_i, float)[None], np.array([m]))[0]
-        lines.append(f"r_f = r_i + v_i Δt = {shown(r_i)} + {shown(v_i * dt)} = {shown(r_f, 'm')}")
+        lines += [f"r_f = r_i + v_i Δt = {shown(r_i)} + {shown(v_i * dt)}", f"    = {shown(r_f, 'm')}"]
     else:
         lines.append(f"r_f = {shown(r_f, 'm')} (from r_i = {shown(r_i, 'm')}, as the rule above says)")
     return lines

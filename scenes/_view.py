@@ -11,6 +11,8 @@ A scene file ends with VIEW, a few lines naming what to draw; both front ends th
     sliders  the constants that get one (else m, k and the forces switched on)
     coils    turns per helix
     window   seconds the graphs show before they scroll
+    arrows   the arrows drawn on each mass when the page opens (export/arrows.py): "p", "F_net",
+             "forces", "split"; `--arrows` and the page's check boxes change them
     rows     a function of the model giving each mass's row (resonance: one row of springs per b);
              a row's masses share its colour (export/palette.py mass_colours)
 """
@@ -19,4 +21,5 @@ from __future__ import annotations
 MAX_DRAWN_MASSES = 2000     # a sphere and a helix each: more would stall the page on a school laptop
 
 DEFAULT_VIEW = {"support": "ceiling", "plot": "y", "trail": False, "exact": True, "coils": 12,
-                "window": 30.0}
+                "window": 30.0, "arrows": ()}
+MOMENTUM_ARROWS = ("p", "F_net")   # the scenes about one mass's momentum update show these at first

@@ -12,6 +12,7 @@ strongest. A small sideways push along z makes the path a genuinely 3-D rosette,
 With no damping, E = K + U_spring + U_gravity stays constant. There is no closed form.
 """
 from ._single_mass import build_single_mass
+from ._view import MOMENTUM_ARROWS
 
 # ---- constants: edit these (unit: meaning); 0 switches a force off ----
 m = 1.0                    # kg: mass of the bob
@@ -41,4 +42,4 @@ def build(**constants):
     return build_single_mass(label="bob", **constants)
 
 
-VIEW = {"support": "ceiling", "plot": "xyz", "trail": True, "sliders": ["m", "k", "g", "b"]}
+VIEW = {"support": "ceiling", "plot": "xyz", "trail": True, "sliders": ["m", "k", "g", "b"], "arrows": MOMENTUM_ARROWS}
