@@ -11,6 +11,8 @@ from __future__ import annotations
 
 import math
 
+from .clock import window
+
 ROUND = (1.0, 2.0, 5.0)
 
 
@@ -99,3 +101,14 @@ class AxisFit:
             return None
         self.ends = ends
         return ends
+
+
+def time_axis(t: float, *, span: float, dt: float) -> tuple[float, float]:
+    """A graph's time axis, s, for a run at time t: from 0 to the next of 1, 2, 5 × 10ⁿ s past t
+    (at least two steps of Δt), so a few Steps after Reset fill the graph instead of its first 1 %;
+    once t reaches `span`, the last `span` seconds, scrolling (browser/clock.py's window)."""
+    from export.arrows import round_scale   # the one 1, 2, 5 × 10ⁿ rounding
+
+    if t >= span:
+        return window(t, span=span)
+    return 0.0, min(span, round_scale(max(1.05 * t, 2 * dt)))
