@@ -9,8 +9,9 @@ switched on, each with a check box under the picture (and `--arrows` on the comm
     forces   each force on its own arrow, tip to tail, ending at F_net's tip, labelled
     split    F∥ (along p, sky blue) and F⊥ (across p, white), labelled with their magnitudes
 
-A Step while paused draws the update itself, at the momentum scale: p_i (dark yellow), F_net Δt
-from p_i's tip (reddish purple) and p_f from p_i's start to the sum (yellow), and the caption shows
+A Step while paused draws the update itself, at the momentum scale, just beside the mass: p_i (dark
+yellow), F_net Δt from p_i's tip (reddish purple) and p_f from p_i's start to the sum (yellow, a
+little further aside so that on a line the two do not cover each other), and the caption shows
 the numbers (export/step_update.py, the digits of `--steps`).
 
 For the tests, the legend holds a hidden element, #arrow-objects, whose data-objects attribute
@@ -181,11 +182,15 @@ class MomentumArrows:
         """Draw one Step as vector addition at each mass: p_i, F_net Δt from its tip, and p_f = p_i + F_net Δt."""
         self.stepping = True
         for i, (arrow_i, arrow_dp, arrow_f) in enumerate(self.step):
-            at = np.asarray(r_f[i], float)
             a_i, a_dp = self.scales.momentum_axis(p_i[i]), self.scales.momentum_axis(impulse[i])
+            a_f = self.scales.momentum_axis(p_f[i])
+            # beside the mass, across the motion on the screen, so that on a line (vertical, driven)
+            # the sum and p_f do not hide each other or F_net: p_i + F_net Δt, then p_f beside it
+            across = np.array([0.0, 1.0, 0.0]) if abs(a_f[0]) > abs(a_f[1]) else np.array([1.0, 0.0, 0.0])
+            at = np.asarray(r_f[i], float) + 1.4 * self.radius * across
             self._place(arrow_i, at, a_i, True)
             self._place(arrow_dp, at + a_i, a_dp, True)
-            self._place(arrow_f, at, self.scales.momentum_axis(p_f[i]), True)
+            self._place(arrow_f, at + 0.45 * self.radius * across, a_f, True)
 
     def end_step(self) -> None:
         """Run or Reset: the Step's arrows go, the p arrow comes back."""

@@ -232,7 +232,14 @@ class Graphs:
             elif points:
                 curve.plot(points)
         if exact is not None and np.isfinite(exact[..., self.axes]).any():
-            _fit(self.position_graph, self.position_fit, exact[..., self.axes].ravel())
+            # the exact motion, and the simulated points near it (within the exact span again), so
+            # a few Steps after Reset show on the axis while a run that strays far runs off it
+            exact_values = exact[..., self.axes].ravel()
+            low = min(self.position_fit.seen[0], float(np.nanmin(exact_values)))
+            high = max(self.position_fit.seen[1], float(np.nanmax(exact_values)))
+            simulated = r[:, matter][..., self.axes].ravel()
+            near = simulated[(simulated >= low - (high - low)) & (simulated <= high + (high - low))]
+            _fit(self.position_graph, self.position_fit, np.concatenate([exact_values, near]))
         elif len(t):
             _fit(self.position_graph, self.position_fit, r[:, matter][..., self.axes].ravel())
         _fit(self.energy_graph, self.energy_fit,
