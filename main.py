@@ -315,7 +315,7 @@ def write_programs(args, setup, model, *, warn: bool) -> None:
             print(warning, file=sys.stderr)
 
     try:
-        texts = [(path, export.program(setup, integrator=args.integrator, web=web))
+        texts = [(path, export.program(setup, integrator=args.integrator, web=web, arrows=args.arrows))
                  for path, web in ((args.vpython, False), (args.webvpython, True)) if path is not None]
         for path, _ in texts:
             if path != "-":

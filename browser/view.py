@@ -371,7 +371,7 @@ class SceneView:
         from export import program
 
         try:
-            text = program(self.setup, integrator=self.integrator)
+            text = program(self.setup, integrator=self.integrator, arrows=self.arrows.shown)
         except ValueError as problem:
             self.controls.offer_nothing(f"no program: {problem}")
             return

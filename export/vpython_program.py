@@ -50,6 +50,7 @@ from physics.simulate import steps_to_reach
 from scenes import DECLARED, ConstantError, catalog, summary
 from scenes._view import DEFAULT_VIEW, MAX_DRAWN_MASSES
 
+from . import program_arrows
 from .exact_curve import exact_lines
 from .lines import (CONSTANT_COLUMN, ProgramError, align_comments, commented, listed, number,
                     unit_and_meaning, vector)
@@ -262,13 +263,14 @@ def _update(method: str, forces: _Forces, *, r: str, p: str, m: str) -> list[str
 
 # ---- the program ----
 
-def program(setup, *, integrator: str | None = None, web: bool = False) -> str:
+def program(setup, *, integrator: str | None = None, web: bool = False, arrows=None) -> str:
     """The VPython program for a configured scene (scenes._catalog.Setup), as text.
 
     integrator  the method (default: the scene's own, else euler-cromer, the page's update), as
                 Model.methods picks it; scenes that step each mass with its own method
                 (integrators) keep theirs, as headless runs do.
     web         True for Web VPython (first line `Web VPython 3.2`, no imports).
+    arrows      the arrows to draw (export/program_arrows.py: p, F_net); None: the scene's VIEW's
 
     Raises ProgramError, or ValueError from the scene's build function, with a one-line message.
     """
@@ -306,6 +308,8 @@ def program(setup, *, integrator: str | None = None, web: bool = False) -> str:
         lines += ["", "# ---- the masses: one spring each ----"] + masses
 
     lines += ["", "# ---- the objects ----"] + _objects(model, view, constants, single)
+    arrows = view["arrows"] if arrows is None else arrows
+    lines += program_arrows.setup_lines(model, shown=arrows, integrator=integrator, single=single)
     axes = list(view["plot"])
     exact = exact_lines(model, constants, forces, axis=axes[0], m=m) if view["exact"] and len(axes) == 1 else None
     exact_curve = f"gcurve(color={vector(EXACT_COLOUR)}, width={EXACT_WIDTH}"
@@ -327,6 +331,7 @@ def program(setup, *, integrator: str | None = None, web: bool = False) -> str:
                 body += ["    " + line for line in _update(name, forces, r="pos[i]", p="p[i]", m=m)]
     else:
         body = _update(methods[0], forces, r=f"pos{i}", p=f"p{i}", m=m)
+    body += program_arrows.loop_lines(shown=arrows, single=single)
     if single:
         lines += ["    " + line for line in body]
     else:
