@@ -52,18 +52,24 @@ class MomentumArrows:
     def __init__(self, vp, *, model, integrator: str, shown, radius: float):
         self.vp, self.radius = vp, radius
         self.shown = set(shown)
-        self.model = model
-        self.scales = choose_scales(model, integrator=integrator)
+        self.model, self.integrator = model, integrator
+        self._scales = None                 # chosen when an arrow is first shown (a short engine run)
         self.seen = {"p": 0.0, "F": 0.0}   # the largest magnitudes drawn this run
-        count = model.state.count
-        self.p = [self._arrow("p") for _ in range(count)]
-        self.F_net = [self._arrow("F_net") for _ in range(count)]
-        self.forces: list[list] = [[] for _ in range(count)]   # made when first shown
+        # every arrow is made the first time it is shown: a row of 2,000 springs with none shown has none
+        self.count = count = model.state.count
+        self.p, self.F_net, self.step = [], [], []              # per mass (step: p_i, F_net Δt, p_f)
+        self.forces: list[list] = [[] for _ in range(count)]
         self.force_labels: list[list] = [[] for _ in range(count)]
         self.parts: list[list] = [[] for _ in range(count)]    # F∥, F⊥ and their labels
-        self.step = [[self._arrow("p_i"), self._arrow("F_net"), self._arrow("p")] for _ in range(count)]
         self.stepping = False
-        self.shapes = [*self.p, *self.F_net, *(a for trio in self.step for a in trio)]
+        self.shapes = []
+
+    def _made(self, arrows: list, make) -> list:
+        """The list of one kind of arrow per mass, made now if it is still empty."""
+        if not arrows:
+            arrows.extend(make() for _ in range(self.count))
+            self.shapes += [a for item in arrows for a in (item if isinstance(item, list) else [item])]
+        return arrows
 
     def _arrow(self, colour: str, *, thin: bool = False):
         vp = self.vp
@@ -83,16 +89,22 @@ class MomentumArrows:
     def set_shown(self, kind: str, on: bool) -> None:
         (self.shown.add if on else self.shown.discard)(kind)
 
+    @property
+    def scales(self):
+        """The run's scales (export/arrows.py), chosen the first time they are needed."""
+        if self._scales is None:
+            self._scales = choose_scales(self.model, integrator=self.integrator)
+        return self._scales
+
     def rescale(self, model, *, integrator: str) -> None:
         """A new run (new constants or integrator): scales chosen again for it."""
-        self.model = model
-        self.scales = choose_scales(model, integrator=integrator)
+        self.model, self.integrator, self._scales = model, integrator, None
         self.seen = {"p": 0.0, "F": 0.0}
 
     def reset(self) -> None:
         """Reset: if an arrow of the run just ended left the picture, choose the scales again; no Step shown."""
-        if not self.scales.fits(p_max=self.seen["p"], F_max=self.seen["F"]):
-            self.scales = self.scales.refitted(p_max=self.seen["p"], F_max=self.seen["F"])
+        if self._scales is not None and not self._scales.fits(p_max=self.seen["p"], F_max=self.seen["F"]):
+            self._scales = self._scales.refitted(p_max=self.seen["p"], F_max=self.seen["F"])
         self.seen = {"p": 0.0, "F": 0.0}
         self.stepping = False
 
@@ -104,22 +116,35 @@ class MomentumArrows:
                 "F_par": [p[0].idx if p else None for p in self.parts],
                 "F_perp": [p[1].idx if p else None for p in self.parts],
                 "step": [ids(trio) for trio in self.step],
-                "p_unit": self.scales.p_unit, "F_unit": self.scales.F_unit}
+                "p_unit": self._scales and self._scales.p_unit, "F_unit": self._scales and self._scales.F_unit}
 
     def legend(self) -> str:
         """The scales in words, with the hidden element the tests read."""
         data = json.dumps(self.objects()).replace("'", "&#39;")
-        return f"{self.scales.legend()}<span id='arrow-objects' hidden data-objects='{data}'></span>"
+        words = self.scales.legend() if self.shown or self._scales is not None else ""
+        return f"{words}<span id='arrow-objects' hidden data-objects='{data}'></span>"
 
     # ---- drawing ----
 
     def draw(self, live) -> None:
         """Put every arrow shown on its mass, at the state now (once per frame)."""
+        if not self.shown and not self.stepping:
+            for arrow in self.p + self.F_net:
+                if arrow.visible:
+                    arrow.visible = False
+            for i in range(len(self.forces)):
+                self._draw_forces(i, live.state.r[i], [], False)
+                self._draw_split(i, live.state.r[i], None, None, False)
+            return
         vp, state, model = self.vp, live.state, live.model
         r, p, m = state.r, state.p, state.m
         v = velocity(p, m)
         F_net = net_force(model.forces, state.t, r, v, m)
         scales = self.scales
+        if "p" in self.shown:
+            self._made(self.p, lambda: self._arrow("p"))
+        if "F_net" in self.shown:
+            self._made(self.F_net, lambda: self._arrow("F_net"))
         finite = np.all(np.isfinite(r), axis=1) & np.all(np.isfinite(p), axis=1)
         moving = [i for i in range(len(r)) if finite[i] and i not in live.runaways]
         self.seen["p"] = max(self.seen["p"], *(float(np.linalg.norm(p[i])) for i in moving), 0.0)
@@ -128,8 +153,10 @@ class MomentumArrows:
         along, across = split(F_net, p) if "split" in self.shown else (None, None)
         for i in range(len(r)):
             ok = i in moving
-            self._place(self.p[i], r[i], scales.momentum_axis(p[i]), ok and "p" in self.shown and not self.stepping)
-            self._place(self.F_net[i], r[i], scales.force_axis(F_net[i]), ok and "F_net" in self.shown)
+            if self.p:
+                self._place(self.p[i], r[i], scales.momentum_axis(p[i]), ok and "p" in self.shown and not self.stepping)
+            if self.F_net:
+                self._place(self.F_net[i], r[i], scales.force_axis(F_net[i]), ok and "F_net" in self.shown)
             self._draw_forces(i, r[i], each, ok and "forces" in self.shown)
             self._draw_split(i, r[i], along, across, ok and "split" in self.shown)
 
@@ -160,7 +187,8 @@ class MomentumArrows:
                 label.pos = self.vp.vector(*map(float, tail + 0.5 * axis))
                 label.text = force_name(self.model.forces[n])
                 tail = tail + axis
-            label.visible = bool(on and np.linalg.norm(axis) > 0)
+            if label.visible != bool(on and np.linalg.norm(axis) > 0):
+                label.visible = bool(on and np.linalg.norm(axis) > 0)
 
     def _draw_split(self, i: int, at, along, across, visible: bool) -> None:
         """F∥ and F⊥ of mass i, each labelled with its magnitude in N."""
@@ -176,11 +204,13 @@ class MomentumArrows:
             if visible:
                 label.pos = self.vp.vector(*map(float, np.asarray(at) + axis))
                 label.text = f"{name} = {np.linalg.norm(F[i]):.3g} N"
-            label.visible = bool(visible and np.linalg.norm(axis) > 0)
+            if label.visible != bool(visible and np.linalg.norm(axis) > 0):
+                label.visible = bool(visible and np.linalg.norm(axis) > 0)
 
     def show_step(self, *, r_f, p_i, impulse, p_f) -> None:
         """Draw one Step as vector addition at each mass: p_i, F_net Δt from its tip, and p_f = p_i + F_net Δt."""
         self.stepping = True
+        self._made(self.step, lambda: [self._arrow("p_i"), self._arrow("F_net"), self._arrow("p")])
         for i, (arrow_i, arrow_dp, arrow_f) in enumerate(self.step):
             a_i, a_dp = self.scales.momentum_axis(p_i[i]), self.scales.momentum_axis(impulse[i])
             a_f = self.scales.momentum_axis(p_f[i])

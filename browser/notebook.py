@@ -42,6 +42,7 @@ import sys
 import time
 import traceback
 
+from export.arrows import parse_arrows
 from physics.integrators import DEFAULT_INTEGRATOR, INTEGRATORS
 
 from .clock import check_live_cost
@@ -88,12 +89,13 @@ class NotebookLink:
 
 
 def show(name: str = catalog.DEFAULT_SCENE, *, scenario: int | None = None, preset: str | None = None,
-         integrator: str | None = None, **constants) -> None:
+         integrator: str | None = None, arrows=None, **constants) -> None:
     """Show scene `name` in this cell, with any constants changed, and keep it running.
 
     scenario    one of the scene's numbered scenarios (as --scenario N)
     preset      the label of one of its presets (as --preset), applied before the constants
     integrator  a name from physics.integrators.INTEGRATORS (default: the scene's own, else euler-cromer)
+    arrows      the arrows on each mass, as --arrows: ("p", "F_net"), () for none (default: the scene's)
     constants   any of the scene's constants, in its units; a vector as three numbers
 
     Raises ConstantError (a ValueError) for an unknown scene, constant or integrator or a bad
@@ -104,6 +106,11 @@ def show(name: str = catalog.DEFAULT_SCENE, *, scenario: int | None = None, pres
     setup = catalog.configure(name, scenario=scenario, preset=preset, assignments=[
         f"{key}={','.join(map(str, value)) if isinstance(value, (tuple, list)) else value}"
         for key, value in constants.items()])
+    if arrows is not None:
+        try:
+            parse_arrows(",".join(arrows))
+        except ValueError as problem:
+            raise ConstantError(str(problem)) from None
     if integrator is not None and integrator not in INTEGRATORS:
         raise ConstantError(f"unknown integrator {integrator!r} (choose from {', '.join(INTEGRATORS)})")
     model = setup.build()
@@ -119,7 +126,8 @@ def show(name: str = catalog.DEFAULT_SCENE, *, scenario: int | None = None, pres
     from .view import SceneView
 
     link = NotebookLink()
-    view = SceneView(setup=setup, model=model, integrator=integrator, server=link, preset=preset)
+    view = SceneView(setup=setup, model=model, integrator=integrator, server=link, preset=preset,
+                     arrows=None if arrows is None else parse_arrows(",".join(arrows)))
     task = asyncio.get_running_loop().create_task(_animate(view, link))
     task.add_done_callback(_report_failure)
     _live = (task, view)

@@ -246,6 +246,7 @@ class SceneView:
                 self._step()
             elif kind == "arrows":
                 self.arrows.set_shown(command[1], bool(command[2]))
+                self.controls.arrow_legend.text = self.arrows.legend()
             elif kind == "reset":
                 self._reset()
                 self.clock.restart(now=now)

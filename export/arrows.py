@@ -30,8 +30,8 @@ ARROWS = ("p", "F_net", "forces", "split")   # what --arrows and the page's chec
 ARROW_LABELS = {"p": "p", "F_net": "F_net", "forces": "forces", "split": "F∥ and F⊥"}
 ROUND_STEPS = (1.0, 2.0, 5.0)
 REACH = 0.5           # the longest arrow, as a fraction of the size of the motion and its support
-SCALE_RUN = 10.0      # s: how far the short run that chooses the scales looks ahead
-SCALE_STEPS = 4000    # at most this many steps of it
+SCALE_RUN = 30.0      # s: how far the short run that chooses the scales looks ahead (the graphs show 30 s)
+SCALE_STEPS = 6000    # at most this many steps of it
 TOO_LONG = 2.0        # an arrow this many times REACH is out of the picture: the next Reset rescales
 
 
@@ -127,7 +127,7 @@ def largest(model, *, integrator: str | None = None) -> tuple[float, float, floa
     engine = model.simulation(integrator)
     steps = max(1, min(SCALE_STEPS, int(SCALE_RUN / model.dt)))
     try:
-        samples = engine.advance(steps, record=every(max(1, steps // 400)))
+        samples = engine.advance(steps, record=every(max(1, steps // 200)))
         traj = trajectory(engine, samples, with_energy=False)
         t, r, p = traj.t, traj.r, traj.p
     except BlowUpError:

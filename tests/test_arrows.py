@@ -10,7 +10,7 @@ import math
 
 import numpy as np
 import pytest
-from hypothesis import given, strategies as st
+from hypothesis import given, settings, strategies as st
 
 import main
 from export.arrows import REACH, choose_scales, forces_each, largest, parse_arrows, round_scale, split
@@ -26,6 +26,7 @@ def is_round(x: float) -> bool:
     return any(math.isclose(mantissa, step) for step in (1, 2, 5))
 
 
+@settings(deadline=None)
 @given(st.floats(min_value=1e-9, max_value=1e9))
 def test_round_scale_is_the_next_1_2_5_step(x):
     scale = round_scale(x)
@@ -78,6 +79,7 @@ def test_the_forces_tip_to_tail_end_at_F_nets_tip(scene):
     assert np.allclose(np.sum(each, axis=0), net_force(model.forces, 1.3, r, v, s.m), rtol=1e-12, atol=1e-12)
 
 
+@settings(deadline=None)
 @given(st.lists(st.floats(-100, 100), min_size=6, max_size=6))
 def test_split_is_along_and_across_p(numbers):
     F, p = np.array(numbers[:3]), np.array(numbers[3:])
@@ -162,3 +164,43 @@ def test_other_methods_show_their_own_update(capsys, method):
     assert f"= {row[3]} kg·m/s" in text and f"{row[5]} m" in text
     assert ("average force" in text) == (method != "euler")
     assert headless.vector(after.r[0]) == row[5]
+
+
+def stand_in_with_arrows():
+    """tests/test_trail.py's stand-in vpython, with arrows (each gets an idx, as vpython's do)."""
+    from itertools import count
+
+    from test_trail import Shape, stand_in_vpython
+
+    numbers = count()
+
+    def arrow(**attributes):
+        return Shape(idx=next(numbers), **attributes)
+    vp = stand_in_vpython()
+    vp.arrow = arrow
+    return vp
+
+
+def test_the_page_arrows_are_scale_times_the_engines_p_and_F_net_and_made_only_when_shown():
+    from browser.arrows3d import MomentumArrows
+    from browser.clock import LiveRun
+
+    model = catalog.configure("pendulum").build()
+    live = LiveRun(model, integrator="euler-cromer")
+    arrows = MomentumArrows(stand_in_with_arrows(), model=model, integrator="euler-cromer", shown=(), radius=0.1)
+    arrows.draw(live)
+    assert arrows.shapes == [] and arrows._scales is None     # nothing shown: nothing made, no run
+    for kind in ("p", "F_net", "split", "forces"):
+        arrows.set_shown(kind, True)
+    live.advance(137)
+    arrows.draw(live)
+    s, scales = live.state, arrows.scales
+    F = net_force(model.forces, s.t, s.r, velocity(s.p, s.m), s.m)
+    assert np.allclose(np.array(arrows.p[0].axis), s.p[0] / scales.p_unit)
+    assert np.allclose(np.array(arrows.F_net[0].axis), F[0] / scales.F_unit)
+    tips = np.array(arrows.forces[0][0].pos) + sum(np.array(a.axis) for a in arrows.forces[0])
+    assert np.allclose(tips, s.r[0] + F[0] / scales.F_unit)              # tip to tail, ending at F_net's tip
+    along, across = (np.array(a.axis) for a in arrows.parts[0][:2])
+    assert np.allclose(along + across, F[0] / scales.F_unit) and abs(across @ s.p[0]) < 1e-9
+    assert arrows.parts[0][2].text.startswith("F∥ = ") and arrows.parts[0][2].text.endswith(" N")
+    assert [label.text for label in arrows.force_labels[0]] == ["spring", "gravity"]

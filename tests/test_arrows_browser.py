@@ -124,6 +124,8 @@ def test_step_read_out_and_arrows_are_the_engines(browser, capsys, args):
             assert np.allclose(page.axis(arrow_dp), F * model.dt / p_unit, rtol=1e-9, atol=1e-12)
             F_now = net_force(model.forces, after.t, after.r, velocity(after.p, after.m), after.m)[0]
             assert np.allclose(page.axis(objects["F_net"][0]), F_now / F_unit, rtol=1e-9, atol=1e-12)
+            if n == 2 and args == ("vertical",):   # the README's picture of a Step
+                page.page.screenshot(path=str(SCREENSHOTS / "momentum-update.png"))
         # Run on: the p arrow is back, at the same scale, equal to the engine's p at the t shown
         page.click("Run")
         wait_for(lambda: shown_time(page.page) > 2.0, timeout=60, what="the run to go on")

@@ -3,7 +3,7 @@ round end, until the run fills the usual window; then it scrolls as before (brow
 from __future__ import annotations
 
 import pytest
-from hypothesis import given, strategies as st
+from hypothesis import given, settings, strategies as st
 
 from browser.axes import time_axis
 from browser.clock import window
@@ -17,6 +17,7 @@ def test_three_steps_after_reset_fill_the_graph():
     assert time_axis(25.0, span=30.0, dt=0.1) == (0.0, 30.0)  # never past the usual window
 
 
+@settings(deadline=None)
 @given(st.floats(0, 1e4), st.sampled_from([10.0, 30.0, 60.0]), st.sampled_from([1e-3, 0.01, 0.1, 1.0]))
 def test_the_points_are_on_the_axis_and_fill_at_least_a_fifth_of_it(t, span, dt):
     start, end = time_axis(t, span=span, dt=dt)
