@@ -204,3 +204,14 @@ def test_the_page_arrows_are_scale_times_the_engines_p_and_F_net_and_made_only_w
     assert np.allclose(along + across, F[0] / scales.F_unit) and abs(across @ s.p[0]) < 1e-9
     assert arrows.parts[0][2].text.startswith("F∥ = ") and arrows.parts[0][2].text.endswith(" N")
     assert [label.text for label in arrows.force_labels[0]] == ["spring", "gravity"]
+
+
+@pytest.mark.parametrize("args, message", [
+    (("vertical", "--arrows", "p,Fnet"), "--arrows knows p, F_net, forces, split (got 'Fnet')"),
+    (("vertical", "--headless", "--arrows", "p"), "--arrows is for the page and the program"),
+    (("vertical", "--steps", "2", "--no-arrows"), "--arrows is for the page and the program"),
+])
+def test_bad_arrows_get_one_line_and_status_2(capsys, args, message):
+    assert main.run(list(args)) == 2
+    err = capsys.readouterr().err
+    assert err.startswith(f"error: {message}") and len(err.strip().splitlines()) == 1
