@@ -63,13 +63,20 @@ class MomentumArrows:
         self.parts: list[list] = [[] for _ in range(count)]    # F∥, F⊥ and their labels
         self.stepping = False
         self.shapes = []
+        self.legend_text = None             # the caption's wtext that shows legend() (set by the view)
 
     def _made(self, arrows: list, make) -> list:
         """The list of one kind of arrow per mass, made now if it is still empty."""
         if not arrows:
             arrows.extend(make() for _ in range(self.count))
             self.shapes += [a for item in arrows for a in (item if isinstance(item, list) else [item])]
+            self.publish()
         return arrows
+
+    def publish(self) -> None:
+        """Show the legend (the scales, and the objects for the tests) in the caption."""
+        if self.legend_text is not None:
+            self.legend_text.text = self.legend()
 
     def _arrow(self, colour: str, *, thin: bool = False):
         vp = self.vp
@@ -88,6 +95,7 @@ class MomentumArrows:
 
     def set_shown(self, kind: str, on: bool) -> None:
         (self.shown.add if on else self.shown.discard)(kind)
+        self.publish()
 
     @property
     def scales(self):
@@ -100,11 +108,13 @@ class MomentumArrows:
         """A new run (new constants or integrator): scales chosen again for it."""
         self.model, self.integrator, self._scales = model, integrator, None
         self.seen = {"p": 0.0, "F": 0.0}
+        self.publish()
 
     def reset(self) -> None:
         """Reset: if an arrow of the run just ended left the picture, choose the scales again; no Step shown."""
         if self._scales is not None and not self._scales.fits(p_max=self.seen["p"], F_max=self.seen["F"]):
             self._scales = self._scales.refitted(p_max=self.seen["p"], F_max=self.seen["F"])
+            self.publish()
         self.seen = {"p": 0.0, "F": 0.0}
         self.stepping = False
 
@@ -178,6 +188,7 @@ class MomentumArrows:
                 arrows.append(self._arrow("forces", thin=True))
                 labels.append(self._label("forces"))
                 self.shapes.append(arrows[-1])
+                self.publish()
         tail = np.asarray(at, float)
         for n, (arrow, label) in enumerate(zip(arrows, labels)):
             on = visible and n < len(each)
@@ -195,6 +206,7 @@ class MomentumArrows:
         if visible and not self.parts[i]:
             self.parts[i] = [self._arrow("F_par"), self._arrow("F_perp"), self._label("F_par"), self._label("F_perp")]
             self.shapes += self.parts[i][:2]
+            self.publish()
         if not self.parts[i]:
             return
         par, perp, par_label, perp_label = self.parts[i]

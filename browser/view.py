@@ -145,9 +145,10 @@ class SceneView:
     def _reset(self) -> None:
         """Back to the exact initial state, with empty graphs and trails (Reset)."""
         samples = self.live.restart()
+        self.arrows.legend_text = self.controls.arrow_legend
         self.arrows.reset()
         self.arrows.end_step()
-        self.controls.arrow_legend.text = self.arrows.legend()
+        self.arrows.publish()
         self.controls.step_text.text = ""
         self.scene.clear()
         self.graphs.clear()
@@ -246,7 +247,6 @@ class SceneView:
                 self._step()
             elif kind == "arrows":
                 self.arrows.set_shown(command[1], bool(command[2]))
-                self.controls.arrow_legend.text = self.arrows.legend()
             elif kind == "reset":
                 self._reset()
                 self.clock.restart(now=now)

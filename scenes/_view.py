@@ -22,4 +22,3 @@ MAX_DRAWN_MASSES = 2000     # a sphere and a helix each: more would stall the pa
 
 DEFAULT_VIEW = {"support": "ceiling", "plot": "y", "trail": False, "exact": True, "coils": 12,
                 "window": 30.0, "arrows": ()}
-MOMENTUM_ARROWS = ("p", "F_net")   # the scenes about one mass's momentum update show these at first

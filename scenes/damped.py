@@ -4,7 +4,6 @@ Question: where is the mass after 0.2 s now? The damping force is small at first
 starts at rest, so the answer barely differs from the undamped one this early.
 """
 from ._single_mass import build_single_mass
-from ._view import MOMENTUM_ARROWS
 
 # ---- constants: edit these (unit: meaning); 0 switches a force off ----
 m = 10.0                   # kg: mass of the block
@@ -33,4 +32,4 @@ def build(**constants):
     return build_single_mass(**constants)
 
 
-VIEW = {"support": "ceiling", "plot": "y", "arrows": MOMENTUM_ARROWS}
+VIEW = {"support": "ceiling", "plot": "y", "arrows": ("p", "F_net")}

@@ -8,7 +8,6 @@ five scenarios with --scenario N.
 import numpy as np
 
 from ._single_mass import build_single_mass
-from ._view import MOMENTUM_ARROWS
 
 # ---- constants: edit these (unit: meaning); 0 switches a force off ----
 m = 4.0                    # kg: mass of the block
@@ -49,4 +48,4 @@ def build(*, x0, r0, anchor, L0, **constants):
     return build_single_mass(r0=r0, anchor=anchor, L0=L0, **constants)
 
 
-VIEW = {"support": "wall", "plot": "x", "arrows": MOMENTUM_ARROWS}
+VIEW = {"support": "wall", "plot": "x", "arrows": ("p", "F_net")}

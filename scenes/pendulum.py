@@ -12,7 +12,6 @@ strongest. A small sideways push along z makes the path a genuinely 3-D rosette,
 With no damping, E = K + U_spring + U_gravity stays constant. There is no closed form.
 """
 from ._single_mass import build_single_mass
-from ._view import MOMENTUM_ARROWS
 
 # ---- constants: edit these (unit: meaning); 0 switches a force off ----
 m = 1.0                    # kg: mass of the bob
@@ -42,4 +41,4 @@ def build(**constants):
     return build_single_mass(label="bob", **constants)
 
 
-VIEW = {"support": "ceiling", "plot": "xyz", "trail": True, "sliders": ["m", "k", "g", "b"], "arrows": MOMENTUM_ARROWS}
+VIEW = {"support": "ceiling", "plot": "xyz", "trail": True, "sliders": ["m", "k", "g", "b"], "arrows": ("p", "F_net")}

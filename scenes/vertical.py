@@ -4,7 +4,6 @@ Question: where is the mass after 0.2 s? With Δt = 0.1 s, two momentum updates 
 y = −1.73088 m; the exact answer is y = −1.65393 m, and the iteration approaches it as Δt shrinks.
 """
 from ._single_mass import build_single_mass
-from ._view import MOMENTUM_ARROWS
 
 # ---- constants: edit these (unit: meaning); 0 switches a force off ----
 m = 10.0                   # kg: mass of the block
@@ -33,4 +32,4 @@ def build(**constants):
     return build_single_mass(**constants)
 
 
-VIEW = {"support": "ceiling", "plot": "y", "arrows": MOMENTUM_ARROWS}
+VIEW = {"support": "ceiling", "plot": "y", "arrows": ("p", "F_net")}

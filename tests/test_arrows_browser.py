@@ -50,7 +50,7 @@ class Page:
         return np.array(self.page.evaluate("i => { const a = glowObjs[i].axis; return [a.x, a.y, a.z]; }", index))
 
     def click(self, name):
-        self.page.get_by_role("button", name=name).click()
+        self.page.get_by_role("button", name=name).click(timeout=120_000)   # a row of springs draws slowly
 
     def close(self):
         self.page.close()
@@ -152,9 +152,9 @@ def test_screenshots_with_arrows(browser, scene):
     for width, height in shots:
         page = Page(browser, args, viewport=(width, height))
         try:
-            wait_for(lambda: shown_time(page.page) > 2.0, timeout=60, what="the run to go")
+            wait_for(lambda: shown_time(page.page) > 2.0, timeout=120, what="the run to go")
             page.click("Pause")
-            page.page.get_by_role("button", name="Run").wait_for(timeout=30_000)
+            page.page.get_by_role("button", name="Run").wait_for(timeout=120_000)
             page.page.screenshot(path=str(SCREENSHOTS / f"arrows-{scene}-{width}x{height}.png"))
             objects = page.objects()
             visible = page.page.evaluate("ids => ids.map(i => glowObjs[i].visible)", objects["p"] + objects["F_net"])
