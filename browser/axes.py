@@ -105,7 +105,7 @@ class AxisFit:
 
 def time_axis(t: float, *, span: float, dt: float) -> tuple[float, float]:
     """A graph's time axis, s, for a run at time t: from 0 to the next of 1, 2, 5 × 10ⁿ s past t
-    (at least two steps of Δt), so a few Steps after Reset fill the graph instead of its first 1 %;
+    (at least two of dt, the time between the graph's points), so a few Steps after Reset fill the graph instead of its first 1 %;
     once t reaches `span`, the last `span` seconds, scrolling (browser/clock.py's window)."""
     from export.arrows import round_scale   # the one 1, 2, 5 × 10ⁿ rounding
 

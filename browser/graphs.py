@@ -52,7 +52,7 @@ class Graphs:
     def __init__(self, vp, *, setup, model, view: dict):
         self.vp = vp
         self.span = float(view["window"])
-        self.dt = model.dt
+        self.spacing = max(model.dt, SAMPLE_EVERY)   # s between graph points
         self.axes = ["xyz".index(axis) for axis in view["plot"]]
         self.position_fit = AxisFit(pixels=GRAPH_CANVAS_HEIGHT)
         self.energy_fit = AxisFit(pixels=GRAPH_CANVAS_HEIGHT)
@@ -178,7 +178,7 @@ class Graphs:
         if self.scene_graph is not None and changes:
             self._fill_scene_graph(setup.module.view_graph(setup))
         self.show_exact = self.exact_curves and model.exact is not None
-        self.dt = model.dt
+        self.spacing = max(model.dt, SAMPLE_EVERY)   # s between graph points
 
     def clear(self) -> None:
         """Empty every curve and the recorded samples, and show t from 0 again."""
@@ -188,7 +188,7 @@ class Graphs:
             trace.clear()
         self.recorded.clear()
         for graph in (self.position_graph, self.energy_graph):
-            graph.xmin, graph.xmax = time_axis(0.0, span=self.span, dt=self.dt)
+            graph.xmin, graph.xmax = time_axis(0.0, span=self.span, dt=self.spacing)
         self.live_drawn = -math.inf
 
     def take_down(self) -> None:
@@ -245,7 +245,7 @@ class Graphs:
         _fit(self.energy_graph, self.energy_fit,
              [value for key, values in energies.items() if key not in live.may_run_away for value in values])
         if len(t):
-            start, end = time_axis(float(t[-1]), span=self.span, dt=live.model.dt)
+            start, end = time_axis(float(t[-1]), span=self.span, dt=self.spacing)
             if (start, end) != (self.position_graph.xmin, self.position_graph.xmax):
                 for graph in (self.position_graph, self.energy_graph):
                     graph.xmin, graph.xmax = start, end

@@ -155,7 +155,7 @@ def test_screenshots_with_arrows(browser, scene):
             wait_for(lambda: shown_time(page.page) > 2.0, timeout=120, what="the run to go")
             page.click("Pause")
             page.page.get_by_role("button", name="Run").wait_for(timeout=120_000)
-            page.page.screenshot(path=str(SCREENSHOTS / f"arrows-{scene}-{width}x{height}.png"))
+            page.page.screenshot(path=str(SCREENSHOTS / f"arrows-{scene}-{width}x{height}.png"), timeout=120_000)
             objects = page.objects()
             visible = page.page.evaluate("ids => ids.map(i => glowObjs[i].visible)", objects["p"] + objects["F_net"])
             assert any(visible), f"{scene}: no arrow shown"
