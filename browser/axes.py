@@ -103,12 +103,11 @@ class AxisFit:
         return ends
 
 
-def time_axis(t: float, *, span: float, dt: float) -> tuple[float, float]:
-    """A graph's time axis, s, for a run at time t: from 0 to the next of 1, 2, 5 × 10ⁿ s past t
-    (at least two of dt, the time between the graph's points), so a few Steps after Reset fill the graph instead of its first 1 %;
-    once t reaches `span`, the last `span` seconds, scrolling (browser/clock.py's window)."""
-    from export.arrows import round_scale   # the one 1, 2, 5 × 10ⁿ rounding
-
+def time_axis(t: float, *, span: float, dt: float, pixels: float) -> tuple[float, float]:
+    """A graph's time axis, s, for a run at time t: from 0 to just past t (at least two of dt, the
+    time between the graph's points), at round ticks for an axis `pixels` long (nice_range), so a
+    few Steps after Reset fill the graph instead of its first 1 %; once t reaches `span`, the last
+    `span` seconds, scrolling (browser/clock.py's window)."""
     if t >= span:
         return window(t, span=span)
-    return 0.0, min(span, round_scale(max(1.05 * t, 2 * dt)))
+    return 0.0, min(span, nice_range(0.0, max(1.05 * t, 2 * dt), pixels=pixels)[1])

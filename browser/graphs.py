@@ -188,7 +188,7 @@ class Graphs:
             trace.clear()
         self.recorded.clear()
         for graph in (self.position_graph, self.energy_graph):
-            graph.xmin, graph.xmax = time_axis(0.0, span=self.span, dt=self.spacing)
+            graph.xmin, graph.xmax = time_axis(0.0, span=self.span, dt=self.spacing, pixels=self.size[0])
         self.live_drawn = -math.inf
 
     def take_down(self) -> None:
@@ -245,7 +245,8 @@ class Graphs:
         _fit(self.energy_graph, self.energy_fit,
              [value for key, values in energies.items() if key not in live.may_run_away for value in values])
         if len(t):
-            start, end = time_axis(float(t[-1]), span=self.span, dt=self.spacing)
+            start, end = time_axis(float(t[-1]), span=self.span, dt=self.spacing,
+                                   pixels=self.size[0])
             if (start, end) != (self.position_graph.xmin, self.position_graph.xmax):
                 for graph in (self.position_graph, self.energy_graph):
                     graph.xmin, graph.xmax = start, end
