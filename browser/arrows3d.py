@@ -57,7 +57,7 @@ class MomentumArrows:
     def __init__(self, vp, *, model, integrator: str, shown, radius: float, masses=()):
         self.vp, self.radius, self.masses = vp, radius, list(masses)
         self.see_through = False            # the spheres, while arrows show, so their first part shows
-        self.shown = set(shown)
+        self.shown = shown if isinstance(shown, set) else set(shown)   # the view's own set: kept across rebuilds
         self.model, self.integrator = model, integrator
         self._scales = None                 # chosen when an arrow is first shown (a short engine run)
         self.seen = {"p": 0.0, "F": 0.0}   # the largest magnitudes drawn this run
