@@ -10,6 +10,8 @@
     python main.py SCENE --steps N        the first N momentum updates as a table to check by hand
     python main.py SCENE --plot FILE.png  a figure of the position and energy graphs (needs matplotlib)
 
+--arrows p,F_net,forces,split (or --no-arrows) chooses the arrows drawn on each mass, in the browser
+and in the program --vpython and --webvpython write (default: the scene's VIEW).
 --preset NAME applies one of the scene's presets ("Moon gravity", "critical damping", ...; --constants
 lists them) in the browser and headless alike, after --scenario and before --set.
 --steps and --plot always run headless, so they need no --headless. --json and --csv describe a
