@@ -29,9 +29,6 @@ from physics.forces import net_force
 from physics.state import velocity
 
 
-SEE_THROUGH = 0.45   # the spheres' opacity while arrows are shown
-
-
 def arrow_checkboxes(vp, put, shown) -> dict:
     """A check box per kind of arrow, each queueing ("arrows", kind, checked); returns them by kind."""
     boxes = {}
@@ -50,13 +47,10 @@ class MomentumArrows:
     integrator  the method chosen, for the short run that chooses the scales
     shown       the kinds of arrow switched on (a subset of export.arrows.ARROWS)
     radius      the masses' radius, m: the arrows' shafts are a fraction of it
-    masses      the spheres (browser/scene3d.py): see-through while arrows are shown, since
-                the arrows start at their centres
     """
 
-    def __init__(self, vp, *, model, integrator: str, shown, radius: float, masses=()):
-        self.vp, self.radius, self.masses = vp, radius, list(masses)
-        self.see_through = False            # the spheres, while arrows show, so their first part shows
+    def __init__(self, vp, *, model, integrator: str, shown, radius: float):
+        self.vp, self.radius = vp, radius
         self.shown = shown if isinstance(shown, set) else set(shown)   # the view's own set: kept across rebuilds
         self.model, self.integrator = model, integrator
         self._scales = None                 # chosen when an arrow is first shown (a short engine run)
@@ -144,10 +138,6 @@ class MomentumArrows:
 
     def draw(self, live) -> None:
         """Put every arrow shown on its mass, at the state now (once per frame)."""
-        if self.see_through != bool(self.shown or self.stepping):
-            self.see_through = bool(self.shown or self.stepping)
-            for mass in self.masses:
-                mass.opacity = SEE_THROUGH if self.see_through else 1.0
         if not self.shown and not self.stepping:
             for arrow in self.p + self.F_net:
                 if arrow.visible:
