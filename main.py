@@ -216,7 +216,7 @@ def check_options(args) -> None:
         except ValueError as problem:
             raise UsageError(str(problem)) from None
         if runs_headless and not programs:
-            raise UsageError("--arrows is for the page and the program (--vpython, --webvpython), and a "
+            raise UsageError("--arrows (and --no-arrows) is for the page and the program (--vpython, --webvpython), and a "
                              "headless run draws none; leave it out")
     if args.steps is not None and args.steps < 1:
         raise UsageError(f"--steps needs a whole number of 1 or more (got {args.steps})")

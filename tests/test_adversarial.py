@@ -176,6 +176,8 @@ BAD = [
     ("vertical --webvpython x.py --no-browser", 2, "--no-browser is for the browser page"),
     ("integrators --headless --integrator rk4", 2, "would do nothing; leave it out"),
     ("integrators --vpython x.py --integrator euler", 2, "would do nothing"),
+    ("vertical --arrows p,momentum", 2, "--arrows knows p, F_net, forces, split (got 'momentum')"),
+    ("vertical --headless --no-arrows", 2, "--arrows (and --no-arrows) is for the page and the program"),
 ]
 
 # Inputs that would run for minutes or hours: the engine's cost limit (physics.simulate.check_cost)

@@ -208,8 +208,8 @@ def test_the_page_arrows_are_scale_times_the_engines_p_and_F_net_and_made_only_w
 
 @pytest.mark.parametrize("args, message", [
     (("vertical", "--arrows", "p,Fnet"), "--arrows knows p, F_net, forces, split (got 'Fnet')"),
-    (("vertical", "--headless", "--arrows", "p"), "--arrows is for the page and the program"),
-    (("vertical", "--steps", "2", "--no-arrows"), "--arrows is for the page and the program"),
+    (("vertical", "--headless", "--arrows", "p"), "--arrows (and --no-arrows) is for the page and the program"),
+    (("vertical", "--steps", "2", "--no-arrows"), "--arrows (and --no-arrows) is for the page and the program"),
 ])
 def test_bad_arrows_get_one_line_and_status_2(capsys, args, message):
     assert main.run(list(args)) == 2
