@@ -215,3 +215,11 @@ def test_bad_arrows_get_one_line_and_status_2(capsys, args, message):
     assert main.run(list(args)) == 2
     err = capsys.readouterr().err
     assert err.startswith(f"error: {message}") and len(err.strip().splitlines()) == 1
+
+
+def test_the_notebooks_show_checks_its_arrows_before_anything_is_drawn():
+    from browser.notebook import show
+    from scenes import ConstantError
+
+    with pytest.raises(ConstantError, match="got 'q'"):
+        show("vertical", arrows=("p", "q"))
