@@ -14,6 +14,8 @@
     python main.py SCENE --mystery FILE [--seed N]   a measured-looking run with hidden k and b
     python main.py SCENE --show-answer --seed N      the hidden k and b of that mystery file
 
+--arrows p,F_net,forces,split (or --no-arrows) chooses the arrows drawn on each mass, in the browser
+and in the program --vpython and --webvpython write (default: the scene's VIEW).
 --preset NAME applies one of the scene's presets ("Moon gravity", "critical damping", ...; --constants
 lists them) in the browser and headless alike, after --scenario and before --set.
 --steps and --plot always run headless, so they need no --headless. --json and --csv describe a
@@ -40,6 +42,7 @@ if __name__ == "__main__":  # run() takes over once everything is loaded
     signal.signal(signal.SIGTERM, _stop_while_loading)
 
 from export import files  # noqa: E402
+from export.arrows import parse_arrows  # noqa: E402
 from reports import headless, terminal  # noqa: E402
 from physics.integrators import DEFAULT_INTEGRATOR, INTEGRATORS  # noqa: E402
 from physics.simulate import BlowUpError  # noqa: E402
@@ -126,6 +129,11 @@ def build_parser() -> argparse.ArgumentParser:
     data.add_argument("--seed", type=int, metavar="N", help="with --mystery or --show-answer: which mystery")
     data.add_argument("--show-answer", action="store_true",
                       help="with --seed N: print the hidden constants of that mystery spring")
+    parser.add_argument("--arrows", metavar="LIST",
+                        help="arrows on each mass, in the page and the program: any of p,F_net,forces,split "
+                             "(default: the scene's own; vertical, damped, driven and pendulum show p,F_net)")
+    parser.add_argument("--no-arrows", action="store_const", const="", dest="arrows",
+                        help="no arrows (the same as --arrows '')")
     parser.add_argument("--no-browser", action="store_true",
                         help="print the page's URL instead of opening a browser")
     parser.add_argument("--port", type=int, metavar="P", help="port for the browser page")
@@ -285,6 +293,14 @@ def check_options(args) -> None:
         if args.steps is not None and args.csv is None and args.plot is None:
             raise UsageError("--until does nothing with --steps alone (the table stops after N steps); "
                              "leave out one of them")
+    if args.arrows is not None:
+        try:
+            args.arrows = parse_arrows(args.arrows)
+        except ValueError as problem:
+            raise UsageError(str(problem)) from None
+        if runs_headless and not programs:
+            raise UsageError("--arrows (and --no-arrows) is for the page and the program (--vpython, --webvpython), and a "
+                             "headless run draws none; leave it out")
     if args.steps is not None and args.steps < 1:
         raise UsageError(f"--steps needs a whole number of 1 or more (got {args.steps})")
     if args.port is not None and not 1 <= args.port <= 65535:
@@ -390,7 +406,7 @@ def write_programs(args, setup, model, *, warn: bool) -> None:
             print(warning, file=sys.stderr)
 
     try:
-        texts = [(path, export.program(setup, integrator=args.integrator, web=web))
+        texts = [(path, export.program(setup, integrator=args.integrator, web=web, arrows=args.arrows))
                  for path, web in ((args.vpython, False), (args.webvpython, True)) if path is not None]
         for path, _ in texts:
             if path != "-":
@@ -463,7 +479,8 @@ def main(argv=None) -> int:
         preset = next((label for label, _ in catalog.presets(setup)
                        if label.startswith(f"scenario {args.scenario}:")), None)
     sys.exit(show(setup, model, integrator=integrator, port=args.port,
-                  open_browser=not args.no_browser, preset=preset, projector=args.projector))
+                  open_browser=not args.no_browser, preset=preset, projector=args.projector,
+                  arrows=args.arrows))
 
 
 class Terminated(BaseException):

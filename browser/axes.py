@@ -16,6 +16,8 @@ from __future__ import annotations
 
 import math
 
+from .clock import window
+
 ROUND = (1.0, 2.0, 5.0)
 
 # vpython's graphs hand flot their own tick formatter, which writes a small axis in e-notation
@@ -128,3 +130,13 @@ class AxisFit:
             return None
         self.ends = ends
         return ends
+
+
+def time_axis(t: float, *, span: float, dt: float, pixels: float) -> tuple[float, float]:
+    """A graph's time axis, s, for a run at time t: from 0 to just past t (at least two of dt, the
+    time between the graph's points), at round ticks for an axis `pixels` long (nice_range), so a
+    few Steps after Reset fill the graph instead of its first 1 %; once t reaches `span`, the last
+    `span` seconds, scrolling (browser/clock.py's window)."""
+    if t >= span:
+        return window(t, span=span)
+    return 0.0, min(span, nice_range(0.0, max(1.05 * t, 2 * dt), pixels=pixels)[1])

@@ -18,6 +18,7 @@ from export.numbers import time_decimals as file_time_decimals
 from scenes import DECLARED, catalog, format_value
 
 from .axes import PLAIN_TICKS
+from .arrows3d import arrow_checkboxes
 
 SPEEDS = {"¼×": 0.25, "½×": 0.5, "1×": 1.0, "2×": 2.0, "4×": 4.0}
 SLIDER_CHOICES = ("m", "k", "b", "F0", "omega")
@@ -43,10 +44,11 @@ class Controls:
     integrators  the model's one integrator per mass, if it has them (then no integrator menu)
     integrator   the integrator chosen now; speed: the speed chosen now (a key of SPEEDS)
     preset       the label of the preset applied, shown in the preset menu
+    arrows       the kinds of arrow switched on now, ticked in their check boxes
     """
 
     def __init__(self, vp, *, setup, view: dict, integrators, integrator: str, speed: str,
-                 preset: str | None = None):
+                 preset: str | None = None, arrows=()):
         self.vp = vp
         self.commands: queue.SimpleQueue = queue.SimpleQueue()
         self.downloads = 0  # links offered so far: each gets its own id
@@ -89,6 +91,10 @@ class Controls:
         caption("    ")
         self.error_text = vp.wtext(text="")
         caption("\n")
+        self.arrow_boxes = arrow_checkboxes(vp, put, arrows)   # browser/arrows3d.py
+        self.arrow_legend = vp.wtext(text="")
+        caption("\n")
+        self.step_text = vp.wtext(text="")
         self.sliders, self.slider_texts = {}, {}
         for name in slider_names(setup, view):
             caption("\n")

@@ -3,7 +3,8 @@
 Position: the simulation thick in each mass's colour, the exact solution thin and dark on top
 (export/palette.py, shared with --plot). Energy: K, U, E and E − W_nc, measured from rest at
 equilibrium where the run starts there, or each mass's own E where masses use different
-integrators. Both scroll through a window of the last VIEW["window"] seconds (browser/clock.py's
+integrators. Their time axis first fits the run so far (a few Steps after Reset fill the graph;
+browser/axes.py's time_axis), then scrolls through the last VIEW["window"] seconds (browser/clock.py's
 Trace and window) and widen their y axes to round ticks (browser/axes.py).
 
 A scene may add its own graph with ``view_graph(setup)`` returning a dict: title, xtitle, ytitle
@@ -28,7 +29,7 @@ from export.palette import (ENERGY_COLOURS, EXACT_COLOUR, EXACT_WIDTH, LIVE_COLO
 from physics.energy import kinetic, potential, rest_potential
 from physics.state import State, velocity
 
-from .axes import AxisFit, nice_range
+from .axes import AxisFit, nice_range, time_axis
 from .clock import Trace, window
 
 SAMPLE_EVERY = 0.05       # s of simulation time between graph points
@@ -51,6 +52,7 @@ class Graphs:
     def __init__(self, vp, *, setup, model, view: dict):
         self.vp = vp
         self.span = float(view["window"])
+        self.spacing = max(model.dt, SAMPLE_EVERY)   # s between graph points
         self.axes = ["xyz".index(axis) for axis in view["plot"]]
         self.position_fit = AxisFit(pixels=GRAPH_CANVAS_HEIGHT)
         self.energy_fit = AxisFit(pixels=GRAPH_CANVAS_HEIGHT)
@@ -183,6 +185,7 @@ class Graphs:
         if self.scene_graph is not None and changes:
             self._fill_scene_graph(setup.module.view_graph(setup))
         self.show_exact = self.exact_curves and model.exact is not None
+        self.spacing = max(model.dt, SAMPLE_EVERY)   # s between graph points
 
     def clear(self) -> None:
         """Empty every curve and the recorded samples, and show t from 0 again."""
@@ -192,7 +195,7 @@ class Graphs:
             trace.clear()
         self.recorded.clear()
         for graph in (self.position_graph, self.energy_graph):
-            graph.xmin, graph.xmax = window(0.0, span=self.span)
+            graph.xmin, graph.xmax = time_axis(0.0, span=self.span, dt=self.spacing, pixels=self.size[0])
         self.live_drawn = -math.inf
 
     def take_down(self) -> None:
@@ -238,14 +241,22 @@ class Graphs:
             elif points:
                 curve.plot(points)
         if exact is not None and np.isfinite(exact[..., self.axes]).any():
-            _fit(self.position_graph, self.position_fit, exact[..., self.axes].ravel())
+            # the exact motion, and the simulated points near it (within the exact span again), so
+            # a few Steps after Reset show on the axis while a run that strays far runs off it
+            exact_values = exact[..., self.axes].ravel()
+            low = min(self.position_fit.seen[0], float(np.nanmin(exact_values)))
+            high = max(self.position_fit.seen[1], float(np.nanmax(exact_values)))
+            simulated = r[:, matter][..., self.axes].ravel()
+            near = simulated[(simulated >= low - (high - low)) & (simulated <= high + (high - low))]
+            _fit(self.position_graph, self.position_fit, np.concatenate([exact_values, near]))
         elif len(t):
             _fit(self.position_graph, self.position_fit, r[:, matter][..., self.axes].ravel())
         _fit(self.energy_graph, self.energy_fit,
              [value for key, values in energies.items() if key not in live.may_run_away for value in values])
         if len(t):
-            start, end = window(float(t[-1]), span=self.span)
-            if start != self.position_graph.xmin:
+            start, end = time_axis(float(t[-1]), span=self.span, dt=self.spacing,
+                                   pixels=self.size[0])
+            if (start, end) != (self.position_graph.xmin, self.position_graph.xmax):
                 for graph in (self.position_graph, self.energy_graph):
                     graph.xmin, graph.xmax = start, end
         self._plot_live(live, redraw=redraw)

@@ -42,6 +42,7 @@ import sys
 import time
 import traceback
 
+from export.arrows import parse_arrows
 from physics.integrators import DEFAULT_INTEGRATOR, INTEGRATORS
 
 from .clock import check_live_cost
@@ -125,12 +126,13 @@ class NotebookLink:
 
 
 def show(name: str = catalog.DEFAULT_SCENE, *, scenario: int | None = None, preset: str | None = None,
-         integrator: str | None = None, **constants) -> None:
+         integrator: str | None = None, arrows=None, **constants) -> None:
     """Show scene `name` in this cell, with any constants changed, and keep it running.
 
     scenario    one of the scene's numbered scenarios (as --scenario N)
     preset      the label of one of its presets (as --preset), applied before the constants
     integrator  a name from physics.integrators.INTEGRATORS (default: the scene's own, else euler-cromer)
+    arrows      the arrows on each mass, as --arrows: ("p", "F_net"), () for none (default: the scene's)
     constants   any of the scene's constants, in its units; a vector as three numbers
 
     Raises ConstantError (a ValueError) for an unknown scene, constant or integrator or a bad
@@ -139,6 +141,11 @@ def show(name: str = catalog.DEFAULT_SCENE, *, scenario: int | None = None, pres
     """
     global _live
     assignments = _checked_arguments(name, scenario, preset, integrator, constants)
+    if arrows is not None:
+        try:
+            parse_arrows(",".join(arrows))
+        except (ValueError, TypeError) as problem:
+            raise ShowError(str(problem)) from None
     try:
         setup = catalog.configure(name, scenario=scenario, preset=preset, assignments=assignments)
         if integrator is not None and integrator not in INTEGRATORS:
@@ -155,7 +162,8 @@ def show(name: str = catalog.DEFAULT_SCENE, *, scenario: int | None = None, pres
     from .view import SceneView
 
     link = NotebookLink()
-    view = SceneView(setup=setup, model=model, integrator=integrator, server=link, preset=preset)
+    view = SceneView(setup=setup, model=model, integrator=integrator, server=link, preset=preset,
+                     arrows=None if arrows is None else parse_arrows(",".join(arrows)))
     task = asyncio.get_running_loop().create_task(_animate(view, link))
     task.add_done_callback(_report_failure)
     _live = (task, view)

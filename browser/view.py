@@ -20,12 +20,17 @@ from __future__ import annotations
 import sys
 import time
 
+import numpy as np
+
+from export.step_update import step_lines, update_force
+
 from scenes import catalog
 from scenes._view import DEFAULT_VIEW
 
 from .clock import LiveRun, RealTimeClock, StepBudget
 from .controls import (PRESET_PROMPT, SPEEDS, Controls, constants_text, csv_href, program_href,
                        scene_menu_choices, slider_names, slider_range, symbol, time_decimals)
+from .arrows3d import MomentumArrows
 from .graphs import SAMPLE_EVERY, Graphs, csv_text
 from .page_layout import PROJECTOR_BUTTON, page_head
 from .scene3d import Scene3D
@@ -34,16 +39,18 @@ from .scene3d import Scene3D
 __all__ = ["show", "SceneView", "DEFAULT_VIEW", "csv_text", "constants_text", "scene_menu_choices",
            "slider_names", "slider_range", "symbol", "time_decimals"]
 
+STEP_MASSES = 4           # masses whose Step is written out in the caption
 FRAME_RATE = 50           # frames per second the loop aims for
 
 
 def show(setup, model, *, integrator: str, port: int | None, open_browser: bool,
-         preset: str | None = None, projector: bool = False) -> int:
+         preset: str | None = None, projector: bool = False, arrows=None) -> int:
     """Show a scene in the browser and run it in real time until the page is closed.
 
     model   the scene's model, built from `setup` (the command line has built and checked it)
     preset  the label of the preset already applied to `setup` (--preset), shown in the menu.
     projector  start in projector mode (--projector; browser/page_layout.py)
+    arrows  the kinds of arrow to show (--arrows, export/arrows.py), None for each scene's VIEW
 
     Returns 2 (after a one-line message) if the server cannot start. Otherwise the program ends
     through SystemExit(0) when the tab closes, and Ctrl-C (while waiting for a browser or while
@@ -54,7 +61,7 @@ def show(setup, model, *, integrator: str, port: int | None, open_browser: bool,
     try:
         server = start(port=port, open_browser=open_browser)
         SceneView(setup=setup, model=model, integrator=integrator, server=server, preset=preset,
-                  projector=projector).run_forever()
+                  projector=projector, arrows=arrows).run_forever()
     except ServerError as problem:
         print(f"error: {problem}", file=sys.stderr)
         return 2
@@ -78,11 +85,12 @@ class SceneView:
     """
 
     def __init__(self, *, setup, model, integrator: str, server, preset: str | None = None,
-                 projector: bool = False):
+                 projector: bool = False, arrows=None):
         import vpython as vp  # already imported, loopback-only, by loopback_server.start
 
         self.vp, self.server = vp, server
         self.projector = projector
+        self.arrows_asked, self.arrows_scene, self.arrows_shown = arrows, None, set()
         self.integrator = integrator
         self.speed = "1×"
         self.running = True
@@ -103,8 +111,14 @@ class SceneView:
         title = (page_head(projector=self.projector) + f"<b style='font-size:130%'>{setup.name}</b>: "
                  f"{_summary(setup.module)}{PROJECTOR_BUTTON}\n")
         scene = Scene3D(self.vp, model=model, view=view, title=title)
+        if self.arrows_scene != setup.name:  # a new scene starts with its own arrows, or --arrows
+            self.arrows_scene = setup.name
+            self.arrows_shown = set(view["arrows"] if self.arrows_asked is None else self.arrows_asked)
+        self.arrows = MomentumArrows(self.vp, model=model, integrator=self.integrator,
+                                     shown=self.arrows_shown, radius=scene.radius)
         controls = Controls(self.vp, setup=setup, view=view, integrators=model.integrators,
-                            integrator=self.integrator, speed=self.speed, preset=preset)
+                            integrator=self.integrator, speed=self.speed, preset=preset,
+                            arrows=self.arrows_shown)
         graphs = Graphs(self.vp, setup=setup, model=model, view=view)
         return scene, controls, graphs
 
@@ -112,6 +126,7 @@ class SceneView:
         """Take down the parts shown so far (unless the page they were on is gone), build this
         scene's, and start its run at t = 0."""
         if not old_page_gone:
+            self.arrows.take_down()
             self.scene.take_down()
             self.graphs.take_down()
             self.controls.take_down()
@@ -131,6 +146,11 @@ class SceneView:
     def _reset(self) -> None:
         """Back to the exact initial state, with empty graphs and trails (Reset)."""
         samples = self.live.restart()
+        self.arrows.legend_text = self.controls.arrow_legend
+        self.arrows.reset()
+        self.arrows.end_step()
+        self.arrows.publish()
+        self.controls.step_text.text = ""
         self.scene.clear()
         self.graphs.clear()
         self._plot(samples, redraw=True)
@@ -174,6 +194,7 @@ class SceneView:
         """Stop showing this scene (browser/notebook.py): the reason in the status line, the
         graphs and the 3-D canvas removed (a browser keeps only a few WebGL canvases alive)."""
         self.controls.say(reason)
+        self.arrows.take_down()
         self.graphs.take_down()
         self.vp.scene.delete()
 
@@ -220,9 +241,13 @@ class SceneView:
             kind = command[0]
             if kind == "toggle":
                 self.running = not self.running
+                self.arrows.end_step()
+                self.controls.step_text.text = ""
             elif kind == "step":
                 self.running = False
-                self._plot(self.live.advance(1))
+                self._step()
+            elif kind == "arrows":
+                self.arrows.set_shown(command[1], bool(command[2]))
             elif kind == "reset":
                 self._reset()
                 self.clock.restart(now=now)
@@ -282,8 +307,34 @@ class SceneView:
         self.setup, self.integrator = setup, integrator
         self.graphs.rebuilt(setup, model, changes=changes)
         self.live = LiveRun(model, integrator=integrator, sample_every=SAMPLE_EVERY)
+        self.arrows.rescale(model, integrator=integrator)
         self.scene.reframe(model)
         self._start_run()
+
+    def _step(self) -> None:
+        """Step: one Δt, drawn as p_f = p_i + F_net Δt at each mass and written out with its
+        numbers in the caption (export/step_update.py: the digits `--steps` prints)."""
+        live = self.live
+        before = live.state
+        t_i, r_i, p_i = before.t, np.array(before.r), np.array(before.p)
+        self._plot(live.advance(1))
+        after = live.state
+        if after.t == t_i:   # the run had stopped
+            return
+        model, methods = live.model, live.engine.methods
+        F_net = update_force(model.forces, methods, t_i=t_i, r_i=r_i, p_i=p_i, p_f=after.p, m=after.m,
+                             dt=model.dt)
+        self.arrows.show_step(r_f=after.r, p_i=p_i, impulse=F_net * model.dt, p_f=after.p)
+        shown = range(min(after.count, STEP_MASSES))
+        blocks = []
+        for i in shown:
+            lines = step_lines(method=methods[i], dt=model.dt, t_f=after.t, m=float(after.m[i]), F_net=F_net[i],
+                               p_i=p_i[i], p_f=after.p[i], r_i=r_i[i], r_f=after.r[i])
+            head = f"<b>{model.labels[i]}</b>\n" if after.count > 1 else ""
+            blocks.append(head + "\n".join(lines))
+        more = f"\n(and {after.count - len(shown)} more masses)" if after.count > len(shown) else ""
+        self.controls.step_text.text = ("<span class='step-readout' style='font-family: monospace'>"
+                                        + "\n".join(blocks) + more + "</span>")
 
     # ---- drawing ----
 
@@ -298,6 +349,7 @@ class SceneView:
         """Move the masses and springs to the state now and update the caption: once per frame."""
         live = self.live
         self.scene.draw(live, matter=self.matter)
+        self.arrows.draw(live)
         self.controls.show_time(live.state.t, decimals=self.decimals, running=self.running,
                                 error=self.graphs.error_readout(live, matter=self.matter))
         self.controls.show_status(problem=live.problem, runaways=[reason for _, reason in live.runaways.values()],
@@ -324,7 +376,7 @@ class SceneView:
         from export import program
 
         try:
-            text = program(self.setup, integrator=self.integrator)
+            text = program(self.setup, integrator=self.integrator, arrows=self.arrows.shown)
         except ValueError as problem:
             self.controls.offer_nothing(f"no program: {problem}")
             return

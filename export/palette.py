@@ -93,3 +93,13 @@ def simulation_width(i: int, count: int, *, crowded: bool = False) -> float:
         return CROWDED_WIDTH
     step = min(WIDTH_STEP, (MAX_WIDTH - SIMULATION_WIDTH) / max(count - 1, 1))
     return SIMULATION_WIDTH + step * (count - 1 - i)
+
+
+# The momentum update's arrows (export/arrows.py), on the page and in the handed-out program: yellow
+# and reddish purple, told apart with any colour vision and from every mass colour on the dark page.
+ARROW_COLOURS = {"p": (0.95, 0.88, 0.2),           # yellow: momentum p (p_f in a Step)
+                 "p_i": (0.6, 0.55, 0.12),         # dark yellow: p_i, before the Step
+                 "F_net": (0.9, 0.4, 0.75),        # reddish purple: F_net, and F_net Δt in a Step
+                 "forces": (0.75, 0.75, 0.78),     # light grey: each force on its own arrow, labelled
+                 "F_par": (0.35, 0.75, 1.0),       # sky blue: F∥, along p, changes the speed
+                 "F_perp": (1.0, 1.0, 1.0)}        # white: F⊥, across p, changes the direction

@@ -56,6 +56,7 @@ from physics.simulate import steps_to_reach
 from scenes import DECLARED, catalog, summary
 from scenes._view import DEFAULT_VIEW, MAX_DRAWN_MASSES
 
+from . import program_arrows
 from .exact_curve import exact_lines
 from .lines import ProgramError, align_comments, commented, vector
 from .palette import EXACT_COLOUR, EXACT_WIDTH
@@ -73,19 +74,20 @@ IMPORTS = ["from vpython import *",
            "socket.socket.bind = lambda s, a, bind=socket.socket.bind: bind(s, ('127.0.0.1', *a[1:]) if a[0] in ('', '0.0.0.0') else a)"]
 
 
-def program(setup, *, integrator: str | None = None, web: bool = False) -> str:
+def program(setup, *, integrator: str | None = None, web: bool = False, arrows=None) -> str:
     """The VPython program for a configured scene (scenes._catalog.Setup), as text.
 
     integrator  the method (default: the scene's own, else euler-cromer, the page's update), as
                 Model.methods picks it; scenes that step each mass with its own method
                 (integrators) keep theirs, as headless runs do.
     web         True for Web VPython (first line `Web VPython 3.2`, no imports).
+    arrows      the arrows to draw (export/program_arrows.py: p, F_net); None: the scene's VIEW's
 
     Raises ProgramError, or ValueError from the scene's build function, with a one-line message.
     """
     model = setup.build()
     _check_size(setup, model)
-    case = _Case(setup, model, integrator)
+    case = _Case(setup, model, integrator, arrows)
     lines = IMPORTS + case.header() + case.constants_lines()
     lines += ["", "# ---- the objects ----"] + objects(model, case.view, case.constants, case.single)
     lines += case.exact_objects() + scene_setup_lines(case)
@@ -97,16 +99,17 @@ def program(setup, *, integrator: str | None = None, web: bool = False) -> str:
 
 
 def scene_setup_lines(case) -> list[str]:
-    """Lines after the objects are made, before the loop (none yet): where another writer
-    (export/program_arrows.py, say) adds objects of its own, from case.model and case.constants."""
-    return []
+    """Lines after the objects are made, before the loop: where another writer adds objects of its
+    own, from case.model and case.constants (the p and F_net arrows, export/program_arrows.py)."""
+    return program_arrows.setup_lines(case.model, shown=case.arrows, integrator=case.integrator,
+                                      single=case.single)
 
 
 def after_update_lines(case) -> list[str]:
-    """Lines in the loop after one mass's momentum update, before time moves on (none yet): where
-    another writer adds what follows the update (an arrow for p or F_net). `case.index` is "" for
-    one mass or "[i]" inside the loop over the masses."""
-    return []
+    """Lines in the loop after one mass's momentum update, before time moves on: where another
+    writer adds what follows the update (the arrows for p and F_net). `case.index` is "" for one
+    mass or "[i]" inside the loop over the masses."""
+    return program_arrows.loop_lines(shown=case.arrows, single=case.single)
 
 
 def _check_size(setup, model) -> None:
@@ -120,10 +123,11 @@ def _check_size(setup, model) -> None:
 class _Case:
     """One configured case being written: its model, methods, view, named values and forces."""
 
-    def __init__(self, setup, model, integrator):
+    def __init__(self, setup, model, integrator, arrows=None):
         self.setup, self.model, self.integrator = setup, model, integrator
         self.methods = model.methods(integrator)
         self.view = {**DEFAULT_VIEW, **getattr(setup.module, "VIEW", {})}
+        self.arrows = self.view["arrows"] if arrows is None else arrows
         self.single = model.state.count == 1
         self.index = "" if self.single else "[i]"
         self.constants = ProgramConstants(setup, model.state.count)

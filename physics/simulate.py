@@ -252,7 +252,7 @@ class Simulation:
         verdict = judge(self.forces, self.start.m, self.methods, self.dt, v=v)
         unit_speed = np.ones(self.start.count)      # a drag's declared rate grows with the speed
         drag = any(np.any(np.asarray(force.rates(self.start.m, unit_speed).get("drag", 0.0)) > 0)
-                   for force in self.forces)
+                   for force in self.forces if hasattr(force, "rates"))
         advice = (verdict.message if verdict.message and verdict.method in methods else
                   f"dt = {self.dt:g} s, but the drag (its rate ρCA|v|/m grows with the speed) outgrew what "
                   f"{methods[0]} can follow at this dt; try a smaller dt, or less drag" if drag else

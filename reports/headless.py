@@ -34,11 +34,12 @@ from physics.state import velocity
 from export.files import STDOUT, atomic_file
 from export.csv_rows import ROWS_PER_BLOCK, csv_field, format_numbers
 from export.numbers import CSV_HEADER, ENERGY_KEYS, clean, clean_time, time_decimals
+from export.step_update import NO_VALUE, SIGNIFICANT, number, update_force, vector  # noqa: F401 (used by tests)
+from export.step_update import cleaned as _cleaned
 from scenes import ConstantError
 
 UNITS = {"t": "s", "dt": "s", "r": "m", "v": "m/s", "p": "kg·m/s", "F_net": "N", "energy": "J",
          "exact_valid_until": "s"}
-SIGNIFICANT = 6
 
 
 # A run is refused before it starts if the engine estimates it longer than MAX_RUN_SECONDS
@@ -52,37 +53,6 @@ class TooManySteps(ConstantError):
 
 
 # ---- numbers and vectors as a student writes them ----
-
-NO_VALUE = "(no value)"  # what a quantity that overflowed or is undefined prints instead of inf or nan
-
-
-def number(x: float, digits: int = SIGNIFICANT) -> str:
-    """x to `digits` significant figures, with no '-0'; NO_VALUE for inf and nan."""
-    if not math.isfinite(float(x)):
-        return NO_VALUE
-    text = f"{float(x):.{digits}g}"
-    return "0" if text in ("-0", "0", "-0.0") else text
-
-
-def _cleaned(value):
-    """Every float in a JSON-ready structure to FILE_DIGITS significant digits."""
-    if isinstance(value, float):
-        return clean(value) if math.isfinite(value) else value
-    if isinstance(value, dict):
-        return {key: _cleaned(item) for key, item in value.items()}
-    if isinstance(value, list):
-        return [_cleaned(item) for item in value]
-    return value
-
-
-def vector(v, unit: str = "", digits: int = SIGNIFICANT) -> str:
-    """`< 0, -1.73088, 0 > m`: components far below the vector's size (round-off) show as 0."""
-    v = np.asarray(v, dtype=float)
-    size = float(np.max(np.abs(v))) if v.size else 0.0
-    shown = np.where(np.abs(v) < 1e-12 * size, 0.0, v)
-    text = "< " + ", ".join(number(c, digits) for c in shown) + " >"
-    return f"{text} {unit}".rstrip()
-
 
 # ---- the run ----
 
@@ -361,7 +331,8 @@ def as_json(result: Result) -> dict:
     Multi-mass scenes give r, p, v as one 3-vector per mass and add "bodies". "exact" holds the
     closed form at the final time and the size of the error, where a closed form exists. Where
     it stopped holding before the final time, "exact" is left out and "exact_note" says why, with
-    "exact_valid_until" the time it stopped holding, s. In a row each mass is judged on its own:
+    "exact_valid_until" the time it stopped holding, s (null, with a line in "notes", where it
+    holds to the end or there is no closed form). F_net is the net force at the final time. In a row each mass is judged on its own:
     a body whose closed form stopped holding has no "exact" but its own "exact_note" and
     "exact_valid_until", and the top-level ones count such masses and give the first time. A scene
     module may add its own keys with a function extra_json(result) -> dict.
@@ -371,13 +342,14 @@ def as_json(result: Result) -> dict:
     v = velocity(p, m)
     single = len(m) == 1
     pick = (lambda a: a[0].tolist()) if single else (lambda a: a.tolist())
+    F_net = net_force(model.forces, traj.t[-1], r, v, m)   # at the final time, as --headless prints it
     out = {
         "scene": setup.name,
         "t": float(traj.t[-1]),
         "steps": result.steps,
         "dt": float(model.dt),
         "integrator": integrator_json(result.methods),
-        "r": pick(r), "p": pick(p), "v": pick(v),
+        "r": pick(r), "p": pick(p), "v": pick(v), "F_net": pick(F_net),
     }
     exact = result.exact()
     known = [exact is not None and bool(np.all(np.isfinite(exact[0][i]))) for i in range(len(m))]
@@ -386,10 +358,16 @@ def as_json(result: Result) -> dict:
     if result.exact_note():  # a closed form exists, but stopped holding before the final time
         out["exact_note"] = result.exact_note()
         out["exact_valid_until"] = result.exact_valid_until()
+    else:  # every key of "units" is present: null, with a note saying why
+        out["exact_valid_until"] = None
+        out.setdefault("notes", []).append(
+            "exact_valid_until: null, " + ("the closed form holds up to the final time" if model.exact is not None
+                                           else "this scene has no closed form"))
     if not single:
         notes, valid_until = result.exact_notes(), result.exact_valid_until_each()
         out["bodies"] = [
             {"label": label, "m": float(m[i]), "r": r[i].tolist(), "p": p[i].tolist(), "v": v[i].tolist(),
+             "F_net": F_net[i].tolist(),
              **({"exact": _exact_entry(r[i], v[i], exact[0][i], exact[1][i])} if known[i] else {}),
              **({"exact_note": notes[i], "exact_valid_until": float(valid_until[i])} if notes[i] else {})}
             for i, label in enumerate(result.labels)]
@@ -498,13 +476,10 @@ def step_table(setup, *, model=None, integrator: str | None = None, steps: int) 
     dt = model.dt
     traj = trajectory(engine, engine.advance(steps, record=every(1)), with_energy=False)
     v = traj.v
-    # Euler-Cromer (the page) and Euler kick once with the force at the start of the step; the
-    # other methods' F_net is their average force (p_f − p_i)/Δt.
-    at_start = np.array([INTEGRATORS[name].kicks_once for name in engine.methods])[:, None]
     rows = []
     for n in range(1, len(traj.t)):
-        F_start = net_force(model.forces, traj.t[n - 1], traj.r[n - 1], v[n - 1], traj.m)
-        F_net = np.where(at_start, F_start, (traj.p[n] - traj.p[n - 1]) / dt)
+        F_net = update_force(model.forces, engine.methods, t_i=traj.t[n - 1], r_i=traj.r[n - 1],
+                             p_i=traj.p[n - 1], p_f=traj.p[n], m=traj.m, dt=dt)
         for i, label in enumerate(model.labels):
             rows.append({"step": n, "body": label, "t": clean_time(traj.t[n], dt), "F_net": _cleaned(F_net[i].tolist()),
                          "p_f": _cleaned(traj.p[n, i].tolist()), "v_f": _cleaned(v[n, i].tolist()),

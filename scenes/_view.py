@@ -15,6 +15,8 @@ A scene file ends with VIEW, a few lines naming what to draw; both front ends th
              settles (regimes) keeps its start in view
     graphed  a function of the model giving the masses the position graph shows (resonance: a few
              chosen springs, not all 39); None: every mass
+    arrows   the arrows drawn on each mass when the page opens (export/arrows.py): "p", "F_net",
+             "forces", "split"; `--arrows` and the page's check boxes change them
     rows     a function of the model giving each mass's row (resonance: one row of springs per b);
              a row's masses share its colour (export/palette.py mass_colours)
 """
@@ -23,4 +25,4 @@ from __future__ import annotations
 MAX_DRAWN_MASSES = 2000     # a sphere and a helix each: more would stall the page on a school laptop
 
 DEFAULT_VIEW = {"support": "ceiling", "plot": "y", "trail": False, "exact": True, "coils": 12,
-                "window": 30.0, "hold": False, "graphed": None}
+                "window": 30.0, "hold": False, "graphed": None, "arrows": ()}

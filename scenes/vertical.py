@@ -32,4 +32,4 @@ def build(**constants):
     return build_single_mass(**constants)
 
 
-VIEW = {"support": "ceiling", "plot": "y"}
+VIEW = {"support": "ceiling", "plot": "y", "arrows": ("p", "F_net")}

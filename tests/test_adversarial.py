@@ -197,6 +197,10 @@ BAD = [
     ("damped --mystery m.csv --json", 2, "--json does nothing with --mystery"),
     ("regimes --mystery m.csv --seed 1", 2, "has 3 masses"),
     ("integrators --show-answer --seed 1", 2, "has no b"),
+    ("vertical --arrows p,momentum", 2, "--arrows knows p, F_net, forces, split (got 'momentum')"),
+    ("vertical --headless --no-arrows", 2, "--arrows (and --no-arrows) is for the page and the program"),
+    ("vertical --headless --projector", 2, "--projector is for the browser page"),
+    ("vertical --projector --vpython x.py", 2, "--projector is for the browser page, and --vpython only writes"),
 ]
 
 # Inputs that would run for minutes or hours: the engine's cost limit (physics.simulate.check_cost)

@@ -55,6 +55,7 @@ class box(_Shown): pass
 class helix(_Shown): pass
 class sphere(_Shown): pass
 class graph(_Shown): pass
+class arrow(_Shown): pass
 
 
 class gcurve(_Shown):
@@ -292,8 +293,9 @@ SINGLE_MASS = ("vertical", "damped", "driven", "pendulum")
 
 @pytest.mark.parametrize("scene", SINGLE_MASS)
 def test_single_mass_programs_stay_short(scene):
-    """At most 80 lines for every scenario and every integrator (driven's scenario 4 with verlet was 85:
-    the verlet update wrote its block of forces three times)."""
+    """At most 80 lines, and 9 more for the p and F_net arrows (export/program_arrows.py), for every
+    scenario and every integrator (driven's scenario 4 with verlet was 85: the verlet update wrote its
+    block of forces three times)."""
     import export
     from physics.integrators import INTEGRATORS
 
@@ -302,8 +304,10 @@ def test_single_mass_programs_stay_short(scene):
         setup = catalog.configure(scene, scenario=scenario)
         for method in INTEGRATORS:
             lines = export.program(setup, integrator=method).splitlines()
-            # 80, plus the two lines that keep vpython's server on this computer and the t = 0 point (issue 20)
-            assert len(lines) <= 83, (scene, scenario, method, len(lines))
+            # 80, plus the two lines that keep vpython's server on this computer and the t = 0 point
+            # (issue 20), and at most 9 lines that draw the p and F_net arrows (issue 17)
+            arrows = sum("arrow" in line or "scale = 1/" in line for line in lines)
+            assert len(lines) - arrows <= 83 and arrows <= 9, (scene, scenario, method, len(lines), arrows)
             assert not any(line.lstrip().startswith("def ") for line in lines)
 
 

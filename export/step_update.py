@@ -1,0 +1,97 @@
+"""One step of the momentum update written out with its numbers, as the page's notation has it.
+
+    F_net = < 0, -78, 0 > N
+    p_f = p_i + F_net Δt = < 0, 0, 0 > + < 0, -7.8, 0 >
+        = < 0, -7.8, 0 > kg·m/s
+    v_f = p_f / m = < 0, -0.78, 0 > m/s
+    r_f = r_i + v_f Δt = < 0, -1.5, 0 > + < 0, -0.078, 0 >
+        = < 0, -1.578, 0 > m
+
+The command line's step table (`--steps`, reports/headless.py) and the page's Step read-out
+(browser/) both write numbers through :func:`number` and :func:`vector`, after the same rounding
+to 15 significant digits (:func:`cleaned`), so the two agree digit for digit.
+"""
+from __future__ import annotations
+
+import math
+import textwrap
+
+import numpy as np
+
+from physics.forces import net_force
+from physics.integrators import INTEGRATORS
+from physics.state import velocity
+
+from .numbers import clean, clean_time
+
+SIGNIFICANT = 6
+RULE_WIDTH = 90      # characters a line of the rule in words takes before it wraps
+NO_VALUE = "(no value)"  # what a quantity that overflowed or is undefined prints instead of inf or nan
+
+
+def number(x: float, digits: int = SIGNIFICANT) -> str:
+    """x to `digits` significant figures, with no '-0'; NO_VALUE for inf and nan."""
+    if not math.isfinite(float(x)):
+        return NO_VALUE
+    text = f"{float(x):.{digits}g}"
+    return "0" if text in ("-0", "0", "-0.0") else text
+
+
+def vector(v, unit: str = "", digits: int = SIGNIFICANT) -> str:
+    """`< 0, -1.73088, 0 > m`: components far below the vector's size (round-off) show as 0."""
+    v = np.asarray(v, dtype=float)
+    size = float(np.max(np.abs(v))) if v.size else 0.0
+    shown = np.where(np.abs(v) < 1e-12 * size, 0.0, v)
+    text = "< " + ", ".join(number(c, digits) for c in shown) + " >"
+    return f"{text} {unit}".rstrip()
+
+
+def cleaned(value):
+    """Every float in a JSON-ready structure to 15 significant digits (export/numbers.py's clean)."""
+    if isinstance(value, float):
+        return clean(value) if math.isfinite(value) else value
+    if isinstance(value, dict):
+        return {key: cleaned(item) for key, item in value.items()}
+    if isinstance(value, list):
+        return [cleaned(item) for item in value]
+    return value
+
+
+def update_force(forces, methods, *, t_i: float, r_i, p_i, p_f, m, dt: float) -> np.ndarray:
+    """The F_net each mass's method used for its momentum update, (N, 3) N, so p_f = p_i + F_net Δt.
+
+    Euler-Cromer (the page) and Euler kick once, with the force at the start of the step,
+    F(t_i, r_i, v_i); the other methods' F_net is their average force (p_f − p_i)/Δt.
+    """
+    at_start = np.array([INTEGRATORS[name].kicks_once for name in methods])[:, None]
+    F_start = net_force(forces, t_i, r_i, velocity(p_i, m), m)
+    return np.where(at_start, F_start, (np.asarray(p_f) - np.asarray(p_i)) / dt)
+
+
+def shown(v, unit: str = "") -> str:
+    """A vector as the step table writes it: rounded to 15 digits, then to SIGNIFICANT."""
+    return vector(cleaned(np.asarray(v, dtype=float).tolist()), unit)
+
+
+def step_lines(*, method: str, dt: float, t_f: float, m: float, F_net, p_i, p_f, r_i, r_f) -> list[str]:
+    """One mass's step, in words and numbers: F_net, then p_f, v_f and r_f as the method finds them.
+
+    F_net, p_f, v_f and r_f are written as `--steps` writes them, digit for digit.
+    """
+    v_f = velocity(np.asarray(p_f, float)[None], np.array([m]))[0]
+    impulse = np.asarray(F_net, float) * dt
+    kicks_once = INTEGRATORS[method].kicks_once
+    lines = [f"t = {number(clean_time(t_f, dt))} s, {method}:",
+             *textwrap.wrap(INTEGRATORS[method].rule, RULE_WIDTH, break_on_hyphens=False),
+             ("F_net = " if kicks_once else "F_net = (p_f − p_i)/Δt, its average force = ") + shown(F_net, "N"),
+             f"p_f = p_i + F_net Δt = {shown(p_i)} + {shown(impulse)}",
+             f"    = {shown(p_f, 'kg·m/s')}",
+             f"v_f = p_f / m = {shown(v_f, 'm/s')}"]
+    if method == "euler-cromer":
+        lines += [f"r_f = r_i + v_f Δt = {shown(r_i)} + {shown(v_f * dt)}", f"    = {shown(r_f, 'm')}"]
+    elif method == "euler":
+        v_i = velocity(np.asarray(p_i, float)[None], np.array([m]))[0]
+        lines += [f"r_f = r_i + v_i Δt = {shown(r_i)} + {shown(v_i * dt)}", f"    = {shown(r_f, 'm')}"]
+    else:
+        lines.append(f"r_f = {shown(r_f, 'm')} (from r_i = {shown(r_i, 'm')}, as the rule above says)")
+    return lines

@@ -1,0 +1,225 @@
+"""The momentum arrows' arithmetic (export/arrows.py) and the Step written out (export/step_update.py).
+
+Scales are round (1, 2 or 5 × 10ⁿ) and make the largest magnitude of a run fit; the forces drawn
+tip to tail add up to F_net; F∥ + F⊥ = F_net with F⊥ ⟂ p; and the page's Step read-out has the
+digits of the command line's `--steps` table, for the page's method and the others.
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+from hypothesis import given, settings, strategies as st
+
+import main
+from export.arrows import REACH, choose_scales, forces_each, largest, parse_arrows, round_scale, split
+from export.step_update import step_lines, update_force
+from physics.forces import net_force
+from physics.state import velocity
+from reports import headless
+from scenes import catalog
+
+
+def is_round(x: float) -> bool:
+    mantissa = x / 10 ** math.floor(math.log10(x))
+    return any(math.isclose(mantissa, step) for step in (1, 2, 5))
+
+
+@settings(deadline=None)
+@given(st.floats(min_value=1e-9, max_value=1e9))
+def test_round_scale_is_the_next_1_2_5_step(x):
+    scale = round_scale(x)
+    assert is_round(scale) and x * (1 - 1e-12) <= scale < 2.5 * x
+
+
+def test_round_scale_by_hand():
+    assert [round_scale(x) for x in (13, 0.031, 50, 1, 7.2, 0)] == [20, 0.05, 50, 1, 10, 1]
+
+
+@pytest.mark.parametrize("scene", catalog.SCENE_NAMES)
+def test_the_scales_are_round_and_the_largest_arrow_fits(scene):
+    model = catalog.configure(scene).build()
+    scales = choose_scales(model)
+    p_max, F_max, size = largest(model)
+    assert is_round(scales.p_unit) and is_round(scales.F_unit)
+    assert scales.reach == pytest.approx(REACH * size)
+    for biggest, unit in ((p_max, scales.p_unit), (F_max, scales.F_unit)):
+        assert biggest / unit <= scales.reach * (1 + 1e-12)       # fits ...
+        assert biggest == 0 or biggest / unit > 0.4 * scales.reach  # ... and is not lost in the picture
+
+
+def test_vertical_scales_by_hand():
+    # Simple Example: y_eq = −(L0 + mg/k) = −3.45 m, released at −1.5 m: A = 1.95 m, ω = 2 rad/s, so
+    # |p| ≤ m A ω = 39 kg·m/s and |F_net| ≤ k A = 78 N; the motion and the anchor span 0 to −5.4 m.
+    p_max, F_max, size = largest(catalog.configure("vertical").build())
+    assert p_max == pytest.approx(39, rel=0.03) and F_max == pytest.approx(78, rel=0.03)
+    assert size == pytest.approx(5.4, rel=0.03)
+    scales = choose_scales(catalog.configure("vertical").build())
+    assert (scales.p_unit, scales.F_unit) == (20, 50)   # 39/2.7 = 14.4 → 20, 78/2.7 = 28.9 → 50
+    assert scales.legend() == "arrows: 1 m = 20 kg·m/s for p, 1 m = 50 N for forces"
+
+
+def test_refitted_only_grows_and_fits_what_was_seen():
+    scales = choose_scales(catalog.configure("vertical").build())
+    assert scales.fits(p_max=39, F_max=78)
+    bigger = scales.refitted(p_max=1000, F_max=78)
+    assert not scales.fits(p_max=1000, F_max=78) and bigger.fits(p_max=1000, F_max=78)
+    assert bigger.F_unit == scales.F_unit and is_round(bigger.p_unit) and bigger.p_unit > scales.p_unit
+
+
+@pytest.mark.parametrize("scene", ["vertical", "damped", "driven", "pendulum", "drag"])
+def test_the_forces_tip_to_tail_end_at_F_nets_tip(scene):
+    model = catalog.configure(scene).build()
+    s = model.state
+    r, p = s.r + 0.1, s.p + 0.3     # somewhere the run goes, moving
+    v = velocity(p, s.m)
+    each = forces_each(model.forces, 1.3, r, v, s.m)
+    assert len(each) == len(model.forces)
+    assert np.allclose(np.sum(each, axis=0), net_force(model.forces, 1.3, r, v, s.m), rtol=1e-12, atol=1e-12)
+
+
+@settings(deadline=None)
+@given(st.lists(st.floats(-100, 100), min_size=6, max_size=6))
+def test_split_is_along_and_across_p(numbers):
+    F, p = np.array(numbers[:3]), np.array(numbers[3:])
+    along, across = split(F, p)
+    assert np.allclose(along[0] + across[0], F)
+    if np.linalg.norm(p) > 1e-6:
+        assert abs(np.dot(across[0], p)) <= 1e-9 * max(1.0, np.linalg.norm(F) * np.linalg.norm(p))
+        assert np.allclose(np.cross(along[0], p), 0, atol=1e-9 * max(1.0, np.linalg.norm(F) * np.linalg.norm(p)))
+    elif not p.any():   # from rest there is no direction to split along: F∥ is all of F_net
+        assert np.allclose(along[0], F)
+
+
+def test_parse_arrows():
+    assert parse_arrows("p,F_net") == ("p", "F_net") and parse_arrows("") == ()
+    with pytest.raises(ValueError, match="'Fnet'"):
+        parse_arrows("p,Fnet")
+
+
+def page_readout(args, steps):
+    """The Step read-out the page would show after Reset and `steps` Steps: the engine stepped one
+    Δt at a time, as the page's Step does, and step_lines for each."""
+    setup = catalog.configure(args[0], scenario=int(args[2]) if len(args) > 2 else None)
+    model = setup.build()
+    engine = model.simulation()
+    out = []
+    for _ in range(steps):
+        before = engine.state
+        t_i, r_i, p_i = before.t, np.array(before.r), np.array(before.p)
+        engine.advance(1)
+        after = engine.state
+        F = update_force(model.forces, engine.methods, t_i=t_i, r_i=r_i, p_i=p_i, p_f=after.p, m=after.m,
+                         dt=model.dt)
+        out.append(step_lines(method=engine.methods[0], dt=model.dt, t_f=after.t, m=float(after.m[0]),
+                              F_net=F[0], p_i=p_i[0], p_f=after.p[0], r_i=r_i[0], r_f=after.r[0]))
+    return out
+
+
+def steps_rows(capsys, args, steps):
+    """`main.py ARGS --steps N` as printed: each row's cells (step, t, F_net, p_f, v_f, r_f)."""
+    assert main.run([*args, "--steps", str(steps)]) == 0
+    lines = capsys.readouterr().out.splitlines()[-steps:]
+    return [[cell.strip() for cell in line.split("  ") if cell.strip()] for line in lines]
+
+
+@pytest.mark.parametrize("args", [("vertical",), ("damped",), ("driven", "--scenario", "3")])
+def test_the_step_read_out_has_the_digits_of_steps(capsys, args):
+    for lines, row in zip(page_readout(args, 3), steps_rows(capsys, args, 3), strict=True):
+        text = "\n".join(lines)
+        step, t, F_net, p_f, v_f, r_f = row
+        assert lines[0].startswith(f"t = {t} s, euler-cromer")
+        assert f"F_net = {F_net} N" in text
+        assert f"    = {p_f} kg·m/s" in text
+        assert f"v_f = p_f / m = {v_f} m/s" in text
+        assert f"    = {r_f} m" in text
+
+
+def test_the_step_by_hand():
+    # step 2 of the Simple Example (tests/test_cli.py): p1 = −7.8, F = −74.88 N, so F Δt = −7.488
+    lines = page_readout(("vertical",), 2)[1]
+    assert lines[-5:] == ["p_f = p_i + F_net Δt = < 0, -7.8, 0 > + < 0, -7.488, 0 >",
+                          "    = < 0, -15.288, 0 > kg·m/s",
+                          "v_f = p_f / m = < 0, -1.5288, 0 > m/s",
+                          "r_f = r_i + v_f Δt = < 0, -1.578, 0 > + < 0, -0.15288, 0 >",
+                          "    = < 0, -1.73088, 0 > m"]
+
+
+@pytest.mark.parametrize("method", ["euler", "verlet", "rk4"])
+def test_other_methods_show_their_own_update(capsys, method):
+    setup = catalog.configure("vertical")
+    model = setup.build()
+    engine = model.simulation(method)
+    before = engine.state
+    t_i, r_i, p_i = before.t, np.array(before.r), np.array(before.p)
+    engine.advance(1)
+    after = engine.state
+    F = update_force(model.forces, engine.methods, t_i=t_i, r_i=r_i, p_i=p_i, p_f=after.p, m=after.m, dt=model.dt)
+    lines = step_lines(method=method, dt=model.dt, t_f=after.t, m=10.0, F_net=F[0], p_i=p_i[0], p_f=after.p[0],
+                       r_i=r_i[0], r_f=after.r[0])
+    row = steps_rows(capsys, ("vertical", "--integrator", method), 1)[0]
+    text = "\n".join(lines)
+    assert lines[0] == f"t = 0.1 s, {method}:" and f"F_net = " in text and row[2] + " N" in text
+    assert f"= {row[3]} kg·m/s" in text and f"{row[5]} m" in text
+    assert ("average force" in text) == (method != "euler")
+    assert headless.vector(after.r[0]) == row[5]
+
+
+def stand_in_with_arrows():
+    """tests/test_trail.py's stand-in vpython, with arrows (each gets an idx, as vpython's do)."""
+    from itertools import count
+
+    from test_trail import Shape, stand_in_vpython
+
+    numbers = count()
+
+    def arrow(**attributes):
+        return Shape(idx=next(numbers), **attributes)
+    vp = stand_in_vpython()
+    vp.arrow = arrow
+    return vp
+
+
+def test_the_page_arrows_are_scale_times_the_engines_p_and_F_net_and_made_only_when_shown():
+    from browser.arrows3d import MomentumArrows
+    from browser.clock import LiveRun
+
+    model = catalog.configure("pendulum").build()
+    live = LiveRun(model, integrator="euler-cromer")
+    arrows = MomentumArrows(stand_in_with_arrows(), model=model, integrator="euler-cromer", shown=(), radius=0.1)
+    arrows.draw(live)
+    assert arrows.shapes == [] and arrows._scales is None     # nothing shown: nothing made, no run
+    for kind in ("p", "F_net", "split", "forces"):
+        arrows.set_shown(kind, True)
+    live.advance(137)
+    arrows.draw(live)
+    s, scales = live.state, arrows.scales
+    F = net_force(model.forces, s.t, s.r, velocity(s.p, s.m), s.m)
+    assert np.allclose(np.array(arrows.p[0].axis), s.p[0] / scales.p_unit)
+    assert np.allclose(np.array(arrows.F_net[0].axis), F[0] / scales.F_unit)
+    tips = np.array(arrows.forces[0][0].pos) + sum(np.array(a.axis) for a in arrows.forces[0])
+    assert np.allclose(tips, s.r[0] + F[0] / scales.F_unit)              # tip to tail, ending at F_net's tip
+    along, across = (np.array(a.axis) for a in arrows.parts[0][:2])
+    assert np.allclose(along + across, F[0] / scales.F_unit) and abs(across @ s.p[0]) < 1e-9
+    assert arrows.parts[0][2].text.startswith("F∥ = ") and arrows.parts[0][2].text.endswith(" N")
+    assert [label.text for label in arrows.force_labels[0]] == ["spring", "gravity"]
+
+
+@pytest.mark.parametrize("args, message", [
+    (("vertical", "--arrows", "p,Fnet"), "--arrows knows p, F_net, forces, split (got 'Fnet')"),
+    (("vertical", "--headless", "--arrows", "p"), "--arrows (and --no-arrows) is for the page and the program"),
+    (("vertical", "--steps", "2", "--no-arrows"), "--arrows (and --no-arrows) is for the page and the program"),
+])
+def test_bad_arrows_get_one_line_and_status_2(capsys, args, message):
+    assert main.run(list(args)) == 2
+    err = capsys.readouterr().err
+    assert err.startswith(f"error: {message}") and len(err.strip().splitlines()) == 1
+
+
+def test_the_notebooks_show_checks_its_arrows_before_anything_is_drawn():
+    from browser.notebook import show
+    from scenes import ConstantError
+
+    with pytest.raises(ConstantError, match="got 'q'"):
+        show("vertical", arrows=("p", "q"))
