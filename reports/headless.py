@@ -33,7 +33,7 @@ from physics.stability import judge
 from physics.state import velocity
 from export.files import STDOUT, atomic_file
 from export.csv_rows import ROWS_PER_BLOCK, csv_field, format_numbers
-from export.numbers import CSV_HEADER, ENERGY_KEYS, clean, clean_time, time_decimals
+from export.numbers import CSV_HEADER, ENERGY_KEYS, clean_time, time_decimals
 from export.step_update import NO_VALUE, SIGNIFICANT, number, update_force, vector  # noqa: F401 (used by tests)
 from export.step_update import cleaned as _cleaned
 from scenes import ConstantError

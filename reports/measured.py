@@ -11,10 +11,11 @@ import sys
 
 import numpy as np
 
-from export.files import OutputError, atomic_file, check_writable, write_text
+from export.files import OutputError, check_writable, write_text
 from export.numbers import clean
 from lab import compare, mystery, readers
-from reports import headless
+from export.palette import BLUE as DATA_COLOUR, VERMILION as MODEL_COLOUR
+from reports import headless, plotting
 
 
 def coordinate_of(args, setup) -> str:
@@ -96,25 +97,21 @@ def plot(result, measured, path: str, *, integrator=None) -> None:
                            until=float(smooth[-1] - t_offset) + 1.0)
     curve = run.at(smooth - t_offset)[0] + offset
     fig, (ax, ax_res) = plt.subplots(2, 1, figsize=(8, 7), sharex=True, height_ratios=(3, 1))
-    ax.plot(result.t, result.data, "o", ms=3, color="#0072B2", label=f"measured ({os.path.basename(measured.path)})")
-    ax.plot(smooth, curve, "-", lw=1.5, color="#D55E00", label="model")
+    ax.plot(result.t, result.data, "o", ms=3, color=DATA_COLOUR, label=f"measured ({os.path.basename(measured.path)})")
+    ax.plot(smooth, curve, "-", lw=1.5, color=MODEL_COLOUR, label="model")
     fitted = ", ".join(f"{n} = {e.value:.4g} {e.unit}" for n, e in result.fitted.items())
     ax.set_title(f"{result.setup.name}{': ' + fitted if fitted else ''}; RMS residual "
                  f"{result.rms:.3g} m over {result.points} points")
     ax.set_ylabel(f"position {result.coordinate} (m, the data's zero)")
     ax.legend(loc="best", fontsize="small")
     ax.grid(alpha=0.3)
-    ax_res.plot(result.t, result.residual * 1000, ".", ms=3, color="#0072B2")
+    ax_res.plot(result.t, result.residual * 1000, ".", ms=3, color=DATA_COLOUR)
     ax_res.axhline(0.0, color="black", lw=0.8)
     ax_res.set_ylabel("data − model (mm)")
     ax_res.set_xlabel("t (s, the data's clock)")
     ax_res.grid(alpha=0.3)
     fig.tight_layout()
-    try:
-        with atomic_file(path, what="figure") as temporary:
-            fig.savefig(temporary, dpi=110, format=path.rsplit(".", 1)[-1].lower())
-    finally:
-        plt.close(fig)
+    plotting.save_figure(fig, path)
 
 
 # ---- the mystery spring ----

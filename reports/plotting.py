@@ -150,6 +150,20 @@ def energy_panel(ax, result, *, colours) -> None:
     ax.grid(alpha=0.3)
 
 
+def save_figure(fig, path: str) -> None:
+    """Write a matplotlib figure to path whole, in the format its extension names, and close it.
+
+    A temporary file renamed into place: a failure part-way leaves the old figure as it was.
+    """
+    import matplotlib.pyplot as plt
+
+    try:
+        with atomic_file(path, what="figure") as temporary:
+            fig.savefig(temporary, dpi=110, format=path.rsplit(".", 1)[-1].lower())
+    finally:
+        plt.close(fig)
+
+
 def plot(result, path: str) -> None:
     """Write the run's position and energy graphs to `path` (a headless.Result)."""
     plt = _pyplot()
@@ -187,9 +201,4 @@ def plot(result, path: str) -> None:
     ax_r.grid(alpha=0.3)
     energy_panel(ax_e, result, colours=colours)
     fig.tight_layout()
-    try:
-        # A temporary file renamed into place: a failure part-way leaves the old figure as it was.
-        with atomic_file(path, what="figure") as temporary:
-            fig.savefig(temporary, dpi=110, format=path.rsplit(".", 1)[-1].lower())
-    finally:
-        plt.close(fig)
+    save_figure(fig, path)

@@ -72,7 +72,7 @@ def _source(path: Path) -> bytes:
     pipe or a link to /dev/stdin would wait for ever), or too big to be a scene."""
     info = os.stat(path)   # follows a link to what it points at
     if not stat.S_ISREG(info.st_mode):
-        raise OSError(f"it is not a regular file, so it was not read")
+        raise OSError("it is not a regular file, so it was not read")
     if info.st_size > MAX_SCENE_BYTES:
         raise OSError(f"it is {info.st_size:,} bytes, more than a scene file's {MAX_SCENE_BYTES:,}, "
                       f"so it was not read")
