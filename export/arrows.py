@@ -73,9 +73,9 @@ class ArrowScales:
         return np.asarray(F, dtype=float) / self.F_unit
 
     def legend(self) -> str:
-        """`arrows: 1 m = 20 kg·m/s for p, 1 m = 50 N for forces`."""
-        return (f"arrows: 1 m = {self.p_unit:g} kg·m/s for p, "
-                f"1 m = {self.F_unit:g} N for forces")
+        """`an arrow of 1 m = 20 kg·m/s for p, 50 N for forces` (it follows the check boxes' `arrows:`)."""
+        return (f"an arrow of 1 m = {self.p_unit:g} kg·m/s for p, "
+                f"{self.F_unit:g} N for forces")
 
     def fits(self, *, p_max: float, F_max: float) -> bool:
         """Whether arrows of these magnitudes (kg·m/s, N) stay in the picture at these scales."""

@@ -57,7 +57,7 @@ def test_vertical_scales_by_hand():
     assert size == pytest.approx(5.4, rel=0.03)
     scales = choose_scales(catalog.configure("vertical").build())
     assert (scales.p_unit, scales.F_unit) == (20, 50)   # 39/2.7 = 14.4 → 20, 78/2.7 = 28.9 → 50
-    assert scales.legend() == "arrows: 1 m = 20 kg·m/s for p, 1 m = 50 N for forces"
+    assert scales.legend() == "an arrow of 1 m = 20 kg·m/s for p, 50 N for forces"
 
 
 def test_refitted_only_grows_and_fits_what_was_seen():
