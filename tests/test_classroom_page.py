@@ -60,7 +60,7 @@ def test_the_first_click_and_the_first_drag_of_a_slider_take_effect(browser):
         before = shown_time(page)
         page.mouse.click(track["x"] + 0.75 * track["width"], track["y"] + track["height"] / 2)
         low, high, _ = slider_range("k", 40.0)
-        wait_for(lambda: slider_value(page, "k") != 40.0, timeout=10.0, what="the k label to change")
+        wait_for(lambda: slider_value(page, "k") != 40.0, timeout=120.0, what="the k label to change")
         assert slider_value(page, "k") == pytest.approx(low + 0.75 * (high - low), rel=0.03)
         assert shown_time(page) < before   # the run started again from t = 0
         constants = next(line for line in caption_lines(page) if line.startswith("Constants:"))
@@ -79,7 +79,7 @@ def test_the_first_click_and_the_first_drag_of_a_slider_take_effect(browser):
         page.mouse.up()
         low, high, _ = slider_range("m", 10.0)
         wait_for(lambda: slider_value(page, "m") == pytest.approx(low + 0.6 * (high - low), rel=0.03),
-                 timeout=10.0, what="the m label to follow the drag")
+                 timeout=120.0, what="the m label to follow the drag")
         assert shown_time(page) < before   # started again
         assert "Traceback" not in "".join(program.errors)
     finally:
@@ -197,9 +197,11 @@ def test_after_a_new_k_the_mass_is_framed_again_not_shrunk(browser, tmp_path):
         before = canvas_pixels_like(page, tmp_path / "before.png", mass_colour(0))
         for position in (0.05, 0.95):   # a soft spring (the mass hangs low), then a stiff one
             track = page.locator(".ui-slider").nth(1).bounding_box()
+            k_before = slider_value(page, "k")
             page.mouse.click(track["x"] + position * track["width"], track["y"] + track["height"] / 2)
-            wait_for(lambda: shown_time(page) < 1.0, timeout=10.0, what="the run to restart")
-            wait_for(lambda: shown_time(page) >= 3.0, timeout=60.0, what="t to reach 3 s")
+            # the new k stays on its label (a restart's t < 1 s can pass between two polls on a busy machine)
+            wait_for(lambda: slider_value(page, "k") != k_before, timeout=120.0, what="the new k on its label")
+            wait_for(lambda: shown_time(page) >= 3.0, timeout=180.0, what="t to reach 3 s")
             after = canvas_pixels_like(page, tmp_path / f"after-{position}.png", mass_colour(0))
             assert after > 0.5 * before, f"the mass shrank from {before} to {after} pixels"
     finally:

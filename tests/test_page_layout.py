@@ -81,7 +81,7 @@ def test_the_view_and_the_position_graph_fit_a_laptop_window_in_large_text(brows
 
         page.set_viewport_size({"width": 1024, "height": 768})
         m = wait_for(lambda: (m := page.evaluate(MEASURE)) and m["canvas"]["width"] < 600 and m,
-                     timeout=10.0, what="the page to follow the window")
+                     timeout=120.0, what="the page to follow the window")
         assert m["scrollWidth"] <= 1024, f"at 1024 px the page scrolls sideways ({m['scrollWidth']} px)"
         assert "Traceback" not in "".join(program.errors)
     finally:
@@ -144,7 +144,7 @@ def test_keys_tab_and_projector_mode(browser):
         page.locator("body").click(position={"x": 5, "y": 790})
         page.keyboard.press("p")
         m = wait_for(lambda: (m := page.evaluate(MEASURE)) and m["fonts"]["buttons"] >= PROJECTOR_PX and m,
-                     timeout=10.0, what="projector mode's larger text")
+                     timeout=120.0, what="projector mode's larger text")
         for name, size in m["fonts"].items():
             assert size >= PROJECTOR_PX, f"{name} in {size} px text in projector mode"
         thick = line_widths(page)
