@@ -113,6 +113,7 @@ def test_a_mass_on_its_anchor_falls_back_to_numpy_and_traces_again():
     assert fast._loop.traces == 2, "the first step (F = 0 on the anchor) is numpy's, then a new trace"
 
 
+@pytest.mark.filterwarnings("ignore::physics.compiled.UntracedWarning")   # its own test: test_untraced_force.py
 def test_a_force_the_tracer_cannot_follow_leaves_numpy_in_charge():
     class Opaque:
         """F = −k x written with float(): the tracer cannot see through it."""
