@@ -143,7 +143,7 @@ def show(name: str = catalog.DEFAULT_SCENE, *, scenario: int | None = None, pres
     assignments = _checked_arguments(name, scenario, preset, integrator, constants)
     if arrows is not None:
         try:
-            parse_arrows(",".join(arrows))
+            arrows = parse_arrows(",".join(arrows))
         except (ValueError, TypeError) as problem:
             raise ShowError(str(problem)) from None
     try:
@@ -163,7 +163,7 @@ def show(name: str = catalog.DEFAULT_SCENE, *, scenario: int | None = None, pres
 
     link = NotebookLink()
     view = SceneView(setup=setup, model=model, integrator=integrator, server=link, preset=preset,
-                     arrows=None if arrows is None else parse_arrows(",".join(arrows)))
+                     arrows=arrows)
     task = asyncio.get_running_loop().create_task(_animate(view, link))
     task.add_done_callback(_report_failure)
     _live = (task, view)

@@ -31,13 +31,13 @@ accuracy verdict at all.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, fields, replace
+from dataclasses import dataclass, fields, is_dataclass, replace
 
 import numpy as np
 
 from .integrators import INTEGRATORS
 from .simulate import BlowUpError, Simulation, every
-from .stability import Verdict, growing, judge, rates
+from .stability import Verdict, growing, joints, judge, rates
 from .state import State, make_state
 
 WINDOW_PERIODS = 3           # periods of the slowest spring over which accuracy is judged
@@ -191,12 +191,13 @@ def _sample(state: State, forces: tuple, methods: tuple, ignore):
     to the same rows.
     """
     count = state.count
-    no_speed = np.zeros(count)
-    if count <= MAX_JUDGED or any("joint" in force.rates(state.m, no_speed) for force in forces):
+    if count <= MAX_JUDGED or joints(forces, state.m):
         return state, forces, methods, tuple(ignore)
     rows = np.unique(np.linspace(0, count - 1, MAX_JUDGED).round().astype(int))
 
     def cut(force):
+        if not is_dataclass(force):   # a bare function of (t, r, v, m): its force follows r's rows
+            return force
         per_mass = {f.name: getattr(force, f.name)[rows] for f in fields(force)
                     if isinstance(getattr(force, f.name), np.ndarray) and getattr(force, f.name).ndim == 2
                     and getattr(force, f.name).shape[0] == count}

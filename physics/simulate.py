@@ -40,7 +40,7 @@ from .compiled import MAX_COMPONENTS, MAX_TRACES, compile_loop
 from .energy import nonconservative_power, report, work_step
 from .forces import Spring
 from .integrators import DEFAULT_INTEGRATOR, INTEGRATORS, methods_for
-from .stability import fastest_angular_frequency, judge
+from .stability import fastest_angular_frequency, judge, rates
 from .state import State, velocity
 # What a run records and what it costs live beside the engine; their names are the engine's API too.
 from .recording import Recorder, Samples, Trajectory, every, steps_to_reach, time_grid, trajectory  # noqa: F401
@@ -250,9 +250,8 @@ class Simulation:
         v = np.nan_to_num(velocity(self._p, self.start.m), nan=0.0, posinf=0.0, neginf=0.0)
         methods = tuple(self.methods[i] for i in rows)
         verdict = judge(self.forces, self.start.m, self.methods, self.dt, v=v)
-        unit_speed = np.ones(self.start.count)      # a drag's declared rate grows with the speed
-        drag = any(np.any(np.asarray(force.rates(self.start.m, unit_speed).get("drag", 0.0)) > 0)
-                   for force in self.forces if hasattr(force, "rates"))
+        # a drag is a rate that grows with the speed: the forces' declared drag at a speed of 1 m/s
+        drag = np.any(rates(self.forces, self.start.m, v=np.ones_like(self._p)).drag > 0)
         advice = (verdict.message if verdict.message and verdict.method in methods else
                   f"dt = {self.dt:g} s, but the drag (its rate ρCA|v|/m grows with the speed) outgrew what "
                   f"{methods[0]} can follow at this dt; try a smaller dt, or less drag" if drag else

@@ -123,6 +123,13 @@ def rates(forces, m, v=None) -> Rates:
     return Rates(omega=omega, damping=damping, drag=drag, speed=speed)
 
 
+def joints(forces, m) -> list:
+    """The springs between masses that the forces declare, [(i, j, k N/m)] (none for a row of
+    independent springs)."""
+    m = np.asarray(m, dtype=float)
+    return _terms(forces, m, np.zeros(len(m)))[1]
+
+
 def _terms(forces, m, speed) -> tuple:
     """The forces' declared rates, summed: (k from anchors N/m, joints [(i, j, k)], damping s⁻¹,
     drag s⁻¹), each per mass."""

@@ -167,3 +167,26 @@ def test_the_page_gets_the_same_line():
     live.restart()
     assert live.advice is not None
     assert LiveRun(catalog.configure("vertical").build(), integrator="euler-cromer").advice is None
+
+
+def test_a_long_row_with_a_force_that_declares_no_rates_is_judged():
+    """A teacher's force may be any object with conservative, uses_velocity and __call__, declaring no
+    rates (physics/stability.py reads them with getattr) and holding no per-mass fields; the row's
+    sampling must neither ask it for rates nor take it apart as a dataclass."""
+    from physics.forces import Spring
+    from physics.state import make_state
+
+    class Push:
+        """F = 0.1 N along x on every mass."""
+        conservative, uses_velocity = False, False
+
+        def __call__(self, t, r, v, m):
+            F = np.zeros_like(r)
+            F[:, 0] = 0.1
+            return F
+
+    count = 12
+    start = make_state(r=np.column_stack([np.linspace(1.0, 2.0, count), np.zeros(count), np.zeros(count)]),
+                       m=1.0)
+    verdict = judge_dt(start, (Spring(k=25.0), Push()), ("euler-cromer",) * count, 0.01)
+    assert verdict.stability.stable and verdict.accuracy is not None
