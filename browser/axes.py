@@ -16,9 +16,9 @@ from __future__ import annotations
 
 import math
 
-from .clock import window
+from physics.rounding import ROUND_STEPS as ROUND  # tick steps of 1, 2 or 5 × 10ⁿ
 
-ROUND = (1.0, 2.0, 5.0)
+from .clock import window
 
 # vpython's graphs hand flot their own tick formatter, which writes a small axis in e-notation
 # (format_number in glow.min.js: ticks 0.02 apart below 0.1 read 2e-2, 4e-2). Every graph is drawn

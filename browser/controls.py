@@ -13,6 +13,7 @@ import textwrap
 from urllib.parse import quote
 
 from physics.integrators import INTEGRATORS
+from physics.rounding import ROUND_STEPS
 
 from export.numbers import time_decimals as file_time_decimals
 from scenes import DECLARED, catalog, format_value
@@ -252,7 +253,7 @@ def round_slider_values(name: str, value: float, default: float | None = None) -
     low = max(low, declared.low)
     rounds = [float(f"{mantissa * 10.0 ** power:.12g}")
               for power in range(math.floor(math.log10(low)), math.ceil(math.log10(high)) + 1)
-              for mantissa in (1, 2, 5)]
+              for mantissa in ROUND_STEPS]
     first = max(x for x in rounds if x <= low)       # the span, widened to round values at both ends
     last = min(x for x in rounds if x >= high)
     return sorted({x for x in rounds if first <= x <= last and declared.low <= x <= declared.high} |

@@ -17,18 +17,17 @@ compared. The force scale is chosen from F_net, the arrow the lesson is about; a
 """
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 
 import numpy as np
 
 from physics.forces import net_force
+from physics.rounding import round_up as round_scale  # 13 → 20 per metre of arrow
 from physics.simulate import BlowUpError, every, trajectory
 from physics.state import velocity
 
 ARROWS = ("p", "F_net", "forces", "split")   # what --arrows and the page's check boxes may name
 ARROW_LABELS = {"p": "p", "F_net": "F_net", "forces": "forces", "split": "F∥ and F⊥"}
-ROUND_STEPS = (1.0, 2.0, 5.0)
 REACH = 0.5           # the longest arrow, as a fraction of the size of the motion and its support
 SCALE_RUN = 30.0      # s: how far the short run that chooses the scales looks ahead (the graphs show 30 s)
 SCALE_STEPS = 6000    # at most this many steps of it
@@ -42,17 +41,6 @@ def parse_arrows(text: str) -> tuple[str, ...]:
     if unknown:
         raise ValueError(f"--arrows knows {', '.join(ARROWS)} (got {unknown[0]!r})")
     return names
-
-
-def round_scale(x: float) -> float:
-    """The smallest of 1, 2, 5 × 10ⁿ at least x: 13 → 20, 0.031 → 0.05, 50 → 50; 1 for x ≤ 0."""
-    if not math.isfinite(x) or x <= 0:
-        return 1.0
-    power = 10.0 ** math.floor(math.log10(x))
-    for step in ROUND_STEPS + (10.0,):
-        if step * power >= x * (1 - 1e-12):
-            return float(f"{step * power:.12g}")
-    return 10 * power
 
 
 @dataclass(frozen=True)

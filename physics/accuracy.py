@@ -36,6 +36,7 @@ from dataclasses import dataclass, fields, is_dataclass, replace
 import numpy as np
 
 from .integrators import INTEGRATORS
+from .rounding import round_down  # noqa: F401 (the suggested Δt, and the tests' name for it)
 from .simulate import BlowUpError, Simulation, every
 from .stability import Verdict, growing, joints, judge, rates
 from .state import State, make_state
@@ -160,17 +161,6 @@ def percent(fraction: float) -> str:
     """0.0312 -> '3.1 %', 33.2 -> '3,300 %', 1e-7 -> '0.00001 %': two significant figures, plain digits."""
     value = float(f"{100 * fraction:.2g}")
     return f"{value:,.0f} %" if value >= 10 else f"{np.format_float_positional(value, trim='-')} %"
-
-
-def round_down(dt: float) -> float:
-    """The largest 1, 2 or 5 × 10ⁿ s not above dt (0.0 for dt ≤ 0): a Δt a student can type."""
-    if not (dt > 0 and math.isfinite(dt)):
-        return 0.0
-    power = 10.0 ** math.floor(math.log10(dt))
-    for mantissa in (5, 2, 1):
-        if mantissa * power <= dt * (1 + 1e-12):
-            return float(f"{mantissa * power:.12g}")
-    return float(f"{power / 2:.12g}")    # round-off put dt just under a power of ten
 
 
 def _window(state: State, forces) -> float:
