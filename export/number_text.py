@@ -1,0 +1,119 @@
+"""The text of many numbers at once, in numpy: repr(clean(x)), as csv.writer writes a file's number.
+
+clean(x) = float("%.15g" % x) keeps FILE_DIGITS = 15 significant digits, and repr writes a double
+with the fewest digits that read back as it. A decimal of at most 15 digits reads back exactly (a
+double holds 15 to 17), so repr(clean(x)) is the 15 digits D of x, correctly rounded, written out
+with its trailing zeros dropped: for 1e-4 ≤ |x| < 1e15 in fixed notation, with at least one digit
+after the point (3.0, 0.5, 0.0001, 123.456).
+
+In numpy, for x in that range:
+
+    e  = the decimal exponent of x, so that y = |x|·10^(14−e) lies in [1e14, 1e15)
+    y  = |x|·10^(14−e) exactly, as a rounded product plus its error (Dekker's two-product; 10^k
+         is an exact double for k ≤ 22)
+    D  = y rounded to the nearest whole number, ties to even (as C's printf rounds)
+    text = the 15 digits of D placed around the point by e, leading and trailing zeros dropped
+
+A zero is 0.0 or -0.0; every other number (below 1e-4, 1e15 and above, inf, NaN) is written by
+Python, repr(clean(x)). The texts of a column of numbers are laid out side by side in a table of
+characters as wide as that column needs, with a mask of the characters kept, so that a whole
+block of a CSV file is one numpy selection. tests/test_csv_rows.py compares the text with
+repr(clean(x)) on awkward and random numbers, and the files with csv.writer's.
+"""
+from __future__ import annotations
+
+import numpy as np
+from numpy.lib.stride_tricks import sliding_window_view
+
+from .numbers import clean
+
+_FOUR_DIGITS = np.frombuffer("".join(f"{i:04d}" for i in range(10_000)).encode(), dtype=np.uint32)
+_TRAILING_ZEROS = np.array([len(f"{i:04d}") - len(f"{i:04d}".rstrip("0")) for i in range(10_000)])
+_SPLIT = 134217729.0         # 2^27 + 1: Dekker's split of a double into two halves of 26 bits
+_ZERO, _POINT, _MINUS, _COMMA = ord("0"), ord("."), ord("-"), ord(",")
+
+
+def _halves(a):
+    c = _SPLIT * a
+    high = c - (c - a)
+    return high, a - high
+
+
+def _rounded_digits(a):
+    """(D, e, ok): |x| = a rounded to 15 significant digits, D·10^(e−14) with 1e14 ≤ D < 1e15."""
+    with np.errstate(invalid="ignore"):
+        ok = (a >= 1e-4) & (a < 1e15)
+    a = np.where(ok, a, 1.0)                         # the others get a dummy, finite text
+    e = np.clip(np.floor(np.log10(a)), -5, 14).astype(np.int64)
+    scale = 10.0 ** (14 - e)                         # exact: 14 − e is 0 … 19
+    y = a * scale
+    (a1, a2), (s1, s2) = _halves(a), _halves(scale)
+    error = ((a1 * s1 - y) + a1 * s2 + a2 * s1) + a2 * s2        # a·scale = y + error, exactly
+    D = np.rint(y)
+    half = y - D                                     # exact: y and D are within 0.5
+    D += (half == 0.5) & (error > 0)                 # y + error just above a half: round up
+    D -= (half == -0.5) & (error < 0)
+    ok &= ((y > 1e14) | ((y == 1e14) & (error >= 0))) & ((y < 1e15) | ((y == 1e15) & (error < 0)))
+    carried = D == 1e15                              # 9.999…95 rounds up to 10.0000…
+    D = np.where(carried, 1e14, D)
+    e = e + carried
+    ok &= e <= 14
+    return np.where(ok, D, 1e14).astype(np.int64), np.where(ok, e, 0), ok
+
+
+def _groups(D):
+    """Each D (15 digits) as four groups of four digits, the highest first (it starts with a 0)."""
+    return np.stack([D // 10**12, D // 10**8 % 10**4, D // 10**4 % 10**4, D % 10**4], axis=1)
+
+
+def _last_digit(groups):
+    """Index (0 … 14) of the last non-zero digit of each D."""
+    zeros = _TRAILING_ZEROS[groups[:, 0]] + 12
+    for k in (1, 2, 3):
+        zeros = np.where(groups[:, k] != 0, _TRAILING_ZEROS[groups[:, k]] + 4 * (3 - k), zeros)
+    return 14 - zeros
+
+
+def column_text(x: np.ndarray):
+    """The texts repr(clean(x)) + "," of a 1-D array of numbers, as (chars, keep): chars (n, W)
+    uint8 and keep (n, W) bool, where chars[i][keep[i]] is x[i]'s text and its comma.
+
+    Each row is: the sign, the places 10^top … 10^0, the point, the places 10^-1 … 10^-decimals,
+    the comma; top and decimals are the most this column's numbers need.
+    """
+    n = len(x)
+    zero = x == 0
+    if zero.all() and not np.signbit(x).any():
+        return np.broadcast_to(np.frombuffer(b"0.0,", dtype=np.uint8), (n, 4)), np.ones((n, 4), dtype=bool)
+    D, e, fast = _rounded_digits(np.abs(x))
+    groups = _groups(D)
+    last = _last_digit(groups)
+    top = max(int(e.max()), 0)
+    decimals = max(int((last - e).max()), 1)
+    slow = np.flatnonzero(~(fast | zero))
+    texts = [repr(clean(value)).encode("ascii") for value in x[slow].tolist()]
+    top = max(top, max(map(len, texts), default=0) - 3)
+    width = top + decimals + 4
+    # The 15 digits with '0's either side; digit j (place e − j) goes to column top − e + j.
+    left, right = top - int(e.min()), max(0, int((e + decimals).max()) - 14)
+    padded = np.full((n, left + 15 + right), _ZERO, dtype=np.uint8)
+    padded[:, left:left + 15] = _FOUR_DIGITS[groups].view(np.uint8).reshape(n, 16)[:, 1:]
+    places = sliding_window_view(padded.reshape(-1), top + 1 + decimals)[
+        np.arange(n) * padded.shape[1] + left - top + e]
+    chars = np.empty((n, width), dtype=np.uint8)
+    chars[:, 0] = _MINUS
+    chars[:, 1:top + 2] = places[:, :top + 1]
+    chars[:, top + 2] = _POINT
+    chars[:, top + 3:-1] = places[:, top + 1:]
+    chars[:, -1] = _COMMA
+    chars[zero, top + 1] = _ZERO                 # a zero got the dummy D = 1e14, e = 0: "1.0"
+    keep = np.empty((n, width), dtype=bool)
+    keep[:, 0] = np.signbit(x)
+    keep[:, 1:top + 2] = np.arange(top, -1, -1) <= np.maximum(e, 0)[:, None]     # from the first digit or 10^0
+    keep[:, top + 2] = keep[:, -1] = True
+    keep[:, top + 3:-1] = np.arange(decimals) <= np.maximum(last - e - 1, 0)[:, None]  # to the last or 10^-1
+    for i, text in zip(slow.tolist(), texts):
+        chars[i, :len(text)] = np.frombuffer(text, dtype=np.uint8)
+        keep[i, :-1] = False
+        keep[i, :len(text)] = True
+    return chars, keep
