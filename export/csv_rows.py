@@ -3,7 +3,7 @@
 A file number is clean(x) = float(f"{x:.15g}"), and csv.writer writes a float as repr. Each column
 of a block is written in numpy by export/number_text.py (the 15 digits of x worked out exactly, and
 laid out as repr lays them out), the rows' endings (",,,,\r\n", or a body label) are added, and the
-block's text is one selection of the characters kept. tests/test_csv_rows.py compares the bytes
+block's text is its characters with the padding deleted. tests/test_csv_rows.py compares the bytes
 with the row-by-row writer, csv.writer on clean()ed numbers.
 """
 from __future__ import annotations
@@ -13,7 +13,7 @@ import io
 
 import numpy as np
 
-from .number_text import column_text
+from .number_text import DROPPED, column_text
 
 ROWS_PER_BLOCK = 4096
 
@@ -32,20 +32,16 @@ def format_numbers(values: np.ndarray, *, after: list[str]) -> str:
     The same text as csv.writer.writerow([*map(clean, row)] + ...) for each row.
     """
     rows, columns = values.shape
-    chars, keep = zip(*(column_text(values[:, j]) for j in range(columns)), _endings(after, rows))
-    line_keep = np.concatenate(keep, axis=1)
-    line_keep[:, line_keep.shape[1] - chars[-1].shape[1] - 1] = False     # no comma after the last number
-    return np.concatenate(chars, axis=1)[line_keep].tobytes().decode("utf-8")
+    ending = _endings(after, rows)
+    line = np.concatenate([column_text(values[:, j]) for j in range(columns)] + [ending], axis=1)
+    line[:, line.shape[1] - ending.shape[1] - 1] = DROPPED       # no comma after a row's last number
+    return line.tobytes().translate(None, bytes([DROPPED])).decode("utf-8")
 
 
-def _endings(after: list[str], rows: int):
-    """(chars, keep) of each row's ending: after[i % len(after)] for row i, as UTF-8."""
+def _endings(after: list[str], rows: int) -> np.ndarray:
+    """Each row's ending, after[i % len(after)] for row i, as UTF-8 padded with DROPPED."""
     endings = [ending.encode("utf-8") for ending in after]
-    width = max(map(len, endings))
-    chars = np.zeros((len(endings), width), dtype=np.uint8)
-    keep = np.zeros((len(endings), width), dtype=bool)
+    chars = np.full((len(endings), max(map(len, endings))), DROPPED, dtype=np.uint8)
     for i, ending in enumerate(endings):
         chars[i, :len(ending)] = np.frombuffer(ending, dtype=np.uint8)
-        keep[i, :len(ending)] = True
-    label = np.arange(rows) % len(endings)
-    return chars[label], keep[label]
+    return chars[np.arange(rows) % len(endings)]

@@ -16,8 +16,8 @@ In numpy, for x in that range:
 
 A zero is 0.0 or -0.0; every other number (below 1e-4, 1e15 and above, inf, NaN) is written by
 Python, repr(clean(x)). The texts of a column of numbers are laid out side by side in a table of
-characters as wide as that column needs, with a mask of the characters kept, so that a whole
-block of a CSV file is one numpy selection. tests/test_csv_rows.py compares the text with
+characters as wide as that column needs, padded with a byte that UTF-8 never holds, so that a whole
+block of a CSV file is one bytes.translate that deletes the padding. tests/test_csv_rows.py compares the text with
 repr(clean(x)) on awkward and random numbers, and the files with csv.writer's.
 """
 from __future__ import annotations
@@ -29,6 +29,8 @@ from .numbers import clean
 
 _FOUR_DIGITS = np.frombuffer("".join(f"{i:04d}" for i in range(10_000)).encode(), dtype=np.uint32)
 _TRAILING_ZEROS = np.array([len(f"{i:04d}") - len(f"{i:04d}".rstrip("0")) for i in range(10_000)])
+DROPPED = 0xFF               # marks a character that is not part of a text (never in UTF-8)
+_E_LOW = 4                   # the smallest exponent written in fixed notation is -4
 _SPLIT = 134217729.0         # 2^27 + 1: Dekker's split of a double into two halves of 26 bits
 _ZERO, _POINT, _MINUS, _COMMA = ord("0"), ord("."), ord("-"), ord(",")
 
@@ -74,9 +76,21 @@ def _last_digit(groups):
     return 14 - zeros
 
 
+def _dropped(top: int, decimals: int) -> np.ndarray:
+    """DROPPED where a row's character is not part of its text, 0 where it is, for each exponent e
+    and last non-zero digit `last` (row (e + 4)·15 + last): a text is the digits from the first (or
+    from 10^0) to the last (or to 10^-1), the point and the comma; the sign is set for each number."""
+    e, last = np.divmod(np.arange((15 + _E_LOW) * 15), 15)
+    e = e[:, None] - _E_LOW
+    integer = np.arange(top, -1, -1) <= np.maximum(e, 0)
+    decimal = np.arange(decimals) <= np.maximum(last[:, None] - e - 1, 0)
+    ends = np.ones((len(e), 1), dtype=bool)
+    return np.where(np.concatenate([ends, integer, ends, decimal, ends], axis=1), 0, DROPPED).astype(np.uint8)
+
+
 def column_text(x: np.ndarray):
-    """The texts repr(clean(x)) + "," of a 1-D array of numbers, as (chars, keep): chars (n, W)
-    uint8 and keep (n, W) bool, where chars[i][keep[i]] is x[i]'s text and its comma.
+    """The texts repr(clean(x)) + "," of a 1-D array of numbers, as UTF-8 in chars (n, W) uint8,
+    each row padded with DROPPED, a byte that UTF-8 never holds.
 
     Each row is: the sign, the places 10^top … 10^0, the point, the places 10^-1 … 10^-decimals,
     the comma; top and decimals are the most this column's numbers need.
@@ -84,7 +98,7 @@ def column_text(x: np.ndarray):
     n = len(x)
     zero = x == 0
     if zero.all() and not np.signbit(x).any():
-        return np.broadcast_to(np.frombuffer(b"0.0,", dtype=np.uint8), (n, 4)), np.ones((n, 4), dtype=bool)
+        return np.broadcast_to(np.frombuffer(b"0.0,", dtype=np.uint8), (n, 4))
     D, e, fast = _rounded_digits(np.abs(x))
     groups = _groups(D)
     last = _last_digit(groups)
@@ -107,13 +121,9 @@ def column_text(x: np.ndarray):
     chars[:, top + 3:-1] = places[:, top + 1:]
     chars[:, -1] = _COMMA
     chars[zero, top + 1] = _ZERO                 # a zero got the dummy D = 1e14, e = 0: "1.0"
-    keep = np.empty((n, width), dtype=bool)
-    keep[:, 0] = np.signbit(x)
-    keep[:, 1:top + 2] = np.arange(top, -1, -1) <= np.maximum(e, 0)[:, None]     # from the first digit or 10^0
-    keep[:, top + 2] = keep[:, -1] = True
-    keep[:, top + 3:-1] = np.arange(decimals) <= np.maximum(last - e - 1, 0)[:, None]  # to the last or 10^-1
+    chars |= _dropped(top, decimals)[(e + _E_LOW) * 15 + last]
+    chars[~np.signbit(x), 0] = DROPPED
     for i, text in zip(slow.tolist(), texts):
+        chars[i, :-1] = DROPPED
         chars[i, :len(text)] = np.frombuffer(text, dtype=np.uint8)
-        keep[i, :-1] = False
-        keep[i, :len(text)] = True
-    return chars, keep
+    return chars
