@@ -15,7 +15,7 @@ import numpy as np
 
 from .number_text import DROPPED, column_text
 
-ROWS_PER_BLOCK = 4096
+ROWS_PER_BLOCK = 16384
 
 
 def csv_field(text: str) -> str:

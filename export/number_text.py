@@ -22,6 +22,8 @@ repr(clean(x)) on awkward and random numbers, and the files with csv.writer's.
 """
 from __future__ import annotations
 
+import functools
+
 import numpy as np
 from numpy.lib.stride_tricks import sliding_window_view
 
@@ -76,6 +78,7 @@ def _last_digit(groups):
     return 14 - zeros
 
 
+@functools.lru_cache(maxsize=64)
 def _dropped(top: int, decimals: int) -> np.ndarray:
     """DROPPED where a row's character is not part of its text, 0 where it is, for each exponent e
     and last non-zero digit `last` (row (e + 4)·15 + last): a text is the digits from the first (or

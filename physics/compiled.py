@@ -263,15 +263,19 @@ class CompiledLoop:
             self.failure = problem
             warn_untraced(problem)
 
-    def advance(self, arrays, done: int, stop: int, mark: int, record):
-        """Tick from step number `done` towards `stop`; returns (done, mark, arrays).
+    def advance(self, arrays, done: int, stop: int, recorder):
+        """Tick from step number `done` towards `stop`; returns (done, arrays).
 
-        After a tick that reaches step number `mark`, calls record(done, values) with every
-        component of the arrays flattened, which returns the next mark. Returns early (done <
-        stop) where the loop cannot take a step.
+        After a tick that reaches step number recorder.mark, keeps the step number and every
+        component of the arrays: added to recorder.rows (a flat list of floats) where the recorder has a stride (the
+        next mark is done + stride, at most recorder.last), else through recorder.record(done,
+        values=...), which returns the next mark. Returns early (done < stop) where the loop
+        cannot take a step.
         """
-        done, mark, values = self._loop(_flat(arrays), done, stop, mark, record)
-        return done, mark, self.unflatten(values)
+        done, recorder.mark, values = self._loop(_flat(arrays), done, stop, recorder.mark,
+                                                 lambda done, values: recorder.record(done, values=values),
+                                                 recorder.stride, recorder.last, recorder.rows.extend)
+        return done, self.unflatten(values)
 
     def unflatten(self, values) -> list:
         arrays, start = [], 0
@@ -299,7 +303,7 @@ def _loop_source(tape: Tape, names: list[str], outputs: list[str]) -> str:
     used = " ".join(expression for _, expression in body) + " " + " ".join(outputs)
     state = ", ".join(names)
     lines = [
-        "def advance(values, done, stop, mark, record):",
+        "def advance(values, done, stop, mark, record, stride, last, keep):",
         f"    {state}, = values",
         "    while done < stop:",
     ]
@@ -319,7 +323,13 @@ def _loop_source(tape: Tape, names: list[str], outputs: list[str]) -> str:
         f"        {state}, = {', '.join(outputs)},",
         "        done += 1",
         "        if done == mark:",
-        f"            mark = record(done, ({state},))",
+        "            if stride:",
+        f"                keep((done, {state}))",
+        "                mark = done + stride",
+        "                if mark > last:",
+        "                    mark = last",
+        "            else:",
+        f"                mark = record(done, ({state},))",
         f"    return done, mark, [{state}]",
     ]
     return "\n".join(lines) + "\n"

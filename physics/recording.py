@@ -26,12 +26,17 @@ def steps_to_reach(until: float, dt: float) -> int:
 
 # ---- what to record: a schedule says which step number is recorded next ----
 
-def every(n: int):
-    """Record every n-th step (n = 1: every step)."""
-    if isinstance(n, bool) or not isinstance(n, (int, np.integer)) or n < 1:
-        raise ValueError("record_every must be a whole number ≥ 1, or None for the final state only")
-    n = int(n)
-    return lambda done: (done // n + 1) * n
+class every:
+    """Record every n-th step (n = 1: every step): a schedule whose next mark is done + n, which
+    the traced loop (physics/compiled.py) works out itself, with no call per step."""
+
+    def __init__(self, n: int):
+        if isinstance(n, bool) or not isinstance(n, (int, np.integer)) or n < 1:
+            raise ValueError("record_every must be a whole number ≥ 1, or None for the final state only")
+        self.stride = int(n)
+
+    def __call__(self, done: int) -> int:
+        return (done // self.stride + 1) * self.stride
 
 
 def time_grid(spacing: float, *, t0: float, dt: float, start: float = 0.0, end: float = math.inf):
@@ -68,18 +73,24 @@ class Samples:
 
 class Recorder:
     """The steps recorded during one advance: which step is due next (`mark`, from the schedule),
-    and the recorded rows of floats, packed into arrays a block at a time.
+    and the recorded rows of floats (the step number, then the values), packed into arrays a
+    block at a time.
 
     schedule  step number done -> the next step number to record (every(n), time_grid(...)), or None
     target    the step number the advance ends at; with `final` it is recorded too
+    stride    n for every(n), whose marks the traced loop works out itself (and caps at `last`,
+              the target if `final`); 0 for other schedules, which it asks through record()
     """
 
     def __init__(self, engine, schedule=None, *, target: float = math.inf, final: bool = True):
         self.engine = engine
         self.schedule = schedule if schedule is not None else (lambda done: math.inf)
         self.target, self.final = target, final
-        self.steps: list[int] = []
-        self.rows: list = []           # this block's rows: every component of r, p, P_nc, W_nc
+        self.last = target if final else math.inf
+        self.stride = schedule.stride if isinstance(schedule, every) else 0
+        start = engine.start
+        self.width = 1 + 2 * start.r.size + 2 * start.count
+        self.rows: list[float] = []    # this block's rows, flat: the step number, every component of r, p, P_nc, W_nc
         self.blocks: list[np.ndarray] = []
         self.mark = self._next(engine.steps)
 
@@ -94,26 +105,26 @@ class Recorder:
         return self.mark
 
     def add(self, done, *, values=None, arrays=None):
-        self.steps.append(done)
-        self.rows.append(values if values is not None else
-                         np.concatenate([np.asarray(a, dtype=float).ravel() for a in arrays]))
-        if len(self.rows) >= BLOCK:
+        self.rows.append(done)
+        for part in (values,) if values is not None else (np.asarray(a, dtype=float).ravel().tolist() for a in arrays):
+            self.rows.extend(part)
+        if len(self.rows) >= BLOCK * self.width:
             self.flush()
 
     def flush(self):
         if self.rows:
-            self.blocks.append(np.array(self.rows, dtype=float))
-            self.rows = []
+            self.blocks.append(np.fromiter(self.rows, dtype=float, count=len(self.rows)).reshape(-1, self.width))
+            self.rows.clear()          # the same list: the traced loop may hold its extend
 
     def samples(self) -> Samples:
         self.flush()
         start = self.engine.start
         size, count = start.r.size, start.count
-        flat = np.concatenate(self.blocks) if self.blocks else np.empty((0, 2 * size + 2 * count))
-        return Samples(t=self.engine.start.t + np.array(self.steps, dtype=float) * self.engine.dt,
-                       r=flat[:, :size].reshape((-1,) + start.r.shape),
-                       p=flat[:, size:2 * size].reshape((-1,) + start.r.shape),
-                       work=flat[:, 2 * size + count:], m=start.m)
+        flat = np.concatenate(self.blocks) if self.blocks else np.empty((0, self.width))
+        return Samples(t=self.engine.start.t + flat[:, 0] * self.engine.dt,
+                       r=flat[:, 1:1 + size].reshape((-1,) + start.r.shape),
+                       p=flat[:, 1 + size:1 + 2 * size].reshape((-1,) + start.r.shape),
+                       work=flat[:, 1 + 2 * size + count:], m=start.m)
 
 
 @dataclass

@@ -207,8 +207,7 @@ class Simulation:
         loop = self._loop
         while self.steps < stop:
             if loop is not None and loop.ready:
-                done, _, arrays = loop.advance(self._arrays(), self.steps, stop, recorder.mark,
-                                               lambda done, values: recorder.record(done, values=values))
+                done, arrays = loop.advance(self._arrays(), self.steps, stop, recorder)
                 self._set(arrays)
                 self.steps = done
                 if done == stop:
