@@ -109,6 +109,17 @@ class Force:
         """
         return {}
 
+    def tether(self):
+        """Where the force ties each mass to a fixed point, for judging a blow-up (physics/simulate.py
+        counts a mass far beyond its tether's reach as blown up): (anchor, length), (N, 3) or (3,) m
+        and a number or (N, 1) m; None for a force that ties no mass to a point."""
+        return None
+
+    def undefined_at(self, r: np.ndarray) -> np.ndarray:
+        """Which masses sit where the law has no value (a spring's direction at its anchor), (N,)
+        bool: a scene refuses to start there."""
+        return np.zeros(len(r), dtype=bool)
+
     def program_values(self) -> dict:
         """The values of CONSTANTS this force holds, by name: a number, or an (N,) or (N, 3) array
         of one per mass. Raises ValueError where the program cannot write the force as it is."""
@@ -186,6 +197,14 @@ class Spring(Force):
 
     def rates(self, m, speed):
         return {"stiffness": _column(self.k, len(m))}
+
+    def tether(self):
+        return self.anchor, self.L0
+
+    def undefined_at(self, r):
+        if self._zero_length:                # F = −k L is defined everywhere
+            return super().undefined_at(r)
+        return self.stretch(r)[1][:, 0] == 0
 
     def program_values(self):
         values = {"k": self.k, "anchor": self.anchor}

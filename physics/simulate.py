@@ -38,7 +38,6 @@ import numpy as np
 
 from .compiled import MAX_COMPONENTS, MAX_TRACES, compile_loop
 from .energy import nonconservative_power, report, work_step
-from .forces import Spring
 from .integrators import DEFAULT_INTEGRATOR, INTEGRATORS, methods_for
 from .stability import fastest_angular_frequency, judge, rates
 from .state import State, velocity
@@ -90,9 +89,9 @@ class Simulation:
         self.may_run_away = frozenset(int(i) for i in may_run_away)
         self.compiled = compiled
         self._seconds_per_step = None
-        springs = [force for force in self.forces if isinstance(force, Spring)]
-        self._anchor = np.broadcast_to(springs[0].anchor, state.r.shape) if springs else None
-        self._limit = _motion_scale(state, springs, fastest_angular_frequency(self.forces, state.m)) * growth_limit
+        tethers = [tether for tether in (force.tether() for force in self.forces) if tether is not None]
+        self._anchor = np.broadcast_to(tethers[0][0], state.r.shape) if tethers else None
+        self._limit = _motion_scale(state, tethers, fastest_angular_frequency(self.forces, state.m)) * growth_limit
         self.restart()
 
     # ---- where the engine is ----
@@ -313,14 +312,15 @@ def _stepper(methods, *, frozen):
     return step
 
 
-def _motion_scale(state: State, springs, omega: float) -> float:
-    """A generous size of the motion (m): start offset, speed/ω, and the spring's own length."""
-    if not springs or omega == 0:
+def _motion_scale(state: State, tethers, omega: float) -> float:
+    """A generous size of the motion (m): start offset from the first tether's anchor, speed/ω, and
+    its length."""
+    if not tethers or omega == 0:
         return math.inf
-    spring = springs[0]
-    offset = np.max(np.linalg.norm(state.r - spring.anchor, axis=-1))
+    anchor, length = tethers[0]
+    offset = np.max(np.linalg.norm(state.r - anchor, axis=-1))
     speed = np.max(np.linalg.norm(state.v, axis=-1))
-    return float(offset + speed / omega + np.max(spring.L0) + 9.8 / omega**2 + 1.0)
+    return float(offset + speed / omega + np.max(length) + 9.8 / omega**2 + 1.0)
 
 
 def run(state: State, forces, *, dt: float, until: float, integrator=DEFAULT_INTEGRATOR,

@@ -7,7 +7,6 @@ from typing import Callable, Optional
 
 import numpy as np
 
-from physics.forces import Spring
 from physics.integrators import DEFAULT_INTEGRATOR, methods_for
 from physics.simulate import Simulation
 from physics.stability import growing
@@ -53,10 +52,8 @@ class Model:
 
     def __post_init__(self):
         for force in self.forces:
-            if isinstance(force, Spring) and not force._zero_length:
-                _, length = force.stretch(self.state.r)
-                if np.any(length == 0):
-                    raise ValueError("a mass starts at its spring's anchor, where the spring's direction "
+            if np.any(force.undefined_at(self.state.r)):
+                raise ValueError("a mass starts at its spring's anchor, where the spring's direction "
                                      "L̂ is undefined: move r0 (or x0) off the anchor")
 
     def methods(self, integrator: Optional[str] = None) -> tuple:
