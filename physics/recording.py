@@ -105,9 +105,12 @@ class Recorder:
         return self.mark
 
     def add(self, done, *, values=None, arrays=None):
+        if values is None:             # the numpy tick's arrays, maybe of 10⁴ masses: a block of its own
+            self.flush()
+            self.blocks.append(np.concatenate([[done], *(np.asarray(a, dtype=float).ravel() for a in arrays)])[None])
+            return
         self.rows.append(done)
-        for part in (values,) if values is not None else (np.asarray(a, dtype=float).ravel().tolist() for a in arrays):
-            self.rows.extend(part)
+        self.rows.extend(values)
         if len(self.rows) >= BLOCK * self.width:
             self.flush()
 
