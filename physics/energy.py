@@ -20,7 +20,7 @@ from .state import State, velocity
 
 def kinetic(state: State) -> np.ndarray:
     """K = |p|² / 2m for each mass, J."""
-    return np.sum(state.p * state.p, axis=-1) / (2.0 * state.m)
+    return row_dot(state.p, state.p) / (2.0 * state.m)
 
 
 def potential(state: State, forces) -> np.ndarray:
