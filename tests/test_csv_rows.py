@@ -80,3 +80,34 @@ def test_awkward_numbers_are_written_as_csv_writes_their_clean_values():
         writer.writerow([clean(x) for x in row] + [["a,b", 'say "hi"', "%s %d"][i % 3]])
     after = ["," + csv_field(label) + "\r\n" for label in ["a,b", 'say "hi"', "%s %d"]]
     assert format_numbers(values, after=after) == expected.getvalue()
+
+
+def _edges(rng) -> np.ndarray:
+    """Numbers where the numpy digits could go wrong: exact ties at the 16th digit (k + ½ units of
+    the 15th), neighbours of the powers of ten from 1e-5 to 1e16 (the exponent misjudged, 9.99…95
+    carried to 10.0…), short decimals (trailing zeros dropped) and the values the brief names."""
+    ties = (rng.integers(10**14, 10**15, 3000) * 10 + 5) / 2.0 ** rng.integers(1, 9, 3000)   # x.5 exactly
+    ties = np.concatenate([ties, rng.integers(10**14, 10**15, 1000) + 0.5, rng.integers(10**13, 10**14, 1000) + 0.25])
+    powers = 10.0 ** np.arange(-5, 17)
+    near = np.concatenate([np.nextafter(powers, 0), powers, np.nextafter(powers, np.inf),
+                           powers * (1 - 5e-16), powers * (1 + 5e-16), powers * 0.99999999999999995,
+                           powers * 9.999999999999995, powers * 9.99999999999995])
+    short = np.array([round(x, int(d)) for x, d in zip(rng.normal(size=3000) * 10.0 ** rng.integers(-3, 6, 3000),
+                                                        rng.integers(0, 9, 3000))])
+    named = [0.0, -0.0, 1e-300, -1e-300, 1e300, -1e300, 0.1 + 0.2, 1e-4, -1e-4, 0.00010000000000000002,
+             99999999999999.95, 999999999999999.4, 999999999999999.5, 999999999999999.6, 12345678901234.5]
+    values = np.concatenate([ties, -ties, near, -near, short, named])
+    return np.concatenate([values, rng.normal(size=20000) * 10.0 ** rng.integers(-8, 18, 20000)])
+
+
+def test_numpy_digits_are_the_row_writers_at_the_edges():
+    """format_numbers works out the digits in numpy (export/number_text.py): on numbers chosen to
+    catch a wrong rounding or a wrong exponent, each text is csv.writer's text of clean(x)."""
+    values = _edges(np.random.default_rng(7))
+    values = np.resize(values, (len(values) + 4) // 5 * 5).reshape(-1, 5)
+    values[:, 4] = np.where(np.arange(len(values)) % 2, -0.0, 0.0)      # a column of zeros of both signs
+    expected = io.StringIO(newline="")
+    writer = csv.writer(expected)
+    for row in values:
+        writer.writerow([clean(x) for x in row] + ["ω = 2 rad/s"])
+    assert format_numbers(values, after=[",ω = 2 rad/s\r\n"]) == expected.getvalue()
