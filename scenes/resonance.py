@@ -203,12 +203,13 @@ def amplitudes(setup, model, trajectory) -> Sweep | None:
     """
     v = setup.values
     start, end = measure_window(v)
-    inside = (trajectory.t >= start - 1e-9 * v["dt"]) & (trajectory.t <= end + v["dt"])
-    if trajectory.t[-1] < end or not inside.any():
+    inside = np.flatnonzero((trajectory.t >= start - 1e-9 * v["dt"]) & (trajectory.t <= end + v["dt"]))
+    if trajectory.t[-1] < end or not inside.size:
         return None
     State = type(model.state)
-    measured = amplitude_now(model, State(t=trajectory.t[inside], r=trajectory.r[inside],
-                                          p=trajectory.p[inside], m=trajectory.m)).max(axis=0)
+    window = slice(inside[0], inside[-1] + 1)      # the times are in order: one stretch, no copy
+    measured = amplitude_now(model, State(t=trajectory.t[window], r=trajectory.r[window],
+                                          p=trajectory.p[window], m=trajectory.m)).max(axis=0)
     omega, b_each, omega_all, b_all = _grid_of(v)
     shape = (len(b_each), len(omega))
     exact = curve_amplitude(v, b=b_all, omega=omega_all)
