@@ -34,13 +34,18 @@ _TRAILING_ZEROS = np.array([len(f"{i:04d}") - len(f"{i:04d}".rstrip("0")) for i 
 DROPPED = 0xFF               # marks a character that is not part of a text (never in UTF-8)
 _E_LOW = 4                   # the smallest exponent written in fixed notation is -4
 _SPLIT = 134217729.0         # 2^27 + 1: Dekker's split of a double into two halves of 26 bits
+_POWERS = 10.0 ** np.arange(20)     # 10^0 … 10^19, each an exact double
 _ZERO, _POINT, _MINUS, _COMMA = ord("0"), ord("."), ord("-"), ord(",")
 
 
-def _halves(a):
-    c = _SPLIT * a
-    high = c - (c - a)
-    return high, a - high
+def _product_error(a, scale):
+    """error, such that a·scale = fl(a·scale) + error exactly (Dekker's two-product, no FMA)."""
+    def halves(v):
+        c = _SPLIT * v
+        high = c - (c - v)
+        return high, v - high
+    (a1, a2), (s1, s2) = halves(a), halves(scale)
+    return ((a1 * s1 - a * scale) + a1 * s2 + a2 * s1) + a2 * s2
 
 
 def _rounded_digits(a):
@@ -49,15 +54,21 @@ def _rounded_digits(a):
         ok = (a >= 1e-4) & (a < 1e15)
     a = np.where(ok, a, 1.0)                         # the others get a dummy, finite text
     e = np.clip(np.floor(np.log10(a)), -5, 14).astype(np.int64)
-    scale = 10.0 ** (14 - e)                         # exact: 14 − e is 0 … 19
-    y = a * scale
-    (a1, a2), (s1, s2) = _halves(a), _halves(scale)
-    error = ((a1 * s1 - y) + a1 * s2 + a2 * s1) + a2 * s2        # a·scale = y + error, exactly
+    scale = _POWERS[14 - e]                          # exact: 14 − e is 0 … 19
+    y = a * scale                                    # a·10^(14−e), rounded: within half a unit of y's last bit
     D = np.rint(y)
     half = y - D                                     # exact: y and D are within 0.5
-    D += (half == 0.5) & (error > 0)                 # y + error just above a half: round up
-    D -= (half == -0.5) & (error < 0)
-    ok &= ((y > 1e14) | ((y == 1e14) & (error >= 0))) & ((y < 1e15) | ((y == 1e15) & (error < 0)))
+    inside = (y > 1e14) & (y < 1e15)                 # then a·scale is inside too: e is right
+    # Where y is exactly a half or on the edge of [1e14, 1e15), the exact product decides.
+    close = np.flatnonzero((np.abs(half) == 0.5) | ((y == 1e14) | (y == 1e15)))
+    if close.size:
+        error = _product_error(a[close], scale[close])
+        y_close, half_close = y[close], half[close]
+        D[close] += (half_close == 0.5) & (error > 0)    # just above a half: round up
+        D[close] -= (half_close == -0.5) & (error < 0)
+        inside[close] = (((y_close > 1e14) | ((y_close == 1e14) & (error >= 0))) &
+                         ((y_close < 1e15) | ((y_close == 1e15) & (error < 0))))
+    ok &= inside
     carried = D == 1e15                              # 9.999…95 rounds up to 10.0000…
     D = np.where(carried, 1e14, D)
     e = e + carried
