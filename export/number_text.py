@@ -102,6 +102,25 @@ def _dropped(top: int, decimals: int) -> np.ndarray:
     return np.where(np.concatenate([ends, integer, ends, decimal, ends], axis=1), 0, DROPPED).astype(np.uint8)
 
 
+def _placed(groups, e, *, top: int, decimals: int) -> np.ndarray:
+    """Each number's row: "-", its digits at the places 10^top … 10^0, ".", its digits at 10^-1 …
+    10^-decimals, ","; '0' at every place it has no digit."""
+    n = len(e)
+    # The 15 digits with '0's either side; digit j (place e − j) goes to column top − e + j.
+    left, right = top - int(e.min()), max(0, int((e + decimals).max()) - 14)
+    padded = np.full((n, left + 15 + right), _ZERO, dtype=np.uint8)
+    padded[:, left:left + 15] = _FOUR_DIGITS[groups].view(np.uint8).reshape(n, 16)[:, 1:]
+    places = sliding_window_view(padded.reshape(-1), top + 1 + decimals)[
+        np.arange(n) * padded.shape[1] + left - top + e]
+    chars = np.empty((n, top + decimals + 4), dtype=np.uint8)
+    chars[:, 0] = _MINUS
+    chars[:, 1:top + 2] = places[:, :top + 1]
+    chars[:, top + 2] = _POINT
+    chars[:, top + 3:-1] = places[:, top + 1:]
+    chars[:, -1] = _COMMA
+    return chars
+
+
 def column_text(x: np.ndarray):
     """The texts repr(clean(x)) + "," of a 1-D array of numbers, as UTF-8 in chars (n, W) uint8,
     each row padded with DROPPED, a byte that UTF-8 never holds.
@@ -121,19 +140,7 @@ def column_text(x: np.ndarray):
     slow = np.flatnonzero(~(fast | zero))
     texts = [repr(clean(value)).encode("ascii") for value in x[slow].tolist()]
     top = max(top, max(map(len, texts), default=0) - 3)
-    width = top + decimals + 4
-    # The 15 digits with '0's either side; digit j (place e − j) goes to column top − e + j.
-    left, right = top - int(e.min()), max(0, int((e + decimals).max()) - 14)
-    padded = np.full((n, left + 15 + right), _ZERO, dtype=np.uint8)
-    padded[:, left:left + 15] = _FOUR_DIGITS[groups].view(np.uint8).reshape(n, 16)[:, 1:]
-    places = sliding_window_view(padded.reshape(-1), top + 1 + decimals)[
-        np.arange(n) * padded.shape[1] + left - top + e]
-    chars = np.empty((n, width), dtype=np.uint8)
-    chars[:, 0] = _MINUS
-    chars[:, 1:top + 2] = places[:, :top + 1]
-    chars[:, top + 2] = _POINT
-    chars[:, top + 3:-1] = places[:, top + 1:]
-    chars[:, -1] = _COMMA
+    chars = _placed(groups, e, top=top, decimals=decimals)
     chars[zero, top + 1] = _ZERO                 # a zero got the dummy D = 1e14, e = 0: "1.0"
     chars |= _dropped(top, decimals)[(e + _E_LOW) * 15 + last]
     chars[~np.signbit(x), 0] = DROPPED

@@ -110,14 +110,12 @@ class Force:
         return {}
 
     def tether(self):
-        """Where the force ties each mass to a fixed point, for judging a blow-up (physics/simulate.py
-        counts a mass far beyond its tether's reach as blown up): (anchor, length), (N, 3) or (3,) m
-        and a number or (N, 1) m; None for a force that ties no mass to a point."""
+        """(anchor, length) in m where the force ties each mass to a fixed point, None where it ties
+        none: the engine counts a mass far beyond its tether's reach as blown up."""
         return None
 
     def undefined_at(self, r: np.ndarray) -> np.ndarray:
-        """Which masses sit where the law has no value (a spring's direction at its anchor), (N,)
-        bool: a scene refuses to start there."""
+        """Which masses sit where the law has no value, (N,) bool: a scene refuses to start there."""
         return np.zeros(len(r), dtype=bool)
 
     def program_values(self) -> dict:
@@ -201,10 +199,8 @@ class Spring(Force):
     def tether(self):
         return self.anchor, self.L0
 
-    def undefined_at(self, r):
-        if self._zero_length:                # F = −k L is defined everywhere
-            return super().undefined_at(r)
-        return self.stretch(r)[1][:, 0] == 0
+    def undefined_at(self, r):               # L̂ at the anchor; F = −k L (L0 = 0) has no L̂ to lose
+        return (self.stretch(r)[1][:, 0] == 0) & (not self._zero_length)
 
     def program_values(self):
         values = {"k": self.k, "anchor": self.anchor}
