@@ -89,7 +89,9 @@ class Simulation:
         self.may_run_away = frozenset(int(i) for i in may_run_away)
         self.compiled = compiled
         self._seconds_per_step = None
-        tethers = [tether for tether in (force.tether() for force in self.forces) if tether is not None]
+        # what each force declares (physics/forces.py's Force.tether); a plain callable declares nothing
+        tethers = [tether() for tether in (getattr(force, "tether", None) for force in self.forces) if tether]
+        tethers = [tether for tether in tethers if tether is not None]
         self._anchor = np.broadcast_to(tethers[0][0], state.r.shape) if tethers else None
         self._limit = _motion_scale(state, tethers, fastest_angular_frequency(self.forces, state.m)) * growth_limit
         self.restart()

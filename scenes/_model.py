@@ -51,8 +51,8 @@ class Model:
     per_mass: Optional[object] = None
 
     def __post_init__(self):
-        for force in self.forces:
-            if np.any(force.undefined_at(self.state.r)):
+        for force in self.forces:   # a plain callable, not a physics.forces.Force, declares nothing
+            if hasattr(force, "undefined_at") and np.any(force.undefined_at(self.state.r)):
                 raise ValueError("a mass starts at its spring's anchor, where the spring's direction "
                                      "L̂ is undefined: move r0 (or x0) off the anchor")
 
