@@ -65,7 +65,7 @@ def build_model(args, setup):
 def run_headless(args, setup, model) -> int:
     """The headless paths: the step table, the final state (text or JSON), the CSV file and the figure.
 
-    The run is checked (its cost, its measuring window) and output files are checked before
+    The run's cost is checked (once: simulate is handed the plan) and output files are checked before
     anything runs, so a typo in a path costs no computing time.
     """
     until = model.until if args.until is None else args.until

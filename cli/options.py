@@ -129,17 +129,23 @@ LAB_OPTIONS = (("--fit", "fit"), ("--data-column", "data_column"), ("--run", "ru
                ("--coordinate", "coordinate"), ("--seed", "seed"))
 
 
+LAB_COMMANDS = (("--data", "data"), ("--mystery", "mystery"), ("--show-answer", "show_answer"))
+
+
+def _lab_commands(args) -> list[str]:
+    """The ones of --data, --mystery and --show-answer given."""
+    return [flag for flag, attribute in LAB_COMMANDS if _given(args, attribute)]
+
+
 def lab_command(args) -> str | None:
     """Which of --data, --mystery and --show-answer was given (None: none of them)."""
-    given = [flag for flag, attribute in (("--data", "data"), ("--mystery", "mystery"),
-                                          ("--show-answer", "show_answer")) if _given(args, attribute)]
+    given = _lab_commands(args)
     return given[0] if given else None
 
 
 def check_lab_options(args) -> None:
     """--data, --mystery and --show-answer: one at a time, with only the flags that do something."""
-    commands = [flag for flag, attribute in (("--data", "data"), ("--mystery", "mystery"),
-                                             ("--show-answer", "show_answer")) if _given(args, attribute)]
+    commands = _lab_commands(args)
     if len(commands) > 1:
         raise UsageError(f"{commands[0]} and {commands[1]} are separate jobs; give one of them")
     command = commands[0] if commands else None

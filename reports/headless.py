@@ -2,9 +2,9 @@
 
 A headless run is the page's loop and nothing else: build the scene's model from its constants,
 repeat the momentum update every Δt until the question time, and keep what the reports need.
-Before any step, :func:`plan` checks the run once: its cost on this computer (the engine's own
-measured cost) and, for a scene that measures in a window (resonance), that the run reaches its
-end; :func:`stability_warning` judges Δt once. :func:`simulate` then runs the plan and returns a
+Before any step, :func:`plan` checks the run's cost on this computer once (the engine's own
+measured cost), and :func:`stability_warning` judges Δt once; :func:`simulate` checks, as it
+starts, that a scene that measures in a window (resonance) is run to the window's end. :func:`simulate` then runs the plan and returns a
 :class:`Result`, which the reports write down: reports/text.py (the final state as text),
 reports/json_report.py (one JSON object), reports/csv_file.py (one row per step) and
 reports/step_table.py (the first few updates by hand). Nothing here imports vpython or matplotlib.
@@ -122,7 +122,8 @@ def plan(setup: Setup, *, model: Optional[Model] = None, integrator: Optional[st
                 scene measures in (resonance: the steady-state amplitudes)
     Raises TooManySteps if the run would take longer than MAX_RUN_SECONDS on this computer (the
     engine's own measured cost, plus ROW_SECONDS for each row recorded), naming the count and the
-    longest --until that fits; ConstantError if it stops before the scene's measuring window ends.
+    longest --until that fits. (That the run reaches the end of the scene's measuring window is
+    checked by simulate, as it starts.)
     """
     model = model if model is not None else setup.build()
     engine = model.simulation(integrator)
@@ -135,17 +136,22 @@ def plan(setup: Setup, *, model: Optional[Model] = None, integrator: Optional[st
                    shortest=0.0 if window is None else window[1])
     except RunTooLong as problem:
         raise TooManySteps(problem.worded("--until")) from None
-    if window is not None and window[1] > until:
-        raise ConstantError(
-            f"the scene measures from t = {number(window[0])} s to {number(window[1])} s (settle, then "
-            f"{number(setup.values['periods'])} periods of the slowest drive), after the run ends at "
-            f"t = {number(until)} s; set until to at least {number(window[1])} s, or a smaller settle")
     if every_step:
         record = every(1)
     else:
         record = None if window is None else time_grid(model.dt, t0=model.state.t, dt=model.dt,
                                                        start=window[0], end=window[1])
     return Plan(setup=setup, model=model, engine=engine, until=until, record=record)
+
+
+def _check_window(run: Plan) -> None:
+    """ConstantError if the run ends before the scene's measuring window does (resonance)."""
+    window = run.setup.hooks.measuring(run.setup.values)
+    if window is not None and window[1] > run.until:
+        raise ConstantError(
+            f"the scene measures from t = {number(window[0])} s to {number(window[1])} s (settle, then "
+            f"{number(run.setup.values['periods'])} periods of the slowest drive), after the run ends at "
+            f"t = {number(run.until)} s; set until to at least {number(window[1])} s, or a smaller settle")
 
 
 # ---- the run ----
@@ -158,10 +164,12 @@ def simulate(setup: Setup, *, model: Optional[Model] = None, integrator: Optiona
     `checked` is the run's :func:`plan`, if the caller made it already (then the other arguments
     but `progress` are its own); else it is made here, with the same checks. Runs that take more
     than a second or so write their progress to the stream `progress` (standard error by default;
-    None: silently). Raises physics.simulate.BlowUpError when Δt is too large for the method.
+    None: silently). Raises ConstantError if the run ends before the scene's measuring window,
+    and physics.simulate.BlowUpError when Δt is too large for the method.
     """
     run = checked if checked is not None else plan(setup, model=model, integrator=integrator, until=until,
                                                    every_step=every_step)
+    _check_window(run)
     stream = sys.stderr if progress == "stderr" else progress     # looked up now, not at import
     printer = None if stream is None else _ProgressLine(stream)
     try:
