@@ -49,11 +49,8 @@ def as_json(result: Result) -> dict:
     may add its own keys with a function extra_json(result) -> dict (scenes/_hooks.py).
     """
     traj, model, setup = result.trajectory, result.model, result.setup
-    r, p, m = traj.r[-1], traj.p[-1], traj.m
-    v = velocity(p, m)
-    single = len(m) == 1
-    F_net = net_force(model.forces, traj.t[-1], r, v, m)   # at the final time, as --headless prints it
-    r, p, v, F_net = (clean_array(a).tolist() for a in (r, p, v, F_net))   # 15 digits, all at once
+    single = len(traj.m) == 1
+    state = _final_state(result)
     pick = (lambda a: a[0]) if single else (lambda a: a)
     out = {
         "scene": setup.name,
@@ -61,27 +58,34 @@ def as_json(result: Result) -> dict:
         "steps": result.steps,
         "dt": float(model.dt),
         "integrator": integrator_json(result.methods),
-        "r": pick(r), "p": pick(p), "v": pick(v), "F_net": pick(F_net),
+        **{key: pick(state[key]) for key in ("r", "p", "v", "F_net")},
     }
-    exact = result.exact()
-    known = [exact is not None and bool(np.all(np.isfinite(exact[0][i]))) for i in range(len(m))]
-    entries = _exact_entries(traj.r[-1], velocity(traj.p[-1], m), exact, known)
-    if single and known[0]:
+    entries = _exact_entries(result)
+    if single and entries[0] is not None:
         out["exact"] = entries[0]
     _exact_validity(out, result)
-    if not single:
-        out["bodies"] = _bodies(result, r=r, p=p, v=v, F_net=F_net, entries=entries)
+    bodies = None if single else _bodies(result, state, entries)   # cleaned already, array by array
+    if bodies is not None:
+        out["bodies"] = bodies
     if traj.energy is not None:
         out["energy"] = {key: float(values[-1]) for key, values in traj.energy.items()}
     out["constants"] = {name: {"value": _plain(setup.values[name]), "unit": c.unit, "meaning": c.meaning}
                         for name, c in setup.constants.items()}
     out["units"] = UNITS
-    extra_json = setup.hooks.extra_json  # a scene's own results, e.g. a resonance curve
-    if extra_json is not None:
-        out.update(extra_json(result))
-    out = {key: value if key == "bodies" else cleaned(value) for key, value in out.items()}  # bodies: clean
+    if setup.hooks.extra_json is not None:  # a scene's own results, e.g. a resonance curve
+        out.update(setup.hooks.extra_json(result))
+    out = {key: value if value is bodies else cleaned(value) for key, value in out.items()}
     out["t"] = clean_time(traj.t[-1], model.dt)
     return out
+
+
+def _final_state(result: Result) -> dict:
+    """r, p, v and F_net at the final time, each a list with one 3-vector per mass, to 15 digits."""
+    traj = result.trajectory
+    r, p, m = traj.r[-1], traj.p[-1], traj.m
+    v = velocity(p, m)
+    F_net = net_force(result.model.forces, traj.t[-1], r, v, m)   # at the final time, as --headless prints it
+    return {key: clean_array(value).tolist() for key, value in (("r", r), ("p", p), ("v", v), ("F_net", F_net))}
 
 
 def _exact_validity(out: dict, result: Result) -> None:
@@ -97,26 +101,32 @@ def _exact_validity(out: dict, result: Result) -> None:
                                            if result.model.exact is not None else "this scene has no closed form"))
 
 
-def _bodies(result: Result, *, r, p, v, F_net, entries) -> list[dict]:
+def _bodies(result: Result, state: dict, entries: list) -> list[dict]:
     """One entry per mass of a row: its label, m, r, p, v, F_net, and its exact answer or why not."""
     m = clean_array(result.trajectory.m).tolist()
     notes, valid_until = result.exact_notes(), clean_array(result.exact_valid_until_each()).tolist()
-    return [{"label": label, "m": m[i], "r": r[i], "p": p[i], "v": v[i], "F_net": F_net[i],
+    return [{"label": label, "m": m[i], **{key: state[key][i] for key in ("r", "p", "v", "F_net")},
              **({"exact": entries[i]} if entries[i] is not None else {}),
              **({"exact_note": notes[i], "exact_valid_until": valid_until[i]} if notes[i] else {})}
             for i, label in enumerate(result.labels)]
 
 
-def _exact_entries(r, v, exact, known) -> list[Optional[dict]]:
-    """For each mass, its closed form's r and v and the size of the error, or None where unknown."""
-    if exact is None or not any(known):
-        return [None] * len(known)
+def _exact_entries(result: Result) -> list[Optional[dict]]:
+    """For each mass, its closed form's r and v at the final time and the size of the error, to
+    15 digits; None where it has none (no closed form, or it stopped holding)."""
+    traj = result.trajectory
+    exact = result.exact()
+    count = len(traj.m)
+    known = [exact is not None and bool(np.all(np.isfinite(exact[0][i]))) for i in range(count)]
+    if not any(known):
+        return [None] * count
+    r, v = traj.r[-1], velocity(traj.p[-1], traj.m)
     r_exact, v_exact = exact
     errors = np.array([[np.linalg.norm(r[i] - r_exact[i]), np.linalg.norm(v[i] - v_exact[i])] if known[i]
-                       else [0.0, 0.0] for i in range(len(known))])
-    r_exact, v_exact, errors = (clean_array(a).tolist() for a in (r_exact, v_exact, errors))   # 15 digits
+                       else [0.0, 0.0] for i in range(count)])
+    r_exact, v_exact, errors = (clean_array(a).tolist() for a in (r_exact, v_exact, errors))
     return [{"r": r_exact[i], "v": v_exact[i], "error": {"r": errors[i][0], "v": errors[i][1]}} if known[i] else None
-            for i in range(len(known))]
+            for i in range(count)]
 
 
 def _plain(value):
