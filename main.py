@@ -24,7 +24,6 @@ status 2; a run that blows up gives its reason (Δt and the stability limit) and
 """
 from __future__ import annotations
 
-import argparse
 import os
 import signal
 import sys
@@ -41,287 +40,13 @@ if __name__ == "__main__":  # run() takes over once everything is loaded
     signal.signal(signal.SIGINT, _stop_while_loading)
     signal.signal(signal.SIGTERM, _stop_while_loading)
 
+from cli.options import UsageError, build_parser, check_options, headless_run, lab_command  # noqa: E402
 from export import files  # noqa: E402
-from export.arrows import parse_arrows  # noqa: E402
-from reports import headless, terminal  # noqa: E402
-from physics.integrators import DEFAULT_INTEGRATOR, INTEGRATORS  # noqa: E402
+from reports import csv_file, headless, json_report, step_table, terminal, text  # noqa: E402
 from physics.simulate import BlowUpError  # noqa: E402
 from scenes import catalog  # noqa: E402
-from scenes import ConstantError, check_value  # noqa: E402
+from scenes import ConstantError  # noqa: E402
 from lab import LabError  # noqa: E402
-
-
-EXAMPLES = """examples:
-  python main.py --list
-  python main.py vertical --constants
-  python main.py vertical --headless                  the Simple Example: y = -1.73088 m at t = 0.2 s
-  python main.py damped --headless --set dt=0.001     the Middling Example with a smaller step
-  python main.py driven --headless --scenario 3 --json
-  python main.py vertical --headless --preset "Moon gravity"
-  python main.py damped --preset "critical damping"    no overshoot, in the browser
-  python main.py vertical --steps 2                   the first two updates, to check by hand
-  python main.py regimes --plot regimes.png           the page's damping figure
-  python main.py damped --data examples/data/vernier.csv --fit k,b --set dt=0.001
-                                                      fit k and b to a motion detector's run
-  python main.py damped --mystery spring.csv --seed 12   a mystery spring for class
-"""
-
-
-class UsageError(ValueError):
-    """Options that do not fit together, or a value out of range: a one-line message."""
-
-
-class Parser(argparse.ArgumentParser):
-    """argparse, but a bad option is one line on stderr (no usage block), with exit status 2."""
-
-    def error(self, message):
-        self.exit(2, f"error: {message} (see 'python main.py --help')\n")
-
-
-def build_parser() -> argparse.ArgumentParser:
-    parser = Parser(prog="main.py", formatter_class=argparse.RawDescriptionHelpFormatter,
-                    description="Iterative prediction of spring-mass systems: the momentum update\n"
-                    "p_f = p_i + F_net Δt, v_f = p_f / m, r_f = r_i + v_f Δt.",
-                    epilog=EXAMPLES)
-    parser.add_argument("scene", nargs="?", default=None,
-                        help=f"scene name (default {catalog.DEFAULT_SCENE}; see --list)")
-    parser.add_argument("--list", action="store_true", help="list the scenes and their scenarios")
-    parser.add_argument("--constants", action="store_true",
-                        help="print each constant with its value, unit and meaning")
-    parser.add_argument("--headless", action="store_true", help="run without a browser and print the result")
-    parser.add_argument("--set", action="append", default=[], metavar="NAME=VALUE", dest="assignments",
-                        help="change a constant, e.g. --set k=25 or --set r0=0,-1.2,0 (may repeat)")
-    parser.add_argument("--scenario", type=int, metavar="N", help="one of the scene's numbered scenarios")
-    parser.add_argument("--preset", metavar="NAME",
-                        help="one of the scene's presets, e.g. \"Moon gravity\" or \"critical damping\" "
-                             "(a unique beginning is enough; --constants lists them)")
-    parser.add_argument("--integrator", choices=list(INTEGRATORS), default=None,
-                        help=f"stepping method (default {DEFAULT_INTEGRATOR}, the page's update)")
-    parser.add_argument("--until", type=float, metavar="T",
-                        help="run until this time, s (default: the scene's question time)")
-    parser.add_argument("--json", action="store_true", help="with --headless: print one JSON object")
-    parser.add_argument("--csv", metavar="FILE", help="with --headless: write every step to a CSV file")
-    parser.add_argument("--steps", type=int, metavar="N",
-                        help="print the first N steps as a table (t, F_net, p_f, v_f, r_f); implies --headless")
-    parser.add_argument("--plot", metavar="FILE.png",
-                        help="save the position and energy graphs as a figure; implies --headless")
-    parser.add_argument("--vpython", metavar="FILE.py",
-                        help="write the scene as a standalone VPython program to hand out ('-': print it)")
-    parser.add_argument("--webvpython", metavar="FILE.py",
-                        help="the same program for Web VPython (glowscript.org, trinket)")
-    parser.add_argument("--overwrite", action="store_true",
-                        help="let --csv, --plot, --vpython or --webvpython replace an existing Python file "
-                             "this program did not write (its own files are never replaced)")
-    data = parser.add_argument_group("a real spring (measured data, the fit, a mystery spring)")
-    data.add_argument("--data", metavar="FILE",
-                      help="compare the model with a measured position against time (Tracker, Vernier, "
-                           "PASCO, Logger Pro or --csv file): fits a time and a position offset, prints "
-                           "the RMS residual; with --plot, draws both")
-    data.add_argument("--fit", metavar="NAMES", help="with --data: also fit these constants, e.g. k,b")
-    data.add_argument("--data-column", metavar="NAME",
-                      help="with --data: the position column to read (a unique part of its header, or "
-                           "its number from 1)")
-    data.add_argument("--run", type=int, metavar="N", help="with --data: read run N of several (default 1)")
-    data.add_argument("--coordinate", choices=("x", "y", "z"),
-                      help="with --data: the model's coordinate to compare (default: the scene's plotted one)")
-    data.add_argument("--mystery", metavar="FILE",
-                      help="write a measured-looking run of a spring with hidden k and b (Vernier CSV)")
-    data.add_argument("--seed", type=int, metavar="N", help="with --mystery or --show-answer: which mystery")
-    data.add_argument("--show-answer", action="store_true",
-                      help="with --seed N: print the hidden constants of that mystery spring")
-    parser.add_argument("--arrows", metavar="LIST",
-                        help="arrows on each mass, in the page and the program: any of p,F_net,forces,split "
-                             "(default: the scene's own; vertical, damped, driven and pendulum show p,F_net)")
-    parser.add_argument("--no-arrows", action="store_const", const="", dest="arrows",
-                        help="no arrows (the same as --arrows '')")
-    parser.add_argument("--no-browser", action="store_true",
-                        help="print the page's URL instead of opening a browser")
-    parser.add_argument("--port", type=int, metavar="P", help="port for the browser page")
-    parser.add_argument("--projector", action="store_true",
-                        help="open the page in projector mode: text of 22 px or more, thicker lines")
-    return parser
-
-
-def list_scenes() -> tuple[str, list[str]]:
-    """Each scene with its one-line description, and its numbered scenarios if it has any; and
-    what is wrong with each scene file that is not valid Python or was left out (read from the
-    files as text: no scene runs)."""
-    names = list(catalog.SCENE_NAMES)
-    width = max(len(name) for name in names)
-    lines, problems = [], list(catalog.SKIPPED.values())
-    for name in names:
-        try:
-            summary, labels = catalog.describe(name)
-        except ConstantError as problem:
-            problems.append(str(problem))
-            continue
-        lines.append(f"{name:<{width}}  {summary}")
-        for number, label in enumerate(labels, start=1):
-            lines.append(f"{'':<{width}}    --scenario {number}: {label}")
-    return "\n".join(lines), problems
-
-
-def presets_report(setup) -> str:
-    """The scene's presets with what each changes, for --constants: `critical damping   b = 2√(mk) = 40 kg/s`."""
-    from scenes import format_value
-
-    options = catalog.presets(setup)
-    if not options:
-        return "presets: none for this scene"
-    width = max(len(label) for label, _ in options)
-    lines = ["presets (--preset NAME):"]
-    named = dict(catalog.presets(setup, whole=False))   # a scenario's own changes; it sets its whole case
-    for label, overrides in options:
-        changes = []
-        for name, value in named[label].items():
-            unit = setup.constants[name].unit
-            if value is None:  # critical damping, from the m and k set now
-                value = catalog.resolve({**setup.values, name: None})[name]
-                changes.append(f"{name} = 2√(mk) = {format_value(value, unit)}")
-            else:
-                changes.append(f"{name} = {format_value(value, unit)}")
-        rest = "; m, k and the rest of its case from the scene file" if len(overrides) > len(named[label]) else ""
-        lines.append(f"  {label:<{width}}   {', '.join(changes)}{rest}")
-    return "\n".join(lines)
-
-
-BROWSER_ONLY = (("--port", "port"), ("--no-browser", "no_browser"), ("--projector", "projector"))
-RUN_OPTIONS = (("--headless", "headless"), ("--json", "json"), ("--csv", "csv"), ("--plot", "plot"),
-               ("--steps", "steps"), ("--until", "until"), ("--integrator", "integrator"))
-PROGRAM_OPTIONS = (("--vpython", "vpython"), ("--webvpython", "webvpython"))
-OUTPUT_FILES = (("--csv", "csv"), ("--plot", "plot"), *PROGRAM_OPTIONS)
-
-
-def headless_run(args) -> bool:
-    """Whether the command runs without the browser: --headless, and --steps and --plot, which imply it
-    (and --data, --mystery and --show-answer, which never open the page)."""
-    return (args.headless or args.steps is not None or args.plot is not None
-            or lab_command(args) is not None)
-
-
-LAB_OPTIONS = (("--fit", "fit"), ("--data-column", "data_column"), ("--run", "run"),
-               ("--coordinate", "coordinate"), ("--seed", "seed"))
-
-
-def lab_command(args) -> str | None:
-    """Which of --data, --mystery and --show-answer was given (None: none of them)."""
-    given = [flag for flag, attribute in (("--data", "data"), ("--mystery", "mystery"),
-                                          ("--show-answer", "show_answer")) if _given(args, attribute)]
-    return given[0] if given else None
-
-
-def check_lab_options(args) -> None:
-    """--data, --mystery and --show-answer: one at a time, with only the flags that do something."""
-    commands = [flag for flag, attribute in (("--data", "data"), ("--mystery", "mystery"),
-                                             ("--show-answer", "show_answer")) if _given(args, attribute)]
-    if len(commands) > 1:
-        raise UsageError(f"{commands[0]} and {commands[1]} are separate jobs; give one of them")
-    command = commands[0] if commands else None
-    for flag, attribute in (("--list", "list"), ("--constants", "constants")):
-        if command and _given(args, attribute):
-            raise UsageError(f"{flag} only lists, so {command} would do nothing; leave out one of them")
-    allowed = {"--data": {"fit", "data_column", "run", "coordinate"},
-               "--mystery": {"seed", "coordinate"}, "--show-answer": {"seed", "coordinate"}}.get(command, set())
-    for flag, attribute in LAB_OPTIONS:
-        if _given(args, attribute) and attribute not in allowed:
-            needs = "--data" if attribute != "seed" else "--mystery or --show-answer"
-            raise UsageError(f"{flag} needs {needs}" + (f" (it does nothing with {command})" if command else ""))
-    if command is None:
-        return
-    if command == "--show-answer" and args.seed is None:
-        raise UsageError("--show-answer needs --seed N, the seed the mystery file was written with")
-    if args.run is not None and args.run < 1:
-        raise UsageError(f"--run needs a whole number of 1 or more (got {args.run})")
-    others = [(flag, attribute) for flag, attribute in (("--csv", "csv"), ("--steps", "steps"),
-                                                        ("--until", "until"), *PROGRAM_OPTIONS, *BROWSER_ONLY)]
-    if command != "--data":
-        others += [("--json", "json"), ("--plot", "plot"), ("--integrator", "integrator")]
-    for flag, attribute in others:
-        if _given(args, attribute):
-            raise UsageError(f"{flag} does nothing with {command}; leave out one of them")
-
-
-def _given(args, attribute) -> bool:
-    value = getattr(args, attribute)
-    return value is not None and value is not False and value != []  # --port 0 is given
-
-
-def check_options(args) -> None:
-    """Combinations and ranges argparse cannot check by itself: each flag must do something."""
-    check_lab_options(args)
-    runs_headless = headless_run(args)
-    if args.list:
-        others = [flag for flag, attribute in (("--constants", "constants"), ("--set", "assignments"),
-                                               ("--scenario", "scenario"), ("--preset", "preset"),
-                                               *RUN_OPTIONS, *PROGRAM_OPTIONS, *BROWSER_ONLY,
-                                               ("--overwrite", "overwrite"))
-                  if _given(args, attribute)]
-        if args.scene is not None or others:
-            what = f"scene {args.scene!r}" if args.scene is not None else others[0]
-            raise UsageError(f"--list takes no scene or other option (got {what}); "
-                             f"use 'python main.py SCENE --constants' for one scene")
-        return
-    if args.constants:
-        for flag, attribute in (*RUN_OPTIONS, *PROGRAM_OPTIONS, *BROWSER_ONLY):
-            if _given(args, attribute):
-                raise UsageError(f"--constants only prints the constants, so {flag} would do nothing; "
-                                 f"leave out one of them")
-    if lab_command(args) is not None:
-        return
-    for flag, given in (("--json", args.json), ("--csv", args.csv is not None)):
-        if given and not args.headless:
-            raise UsageError(f"{flag} needs --headless (it describes a run without the browser)")
-    if runs_headless:
-        for flag, attribute in BROWSER_ONLY:
-            if _given(args, attribute):
-                raise UsageError(f"{flag} is for the browser page, and a headless run (--headless, "
-                                 f"--steps, --plot) has none; leave out one of them")
-    programs = [flag for flag, attribute in PROGRAM_OPTIONS if _given(args, attribute)]
-    if programs and not runs_headless:
-        for flag, attribute in BROWSER_ONLY:
-            if _given(args, attribute):
-                raise UsageError(f"{flag} is for the browser page, and {programs[0]} only writes a "
-                                 f"program (no page opens); leave out one of them")
-    if args.until is not None:
-        if not runs_headless and not programs:
-            raise UsageError("--until needs --headless, or --vpython or --webvpython (the program runs that "
-                             "long); the browser runs until you stop it")
-        try:
-            check_value("until", args.until, "s")  # the same range as the scenes' own `until`
-        except ConstantError as problem:
-            raise UsageError(f"--{problem}") from None
-        if args.steps is not None and args.csv is None and args.plot is None:
-            raise UsageError("--until does nothing with --steps alone (the table stops after N steps); "
-                             "leave out one of them")
-    if args.arrows is not None:
-        try:
-            args.arrows = parse_arrows(args.arrows)
-        except ValueError as problem:
-            raise UsageError(str(problem)) from None
-        if runs_headless and not programs:
-            raise UsageError("--arrows (and --no-arrows) is for the page and the program (--vpython, --webvpython), and a "
-                             "headless run draws none; leave it out")
-    if args.steps is not None and args.steps < 1:
-        raise UsageError(f"--steps needs a whole number of 1 or more (got {args.steps})")
-    if args.port is not None and not 1 <= args.port <= 65535:
-        raise UsageError(f"--port must be a whole number from 1 to 65535 (got {args.port}); "
-                         f"leave --port out for any free port")
-    outputs = [(flag, getattr(args, attribute)) for flag, attribute in OUTPUT_FILES
-               if getattr(args, attribute) not in (None, files.STDOUT)]
-    if args.overwrite and not outputs:
-        raise UsageError("--overwrite does nothing without a file to write (--csv, --plot, --vpython or "
-                         "--webvpython); leave it out")
-    for n, (flag, path) in enumerate(outputs):
-        for other, other_path in outputs[n + 1:]:
-            if files.same_file(path, other_path):
-                raise UsageError(f"{flag} and {other} both write {path!r}: give them different files")
-    printers = [f"{flag} -" for flag, attribute in PROGRAM_OPTIONS if getattr(args, attribute) == files.STDOUT]
-    if runs_headless:
-        printers.append("--json" if args.json else "--steps" if args.steps is not None else
-                        "--headless (its report)")
-    if len(printers) > 1:
-        raise UsageError(f"{printers[0]} and {printers[1]} would both print on standard output, one "
-                         f"after the other; write the program to a file instead")
 
 
 def build_model(args, setup):
@@ -340,14 +65,14 @@ def build_model(args, setup):
 def run_headless(args, setup, model) -> int:
     """The headless paths: the step table, the final state (text or JSON), the CSV file and the figure.
 
-    Output files are checked before anything runs, so a typo in a path costs no computing time.
+    The run's cost is checked (once: simulate is handed the plan) and output files are checked before
+    anything runs, so a typo in a path costs no computing time.
     """
     until = model.until if args.until is None else args.until
     every_step = args.csv is not None or args.plot is not None
-    engine = model.simulation(args.integrator)   # the one that runs: its cost is measured once
+    run = None
     if args.steps is None or every_step:  # a run too long is refused before anything prints
-        headless.step_count(engine, until=until, rows_per_step=model.state.count if every_step else 0,
-                            shortest=headless.shortest_until(setup))
+        run = headless.plan(setup, model=model, integrator=args.integrator, until=until, every_step=every_step)
     if args.csv is not None:
         files.check_writable(args.csv, what="CSV file", overwrite=args.overwrite)
     if args.plot is not None:
@@ -358,32 +83,35 @@ def run_headless(args, setup, model) -> int:
     warning = headless.stability_warning(model, model.methods(args.integrator))
     if warning:
         print(warning, file=sys.stderr)
-
     if args.steps is not None:
-        table = headless.step_table(setup, model=model, integrator=args.integrator, steps=args.steps)
-        if args.json:
-            rows = table.pop("rows")
-            print(headless.to_json(headless.with_warning({**table, "steps": args.steps, "step_table": rows}, warning)))
-        else:
-            print(headless.format_step_table(table))
-        if args.csv is None and args.plot is None:
+        print_step_table(args, setup, model, warning)
+        if run is None:
             return 0
-
-    result = headless.simulate(setup, model=model, integrator=args.integrator, until=until,
-                               every_step=every_step, engine=engine)
+    result = headless.simulate(setup, checked=run)
     note = headless.stop_note(model, until=until)
     if note:
         print(note, file=sys.stderr)
     if args.csv is not None:
-        headless.write_csv(result, args.csv)
+        csv_file.write_csv(result, args.csv)
     if args.plot is not None:
         from reports import plotting
 
         plotting.plot(result, args.plot)
     if args.steps is None:
-        print(headless.to_json(headless.with_warning(headless.as_json(result), warning)) if args.json
-              else headless.final_report(result))
+        print(json_report.to_json(json_report.with_warning(json_report.as_json(result), warning)) if args.json
+              else text.final_report(result))
     return 0
+
+
+def print_step_table(args, setup, model, warning) -> None:
+    """--steps N: the first N updates, as a table or (--json) as JSON with the run's warning."""
+    table = step_table.step_table(setup, model=model, integrator=args.integrator, steps=args.steps)
+    if args.json:
+        rows = table.pop("rows")
+        print(json_report.to_json(json_report.with_warning({**table, "steps": args.steps, "step_table": rows},
+                                                           warning)))
+    else:
+        print(step_table.format_step_table(table))
 
 
 def write_programs(args, setup, model, *, warn: bool) -> None:
@@ -430,7 +158,7 @@ def main(argv=None) -> int:
     try:
         check_options(args)
         if args.list:
-            listing, problems = list_scenes()
+            listing, problems = text.list_scenes()
             print(listing)
             for problem in problems:  # the other scenes are listed, and run, as usual
                 print(f"error: {problem}", file=sys.stderr)
@@ -439,8 +167,8 @@ def main(argv=None) -> int:
                                   assignments=args.assignments,
                                   scenario=args.scenario, preset=args.preset)
         if args.constants:
-            print(headless.constants_report(setup))
-            print(presets_report(setup))
+            print(text.constants_report(setup))
+            print(text.presets_report(setup))
             return 0
         model = build_model(args, setup)
         if lab_command(args) is not None:

@@ -22,6 +22,7 @@ from physics.forces import net_force
 from physics.integrators import INTEGRATORS
 from physics.state import velocity
 
+from .number_blocks import clean_array, float_block
 from .numbers import clean, clean_time
 
 SIGNIFICANT = 6
@@ -47,12 +48,18 @@ def vector(v, unit: str = "", digits: int = SIGNIFICANT) -> str:
 
 
 def cleaned(value):
-    """Every float in a JSON-ready structure to 15 significant digits (export/numbers.py's clean)."""
+    """Every float in a JSON-ready structure to 15 significant digits (export/numbers.py's clean).
+
+    A list of floats (or of lists of floats) is cleaned as one array (export/number_blocks.py).
+    """
     if isinstance(value, float):
         return clean(value) if math.isfinite(value) else value
     if isinstance(value, dict):
         return {key: cleaned(item) for key, item in value.items()}
     if isinstance(value, list):
+        block = float_block(value)
+        if block is not None:
+            return clean_array(block).tolist()
         return [cleaned(item) for item in value]
     return value
 

@@ -15,14 +15,15 @@ from export.files import OutputError, check_writable, write_text
 from export.numbers import clean
 from lab import compare, mystery, readers
 from export.palette import BLUE as DATA_COLOUR, VERMILION as MODEL_COLOUR
-from reports import headless, plotting
+from reports import plotting
+from reports.json_report import to_json
 
 
 def coordinate_of(args, setup) -> str:
     """The coordinate compared: --coordinate, else the one the scene plots (vertical: y; driven: x)."""
     if getattr(args, "coordinate", None):
         return args.coordinate
-    plotted = getattr(setup.module, "VIEW", {}).get("plot", "y")
+    plotted = setup.hooks.view.get("plot", "y")
     return plotted if plotted in compare.AXES else "y"
 
 
@@ -52,7 +53,7 @@ def run_data(args, setup) -> int:
     if args.plot is not None:
         plot(result, measured, args.plot, integrator=args.integrator)
     if args.json:
-        print(headless.to_json(as_json(result, measured, integrator=args.integrator)))
+        print(to_json(as_json(result, measured, integrator=args.integrator)))
     else:
         print(text(result, measured))
     return 0

@@ -165,17 +165,17 @@ def save_figure(fig, path: str) -> None:
 
 
 def plot(result, path: str) -> None:
-    """Write the run's position and energy graphs to `path` (a headless.Result)."""
+    """Write the run's position and energy graphs to `path` (a reports.headless.Result)."""
     plt = _pyplot()
     traj, model = result.trajectory, result.model
-    view = getattr(result.setup.module, "VIEW", {})
+    view = result.setup.hooks.view
     preferred = view.get("plot")
     axes_shown = moving_axes(traj.r, preferred if isinstance(preferred, str) else None)
     # closed forms drawn smooth, whatever Δt is: at least 50 points a second, 2,000 in all
     smooth_t = np.linspace(traj.t[0], traj.t[-1], max(2000, int(50 * (traj.t[-1] - traj.t[0]))))
     exact = model.exact_where_valid(smooth_t)   # NaN, a gap in the curve, where it does not hold
-    extra = getattr(result.setup.module, "extra_json", None)
-    curve = extra(result).get("resonance") if extra is not None else None
+    extra_json = result.setup.hooks.extra_json
+    curve = extra_json(result).get("resonance") if extra_json is not None else None
     fig, axes = plt.subplots(3 if curve else 2, 1, figsize=(8, 10 if curve else 7))
     ax_r, ax_e = axes[0], axes[1]
     ax_e.sharex(ax_r)

@@ -44,6 +44,7 @@ from pathlib import Path
 
 from physics.exact import critical_damping
 
+from ._hooks import SceneHooks
 from ._constants import (DECLARED, END_OF_CONSTANTS, ConstantError, Constant, check_value, parse_assignments,
                          read_constants, shown_path)
 from ._model import Model
@@ -342,12 +343,19 @@ def resolve(values: dict) -> dict:
 
 @dataclass(frozen=True)
 class Setup:
-    """A scene with its constants resolved: module, constants (with units), chosen values."""
+    """A scene with its constants resolved: module, constants (with units), chosen values, and
+    what the scene file gives beyond them (hooks: VIEW, measure_window, extra_json, ...; read
+    from the module once, scenes/_hooks.py)."""
 
     name: str
     module: object
     constants: dict[str, Constant]
     values: dict
+    hooks: SceneHooks = None
+
+    def __post_init__(self):
+        if self.hooks is None:
+            object.__setattr__(self, "hooks", SceneHooks.of(self.module))
 
     def build(self) -> Model:
         """The scene's model. A ValueError is the physics refusing these constants; anything else
@@ -360,7 +368,7 @@ class Setup:
             raise ConstantError(_broken_file_message(Path(self.module.__file__), problem)) from None
 
     def with_values(self, **changes) -> "Setup":
-        return Setup(self.name, self.module, self.constants, resolve({**self.values, **changes}))
+        return Setup(self.name, self.module, self.constants, resolve({**self.values, **changes}), self.hooks)
 
     def with_preset(self, name: str) -> "Setup":
         """These values with the preset's changes (critical damping from the m and k set now)."""

@@ -321,14 +321,15 @@ def test_a_file_size_limit_leaves_the_old_csv_untouched_and_no_partial_file(tmp_
 
 
 def test_json_with_a_value_that_has_none_is_null_with_a_note():
-    from reports import headless
+    from export.step_update import NO_VALUE, number
+    from reports.json_report import to_json
 
-    text = headless.to_json({"energy": {"K": float("inf"), "U": 1.0}, "r": [0.0, float("nan"), 0.0]})
+    text = to_json({"energy": {"K": float("inf"), "U": 1.0}, "r": [0.0, float("nan"), 0.0]})
     out = strict_json(text)
     assert out["energy"] == {"K": None, "U": 1.0} and out["r"] == [0.0, None, 0.0]
     assert any(note.startswith("energy.K: null") for note in out["notes"])
     assert any(note.startswith("r[1]: null") for note in out["notes"])
-    assert headless.number(float("inf")) == headless.number(float("nan")) == headless.NO_VALUE
+    assert number(float("inf")) == number(float("nan")) == NO_VALUE
 
 
 def test_every_scene_gives_strict_json_and_no_inf_or_nan(tmp_path, monkeypatch, capsys):
@@ -360,9 +361,9 @@ def test_the_readme_and_a_blow_up_agree():
 # ---- what needs a real process ----
 
 def test_the_last_resort_handler_turns_any_bug_into_one_line_and_status_1(tmp_path):
-    code = ("import sys, main\nfrom reports import headless\n"
+    code = ("import sys, main\nfrom reports import text\n"
             "def broken(result): raise KeyError('a bug nobody foresaw')\n"
-            "headless.final_report = broken\n"
+            "text.final_report = broken\n"
             "sys.exit(main.run(['vertical', '--headless']))\n")
     done = subprocess.run([sys.executable, "-c", code], cwd=ROOT, capture_output=True, text=True, timeout=60)
     assert done.returncode == 1

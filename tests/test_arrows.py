@@ -14,10 +14,9 @@ from hypothesis import given, settings, strategies as st
 
 import main
 from export.arrows import REACH, choose_scales, forces_each, largest, parse_arrows, round_scale, split
-from export.step_update import step_lines, update_force
+from export.step_update import step_lines, update_force, vector
 from physics.forces import net_force
 from physics.state import velocity
-from reports import headless
 from scenes import catalog
 
 
@@ -163,7 +162,7 @@ def test_other_methods_show_their_own_update(capsys, method):
     assert lines[0] == f"t = 0.1 s, {method}:" and f"F_net = " in text and row[2] + " N" in text
     assert f"= {row[3]} kg·m/s" in text and f"{row[5]} m" in text
     assert ("average force" in text) == (method != "euler")
-    assert headless.vector(after.r[0]) == row[5]
+    assert vector(after.r[0]) == row[5]
 
 
 def stand_in_with_arrows():

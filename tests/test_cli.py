@@ -412,21 +412,21 @@ def two_hanging_masses():
 
 
 def test_multi_mass_json_text_and_csv_name_each_body(tmp_path):
-    from reports import headless
+    from reports import csv_file, headless, json_report, text as reports_text
 
     result = headless.simulate(two_hanging_masses())
-    out = json.loads(json.dumps(headless.as_json(result)))
+    out = json.loads(json.dumps(json_report.as_json(result)))
     assert [body["label"] for body in out["bodies"]] == ["left", "right"]
     for body, x in zip(out["bodies"], (0.0, 1.0)):
         assert body["r"] == pytest.approx([x, -1.73088, 0], abs=1e-12)  # each is the Simple Example
         assert body["p"] == pytest.approx([0, -15.288, 0], abs=1e-12)
     assert len(out["r"]) == 2 and len(out["r"][0]) == 3
     assert out["pair_spacing_m"] == 1.0
-    text = headless.final_report(result)
+    text = reports_text.final_report(result)
     assert "left, m = 10 kg:" in text and "right, m = 10 kg:" in text
     assert text.count("r = < ") == 2
     path = tmp_path / "pair.csv"
-    headless.write_csv(result, str(path))
+    csv_file.write_csv(result, str(path))
     with open(path, newline="", encoding="utf-8") as handle:
         rows = list(csv.DictReader(handle))
     assert len(rows) == 2 * (out["steps"] + 1)

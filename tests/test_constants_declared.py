@@ -148,7 +148,7 @@ def one_error_line(done) -> str:
 def test_a_typo_in_one_scene_file_is_one_line_naming_it_and_the_other_scenes_still_run(tmp_path):
     """D-1: `b = 1.0.` in scenes/damped.py used to break every command with a SyntaxError traceback."""
     project = tmp_path / "project"
-    for part in ("physics", "scenes", "export", "lab", "reports", "browser"):
+    for part in ("physics", "scenes", "export", "lab", "reports", "browser", "cli"):
         shutil.copytree(ROOT / part, project / part, ignore=shutil.ignore_patterns("__pycache__"))
     shutil.copy(ROOT / "main.py", project)
     damped = project / "scenes" / "damped.py"

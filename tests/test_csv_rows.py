@@ -12,7 +12,7 @@ import pytest
 
 from export.csv_rows import csv_field, format_numbers
 from export.numbers import CSV_HEADER, ENERGY_KEYS, clean, clean_time
-from reports import headless
+from reports import csv_file, headless
 from scenes import configure
 
 
@@ -36,7 +36,7 @@ def reference_rows(result) -> str:
 
 def block_rows(result) -> tuple[str, int]:
     handle = io.StringIO(newline="")
-    rows = headless._write_rows(result, handle)
+    rows = csv_file._write_rows(result, handle)
     return handle.getvalue(), rows
 
 

@@ -13,7 +13,7 @@ import re
 import numpy as np
 import pytest
 
-from reports import headless
+from reports import csv_file, headless
 from physics.forces import Gravity, QuadraticDrag, Spring
 from physics.integrators import INTEGRATORS
 from physics.simulate import BlowUpError, Cancelled, Simulation, every, time_grid
@@ -147,7 +147,7 @@ def test_csv_rows_are_the_engines(tmp_path):
     setup = catalog.configure("vertical").with_values(dt=0.01, until=1.0)
     result = headless.simulate(setup, progress=None)
     path = tmp_path / "run.csv"
-    headless.write_csv(result, str(path))
+    csv_file.write_csv(result, str(path))
     rows = list(csv.DictReader(io.StringIO(path.read_text())))
     engine = engine_after("vertical", 100, dt=0.01)
     last = rows[-1]

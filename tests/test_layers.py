@@ -1,9 +1,10 @@
 """The layers point down, and a new scene is one file that every front end finds by itself.
 
-    main.py  →  browser/, reports/  →  lab/  →  export/  →  scenes/  →  physics/
+    main.py  →  browser/, reports/, cli/  →  lab/  →  export/  →  scenes/  →  physics/
 
 physics/ imports nothing of ours; scenes/ only physics; export/ scenes and physics; lab/ (measured
-data and the fit) export, scenes and physics; browser/ and reports/ everything below them and never each other (docs/architecture.md). The imports are read
+data and the fit) export, scenes and physics; browser/, reports/ and cli/ (the command line's
+options) everything below them and never each other (docs/architecture.md). The imports are read
 from the source with ast, so a test fails the moment an arrow points the wrong way.
 """
 import ast
@@ -18,7 +19,7 @@ from pathlib import Path
 import pytest
 
 ROOT = Path(__file__).resolve().parent.parent
-PACKAGES = ("physics", "scenes", "export", "lab", "browser", "reports")
+PACKAGES = ("physics", "scenes", "export", "lab", "browser", "reports", "cli")
 MAY_IMPORT = {
     "physics": set(),
     "scenes": {"physics"},
@@ -26,6 +27,7 @@ MAY_IMPORT = {
     "lab": {"physics", "scenes", "export"},
     "browser": {"physics", "scenes", "export", "lab"},
     "reports": {"physics", "scenes", "export", "lab"},
+    "cli": {"physics", "scenes", "export", "lab"},
 }
 
 

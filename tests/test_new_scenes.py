@@ -411,7 +411,7 @@ def test_a_row_judges_each_mass_against_its_own_anchor():
     # regimes with x0 = 3 m: equilibrium s_eq = L0 + mg/k = 1.6125 m below each anchor. The
     # under-damped mass (b = 0.8 kg/s) swings 3 m the other way, past its anchor; the critically
     # and over-damped ones never cross equilibrium, so they stay below theirs.
-    from reports import headless
+    from reports import headless, json_report, text as reports_text
 
     setup = configure("regimes").with_values(x0=3.0)
     model = setup.build()
@@ -425,14 +425,14 @@ def test_a_row_judges_each_mass_against_its_own_anchor():
     assert np.all(s_eq + x_before > 0)                             # and the first time there
 
     result = headless.simulate(setup, progress=None)
-    out = headless.as_json(result)
+    out = json_report.as_json(result)
     under, critical, over = out["bodies"]
     assert "exact" not in under and "anchor" in under["exact_note"]
     assert under["exact_valid_until"] == pytest.approx(each[0])
     for body in (critical, over):
         assert body["exact"]["error"]["r"] < 1e-3 and "exact_note" not in body
     assert "1 of 3 masses" in out["exact_note"] and out["exact_valid_until"] == pytest.approx(each[0])
-    text = headless.final_report(result).split("critically damped")
+    text = reports_text.final_report(result).split("critically damped")
     assert f"exact: none at t = 8 s: the closed form stops holding at t = {each[0]:.4g} s" in text[0]
     assert "|r − r_exact|" not in text[0] and text[1].count("|r − r_exact|") == 2
 

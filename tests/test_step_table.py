@@ -96,13 +96,13 @@ def test_json_table_obeys_the_momentum_update_for_other_methods(integrator):
 
 
 def test_multi_mass_table_has_a_row_per_body_per_step():
-    from reports import headless
+    from reports import step_table
     from tests.test_cli import two_hanging_masses
 
-    table = headless.step_table(two_hanging_masses(), steps=2)
+    table = step_table.step_table(two_hanging_masses(), steps=2)
     assert [(row["step"], row["body"]) for row in table["rows"]] == \
         [(1, "left"), (1, "right"), (2, "left"), (2, "right")]
-    text = headless.format_step_table(table)
+    text = step_table.format_step_table(table)
     header = next(line for line in text.splitlines() if line.startswith("step"))
     assert header.split()[:2] == ["step", "body"]
     assert sum(bool(re.match(r"^\d+\s+(left|right)\s", line)) for line in text.splitlines()) == 4
@@ -112,15 +112,15 @@ def test_multi_mass_table_has_a_row_per_body_per_step():
 
 
 def test_the_table_is_for_hand_checking_and_refuses_a_huge_one_in_one_line():
-    from reports import headless
+    from reports import step_table
     from scenes import ConstantError
     from tests.test_cli import two_hanging_masses
 
     # Two masses: each step is two rows, so MAX_TABLE_ROWS / 2 steps fit and one more does not.
-    steps = headless.MAX_TABLE_ROWS // 2
-    assert len(headless.step_table(two_hanging_masses(), steps=steps)["rows"]) == 2 * steps
+    steps = step_table.MAX_TABLE_ROWS // 2
+    assert len(step_table.step_table(two_hanging_masses(), steps=steps)["rows"]) == 2 * steps
     with pytest.raises(ConstantError) as refused:
-        headless.step_table(two_hanging_masses(), steps=steps + 1)
+        step_table.step_table(two_hanging_masses(), steps=steps + 1)
     message = str(refused.value)
     assert "\n" not in message and f"of 2 masses, {2 * (steps + 1):,} rows" in message
     assert "--csv" in message

@@ -1,0 +1,290 @@
+"""The command line's options: what each flag is (argparse) and which flags go together.
+
+Every flag must do something: a combination where one would be ignored (--json without
+--headless, --port with a headless run, two outputs on standard output, two flags writing one
+file) is a UsageError, one line naming both flags, before anything runs. main.py reads the
+options here, then hands over to reports/, export/ or browser/.
+"""
+from __future__ import annotations
+
+import argparse
+
+from export import files
+from export.arrows import parse_arrows
+from physics.integrators import DEFAULT_INTEGRATOR, INTEGRATORS
+from scenes import ConstantError, catalog, check_value
+
+
+EXAMPLES = """examples:
+  python main.py --list
+  python main.py vertical --constants
+  python main.py vertical --headless                  the Simple Example: y = -1.73088 m at t = 0.2 s
+  python main.py damped --headless --set dt=0.001     the Middling Example with a smaller step
+  python main.py driven --headless --scenario 3 --json
+  python main.py vertical --headless --preset "Moon gravity"
+  python main.py damped --preset "critical damping"    no overshoot, in the browser
+  python main.py vertical --steps 2                   the first two updates, to check by hand
+  python main.py regimes --plot regimes.png           the page's damping figure
+  python main.py damped --data examples/data/vernier.csv --fit k,b --set dt=0.001
+                                                      fit k and b to a motion detector's run
+  python main.py damped --mystery spring.csv --seed 12   a mystery spring for class
+"""
+
+
+class UsageError(ValueError):
+    """Options that do not fit together, or a value out of range: a one-line message."""
+
+
+class Parser(argparse.ArgumentParser):
+    """argparse, but a bad option is one line on stderr (no usage block), with exit status 2."""
+
+    def error(self, message):
+        self.exit(2, f"error: {message} (see 'python main.py --help')\n")
+
+
+def build_parser() -> argparse.ArgumentParser:
+    parser = Parser(prog="main.py", formatter_class=argparse.RawDescriptionHelpFormatter,
+                    description="Iterative prediction of spring-mass systems: the momentum update\n"
+                    "p_f = p_i + F_net Δt, v_f = p_f / m, r_f = r_i + v_f Δt.",
+                    epilog=EXAMPLES)
+    parser.add_argument("scene", nargs="?", default=None,
+                        help=f"scene name (default {catalog.DEFAULT_SCENE}; see --list)")
+    parser.add_argument("--list", action="store_true", help="list the scenes and their scenarios")
+    parser.add_argument("--constants", action="store_true",
+                        help="print each constant with its value, unit and meaning")
+    parser.add_argument("--headless", action="store_true", help="run without a browser and print the result")
+    parser.add_argument("--set", action="append", default=[], metavar="NAME=VALUE", dest="assignments",
+                        help="change a constant, e.g. --set k=25 or --set r0=0,-1.2,0 (may repeat)")
+    parser.add_argument("--scenario", type=int, metavar="N", help="one of the scene's numbered scenarios")
+    parser.add_argument("--preset", metavar="NAME",
+                        help="one of the scene's presets, e.g. \"Moon gravity\" or \"critical damping\" "
+                             "(a unique beginning is enough; --constants lists them)")
+    parser.add_argument("--integrator", choices=list(INTEGRATORS), default=None,
+                        help=f"stepping method (default {DEFAULT_INTEGRATOR}, the page's update)")
+    parser.add_argument("--until", type=float, metavar="T",
+                        help="run until this time, s (default: the scene's question time)")
+    parser.add_argument("--json", action="store_true", help="with --headless: print one JSON object")
+    parser.add_argument("--csv", metavar="FILE", help="with --headless: write every step to a CSV file")
+    parser.add_argument("--steps", type=int, metavar="N",
+                        help="print the first N steps as a table (t, F_net, p_f, v_f, r_f); implies --headless")
+    parser.add_argument("--plot", metavar="FILE.png",
+                        help="save the position and energy graphs as a figure; implies --headless")
+    parser.add_argument("--vpython", metavar="FILE.py",
+                        help="write the scene as a standalone VPython program to hand out ('-': print it)")
+    parser.add_argument("--webvpython", metavar="FILE.py",
+                        help="the same program for Web VPython (glowscript.org, trinket)")
+    parser.add_argument("--overwrite", action="store_true",
+                        help="let --csv, --plot, --vpython or --webvpython replace an existing Python file "
+                             "this program did not write (its own files are never replaced)")
+    _add_lab_options(parser)
+    parser.add_argument("--arrows", metavar="LIST",
+                        help="arrows on each mass, in the page and the program: any of p,F_net,forces,split "
+                             "(default: the scene's own; vertical, damped, driven and pendulum show p,F_net)")
+    parser.add_argument("--no-arrows", action="store_const", const="", dest="arrows",
+                        help="no arrows (the same as --arrows '')")
+    parser.add_argument("--no-browser", action="store_true",
+                        help="print the page's URL instead of opening a browser")
+    parser.add_argument("--port", type=int, metavar="P", help="port for the browser page")
+    parser.add_argument("--projector", action="store_true",
+                        help="open the page in projector mode: text of 22 px or more, thicker lines")
+    return parser
+
+
+def _add_lab_options(parser: argparse.ArgumentParser) -> None:
+    """--data, --fit, --mystery and the rest: a real spring (lab/)."""
+    data = parser.add_argument_group("a real spring (measured data, the fit, a mystery spring)")
+    data.add_argument("--data", metavar="FILE",
+                      help="compare the model with a measured position against time (Tracker, Vernier, "
+                           "PASCO, Logger Pro or --csv file): fits a time and a position offset, prints "
+                           "the RMS residual; with --plot, draws both")
+    data.add_argument("--fit", metavar="NAMES", help="with --data: also fit these constants, e.g. k,b")
+    data.add_argument("--data-column", metavar="NAME",
+                      help="with --data: the position column to read (a unique part of its header, or "
+                           "its number from 1)")
+    data.add_argument("--run", type=int, metavar="N", help="with --data: read run N of several (default 1)")
+    data.add_argument("--coordinate", choices=("x", "y", "z"),
+                      help="with --data: the model's coordinate to compare (default: the scene's plotted one)")
+    data.add_argument("--mystery", metavar="FILE",
+                      help="write a measured-looking run of a spring with hidden k and b (Vernier CSV)")
+    data.add_argument("--seed", type=int, metavar="N", help="with --mystery or --show-answer: which mystery")
+    data.add_argument("--show-answer", action="store_true",
+                      help="with --seed N: print the hidden constants of that mystery spring")
+
+
+BROWSER_ONLY = (("--port", "port"), ("--no-browser", "no_browser"), ("--projector", "projector"))
+RUN_OPTIONS = (("--headless", "headless"), ("--json", "json"), ("--csv", "csv"), ("--plot", "plot"),
+               ("--steps", "steps"), ("--until", "until"), ("--integrator", "integrator"))
+PROGRAM_OPTIONS = (("--vpython", "vpython"), ("--webvpython", "webvpython"))
+OUTPUT_FILES = (("--csv", "csv"), ("--plot", "plot"), *PROGRAM_OPTIONS)
+
+
+def headless_run(args) -> bool:
+    """Whether the command runs without the browser: --headless, and --steps and --plot, which imply it
+    (and --data, --mystery and --show-answer, which never open the page)."""
+    return (args.headless or args.steps is not None or args.plot is not None
+            or lab_command(args) is not None)
+
+
+LAB_OPTIONS = (("--fit", "fit"), ("--data-column", "data_column"), ("--run", "run"),
+               ("--coordinate", "coordinate"), ("--seed", "seed"))
+
+
+LAB_COMMANDS = (("--data", "data"), ("--mystery", "mystery"), ("--show-answer", "show_answer"))
+
+
+def _lab_commands(args) -> list[str]:
+    """The ones of --data, --mystery and --show-answer given."""
+    return [flag for flag, attribute in LAB_COMMANDS if _given(args, attribute)]
+
+
+def lab_command(args) -> str | None:
+    """Which of --data, --mystery and --show-answer was given (None: none of them)."""
+    given = _lab_commands(args)
+    return given[0] if given else None
+
+
+def check_lab_options(args) -> None:
+    """--data, --mystery and --show-answer: one at a time, with only the flags that do something."""
+    commands = _lab_commands(args)
+    if len(commands) > 1:
+        raise UsageError(f"{commands[0]} and {commands[1]} are separate jobs; give one of them")
+    command = commands[0] if commands else None
+    for flag, attribute in (("--list", "list"), ("--constants", "constants")):
+        if command and _given(args, attribute):
+            raise UsageError(f"{flag} only lists, so {command} would do nothing; leave out one of them")
+    allowed = {"--data": {"fit", "data_column", "run", "coordinate"},
+               "--mystery": {"seed", "coordinate"}, "--show-answer": {"seed", "coordinate"}}.get(command, set())
+    for flag, attribute in LAB_OPTIONS:
+        if _given(args, attribute) and attribute not in allowed:
+            needs = "--data" if attribute != "seed" else "--mystery or --show-answer"
+            raise UsageError(f"{flag} needs {needs}" + (f" (it does nothing with {command})" if command else ""))
+    if command is None:
+        return
+    if command == "--show-answer" and args.seed is None:
+        raise UsageError("--show-answer needs --seed N, the seed the mystery file was written with")
+    if args.run is not None and args.run < 1:
+        raise UsageError(f"--run needs a whole number of 1 or more (got {args.run})")
+    others = [(flag, attribute) for flag, attribute in (("--csv", "csv"), ("--steps", "steps"),
+                                                        ("--until", "until"), *PROGRAM_OPTIONS, *BROWSER_ONLY)]
+    if command != "--data":
+        others += [("--json", "json"), ("--plot", "plot"), ("--integrator", "integrator")]
+    for flag, attribute in others:
+        if _given(args, attribute):
+            raise UsageError(f"{flag} does nothing with {command}; leave out one of them")
+
+
+def _given(args, attribute) -> bool:
+    value = getattr(args, attribute)
+    return value is not None and value is not False and value != []  # --port 0 is given
+
+
+def check_options(args) -> None:
+    """Combinations and ranges argparse cannot check by itself: each flag must do something.
+
+    --arrows is parsed here: args.arrows becomes the tuple of arrows asked for.
+    """
+    check_lab_options(args)
+    if args.list:
+        _check_list(args)
+        return
+    if args.constants:
+        for flag, attribute in (*RUN_OPTIONS, *PROGRAM_OPTIONS, *BROWSER_ONLY):
+            if _given(args, attribute):
+                raise UsageError(f"--constants only prints the constants, so {flag} would do nothing; "
+                                 f"leave out one of them")
+    if lab_command(args) is not None:
+        return
+    _check_run(args)
+    _check_until(args)
+    _check_arrows(args)
+    if args.steps is not None and args.steps < 1:
+        raise UsageError(f"--steps needs a whole number of 1 or more (got {args.steps})")
+    if args.port is not None and not 1 <= args.port <= 65535:
+        raise UsageError(f"--port must be a whole number from 1 to 65535 (got {args.port}); "
+                         f"leave --port out for any free port")
+    _check_outputs(args)
+
+
+def _programs(args) -> list[str]:
+    """The program flags given (--vpython, --webvpython)."""
+    return [flag for flag, attribute in PROGRAM_OPTIONS if _given(args, attribute)]
+
+
+def _check_list(args) -> None:
+    """--list takes nothing else."""
+    others = [flag for flag, attribute in (("--constants", "constants"), ("--set", "assignments"),
+                                           ("--scenario", "scenario"), ("--preset", "preset"),
+                                           *RUN_OPTIONS, *PROGRAM_OPTIONS, *BROWSER_ONLY,
+                                           ("--overwrite", "overwrite"))
+              if _given(args, attribute)]
+    if args.scene is not None or others:
+        what = f"scene {args.scene!r}" if args.scene is not None else others[0]
+        raise UsageError(f"--list takes no scene or other option (got {what}); "
+                         f"use 'python main.py SCENE --constants' for one scene")
+
+
+def _check_run(args) -> None:
+    """--json and --csv need --headless; the browser's flags need the browser."""
+    for flag, given in (("--json", args.json), ("--csv", args.csv is not None)):
+        if given and not args.headless:
+            raise UsageError(f"{flag} needs --headless (it describes a run without the browser)")
+    if headless_run(args):
+        for flag, attribute in BROWSER_ONLY:
+            if _given(args, attribute):
+                raise UsageError(f"{flag} is for the browser page, and a headless run (--headless, "
+                                 f"--steps, --plot) has none; leave out one of them")
+    programs = _programs(args)
+    if programs and not headless_run(args):
+        for flag, attribute in BROWSER_ONLY:
+            if _given(args, attribute):
+                raise UsageError(f"{flag} is for the browser page, and {programs[0]} only writes a "
+                                 f"program (no page opens); leave out one of them")
+
+
+def _check_until(args) -> None:
+    """--until: only where a run ends, in the range of the scenes' own `until`."""
+    if args.until is None:
+        return
+    if not headless_run(args) and not _programs(args):
+        raise UsageError("--until needs --headless, or --vpython or --webvpython (the program runs that "
+                         "long); the browser runs until you stop it")
+    try:
+        check_value("until", args.until, "s")  # the same range as the scenes' own `until`
+    except ConstantError as problem:
+        raise UsageError(f"--{problem}") from None
+    if args.steps is not None and args.csv is None and args.plot is None:
+        raise UsageError("--until does nothing with --steps alone (the table stops after N steps); "
+                         "leave out one of them")
+
+
+def _check_arrows(args) -> None:
+    """--arrows LIST (or --no-arrows): parsed, and only where arrows are drawn."""
+    if args.arrows is None:
+        return
+    try:
+        args.arrows = parse_arrows(args.arrows)
+    except ValueError as problem:
+        raise UsageError(str(problem)) from None
+    if headless_run(args) and not _programs(args):
+        raise UsageError("--arrows (and --no-arrows) is for the page and the program (--vpython, --webvpython), and a "
+                         "headless run draws none; leave it out")
+
+
+def _check_outputs(args) -> None:
+    """--overwrite needs a file; no two flags write one file; at most one prints on standard output."""
+    outputs = [(flag, getattr(args, attribute)) for flag, attribute in OUTPUT_FILES
+               if getattr(args, attribute) not in (None, files.STDOUT)]
+    if args.overwrite and not outputs:
+        raise UsageError("--overwrite does nothing without a file to write (--csv, --plot, --vpython or "
+                         "--webvpython); leave it out")
+    for n, (flag, path) in enumerate(outputs):
+        for other, other_path in outputs[n + 1:]:
+            if files.same_file(path, other_path):
+                raise UsageError(f"{flag} and {other} both write {path!r}: give them different files")
+    printers = [f"{flag} -" for flag, attribute in PROGRAM_OPTIONS if getattr(args, attribute) == files.STDOUT]
+    if headless_run(args):
+        printers.append("--json" if args.json else "--steps" if args.steps is not None else
+                        "--headless (its report)")
+    if len(printers) > 1:
+        raise UsageError(f"{printers[0]} and {printers[1]} would both print on standard output, one "
+                         f"after the other; write the program to a file instead")

@@ -1,0 +1,176 @@
+"""A headless run as one JSON object (`--headless --json`), and the strict JSON every report prints.
+
+Numbers carry 15 significant digits (export/numbers.py's clean): −7.800000000000001 is −7.8. A
+number with no finite value is null, with a line in "notes" naming the place, so no reader takes
+an overflow for an answer. Both passes work on whole arrays of numbers at once, so a run of 10⁴
+masses writes its JSON in a fraction of a second.
+"""
+from __future__ import annotations
+
+import json
+from typing import Optional
+
+import numpy as np
+
+from physics.forces import net_force
+from physics.state import velocity
+from export.number_blocks import clean_array, float_block
+from export.numbers import clean_time
+from export.step_update import cleaned
+
+from .headless import Result
+
+UNITS = {"t": "s", "dt": "s", "r": "m", "v": "m/s", "p": "kg·m/s", "F_net": "N", "energy": "J",
+         "exact_valid_until": "s"}
+
+
+def integrator_json(methods):
+    """The JSON key "integrator": one name when every mass uses it, else the list of names per mass."""
+    return methods[0] if len(set(methods)) == 1 else list(methods)
+
+
+def with_warning(out: dict, warning: Optional[str]) -> dict:
+    """The JSON `out` with the run's warning (headless.stability_warning) added to its "notes" list."""
+    if warning:
+        out.setdefault("notes", []).append(warning.removeprefix("warning: "))
+    return out
+
+
+def as_json(result: Result) -> dict:
+    """One JSON-ready dict: t, steps, dt, integrator, r, p, v (single mass: 3 numbers each), and more.
+
+    Multi-mass scenes give r, p, v as one 3-vector per mass and add "bodies". "exact" holds the
+    closed form at the final time and the size of the error, where a closed form exists. Where
+    it stopped holding before the final time, "exact" is left out and "exact_note" says why, with
+    "exact_valid_until" the time it stopped holding, s (null, with a line in "notes", where it
+    holds to the end or there is no closed form). F_net is the net force at the final time. In a row each mass is judged on its own:
+    a body whose closed form stopped holding has no "exact" but its own "exact_note" and
+    "exact_valid_until", and the top-level ones count such masses and give the first time. A scene
+    may add its own keys with a function extra_json(result) -> dict (scenes/_hooks.py).
+    """
+    traj, model, setup = result.trajectory, result.model, result.setup
+    single = len(traj.m) == 1
+    state = _final_state(result)
+    pick = (lambda a: a[0]) if single else (lambda a: a)
+    out = {
+        "scene": setup.name,
+        "t": float(traj.t[-1]),
+        "steps": result.steps,
+        "dt": float(model.dt),
+        "integrator": integrator_json(result.methods),
+        **{key: pick(state[key]) for key in ("r", "p", "v", "F_net")},
+    }
+    entries = _exact_entries(result)
+    if single and entries[0] is not None:
+        out["exact"] = entries[0]
+    _exact_validity(out, result)
+    bodies = None if single else _bodies(result, state, entries)   # cleaned already, array by array
+    if bodies is not None:
+        out["bodies"] = bodies
+    if traj.energy is not None:
+        out["energy"] = {key: float(values[-1]) for key, values in traj.energy.items()}
+    out["constants"] = {name: {"value": _plain(setup.values[name]), "unit": c.unit, "meaning": c.meaning}
+                        for name, c in setup.constants.items()}
+    out["units"] = UNITS
+    if setup.hooks.extra_json is not None:  # a scene's own results, e.g. a resonance curve
+        out.update(setup.hooks.extra_json(result))
+    out = {key: value if value is bodies else cleaned(value) for key, value in out.items()}
+    out["t"] = clean_time(traj.t[-1], model.dt)
+    return out
+
+
+def _final_state(result: Result) -> dict:
+    """r, p, v and F_net at the final time, each a list with one 3-vector per mass, to 15 digits."""
+    traj = result.trajectory
+    r, p, m = traj.r[-1], traj.p[-1], traj.m
+    v = velocity(p, m)
+    F_net = net_force(result.model.forces, traj.t[-1], r, v, m)   # at the final time, as --headless prints it
+    return {key: clean_array(value).tolist() for key, value in (("r", r), ("p", p), ("v", v), ("F_net", F_net))}
+
+
+def _exact_validity(out: dict, result: Result) -> None:
+    """"exact_note" and "exact_valid_until" where the closed form stopped holding, else a null
+    "exact_valid_until" (every key of "units" is present) with a note saying why."""
+    if result.exact_note():
+        out["exact_note"] = result.exact_note()
+        out["exact_valid_until"] = result.exact_valid_until()
+    else:
+        out["exact_valid_until"] = None
+        out.setdefault("notes", []).append(
+            "exact_valid_until: null, " + ("the closed form holds up to the final time"
+                                           if result.model.exact is not None else "this scene has no closed form"))
+
+
+def _bodies(result: Result, state: dict, entries: list) -> list[dict]:
+    """One entry per mass of a row: its label, m, r, p, v, F_net, and its exact answer or why not."""
+    m = clean_array(result.trajectory.m).tolist()
+    notes, valid_until = result.exact_notes(), clean_array(result.exact_valid_until_each()).tolist()
+    return [{"label": label, "m": m[i], **{key: state[key][i] for key in ("r", "p", "v", "F_net")},
+             **({"exact": entries[i]} if entries[i] is not None else {}),
+             **({"exact_note": notes[i], "exact_valid_until": valid_until[i]} if notes[i] else {})}
+            for i, label in enumerate(result.labels)]
+
+
+def _exact_entries(result: Result) -> list[Optional[dict]]:
+    """For each mass, its closed form's r and v at the final time and the size of the error, to
+    15 digits; None where it has none (no closed form, or it stopped holding)."""
+    traj = result.trajectory
+    exact = result.exact()
+    count = len(traj.m)
+    known = [exact is not None and bool(np.all(np.isfinite(exact[0][i]))) for i in range(count)]
+    if not any(known):
+        return [None] * count
+    r, v = traj.r[-1], velocity(traj.p[-1], traj.m)
+    r_exact, v_exact = exact
+    errors = np.array([[np.linalg.norm(r[i] - r_exact[i]), np.linalg.norm(v[i] - v_exact[i])] if known[i]
+                       else [0.0, 0.0] for i in range(count)])
+    r_exact, v_exact, errors = (clean_array(a).tolist() for a in (r_exact, v_exact, errors))
+    return [{"r": r_exact[i], "v": v_exact[i], "error": {"r": errors[i][0], "v": errors[i][1]}} if known[i] else None
+            for i in range(count)]
+
+
+def _plain(value):
+    """A constant's value as JSON: numbers, lists for vectors, None for derived ones."""
+    if isinstance(value, (tuple, list, np.ndarray)):
+        return [float(x) for x in value]
+    if isinstance(value, (int, float, np.floating)):
+        return float(value)
+    return value
+
+
+def to_json(out: dict) -> str:
+    """`out` as strict JSON (no NaN or Infinity, which strict parsers reject).
+
+    A number with no finite value (an overflow, an undefined quantity) becomes null, and a
+    "notes" list names each such place and why, so no reader mistakes it for an answer. Only
+    then is `out` walked (a long list of numbers as one array): most runs have no such number.
+    """
+    try:
+        return json.dumps(out, ensure_ascii=False, allow_nan=False)
+    except ValueError:   # a number with no finite value: find each one
+        pass
+    places = []
+    clean = _finite(out, "", places)
+    if places:
+        clean.setdefault("notes", []).extend(
+            f"{place}: null, no finite value (it overflowed or is undefined at this time)" for place in places)
+    return json.dumps(clean, ensure_ascii=False, allow_nan=False)
+
+
+def _finite(value, place: str, places: list):
+    """`value` with each non-finite float replaced by None, and its place added to `places`."""
+    if isinstance(value, dict):
+        return {key: _finite(item, f"{place}.{key}" if place else key, places) for key, item in value.items()}
+    if isinstance(value, (list, tuple)):
+        block = float_block(value)
+        if block is not None:
+            bad = ~np.isfinite(block)
+            if not bad.any():
+                return value if isinstance(value, list) else list(value)
+            places += [place + "".join(f"[{n}]" for n in index) for index in zip(*np.nonzero(bad))]
+            return np.where(bad, None, block.astype(object)).tolist()
+        return [_finite(item, f"{place}[{n}]", places) for n, item in enumerate(value)]
+    if isinstance(value, float) and not np.isfinite(value):
+        places.append(place)
+        return None
+    return value

@@ -1,0 +1,70 @@
+"""What a scene file may give beyond its constants and build, read once when the scene is configured.
+
+Every scene has VIEW (what to draw, scenes/_view.py). A scene may also define these functions,
+which the front ends call instead of probing the module for them:
+
+    measure_window(values) -> (start, end)   s: the window a headless run records and measures in
+                                             (resonance: the steady-state amplitudes), given the
+                                             scene's constants; a run must reach `end`
+    extra_json(result) -> dict               the scene's own keys in `--headless --json`, from the
+                                             finished run (reports' Result: setup, model, trajectory)
+    extra_text(result) -> str                the scene's own lines at the end of `--headless`
+    view_graph(setup) -> dict                the page's own graph (browser/graphs.py)
+
+:class:`SceneHooks` holds them, None where the scene defines none; ``Setup.hooks``
+(scenes/_catalog.py) is filled in from the module once. A name that is there but not a function
+(or, for VIEW, not a dict) is an error naming the scene file.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Any, Callable, Mapping, Optional, Protocol
+
+from ._constants import ConstantError, shown_path
+
+
+class MeasureWindow(Protocol):
+    def __call__(self, values: Mapping[str, Any]) -> tuple[float, float]: ...
+
+
+class ExtraJson(Protocol):
+    def __call__(self, result: Any) -> dict: ...
+
+
+class ExtraText(Protocol):
+    def __call__(self, result: Any) -> str: ...
+
+
+HOOKS = ("measure_window", "extra_json", "extra_text", "view_graph")
+
+
+@dataclass(frozen=True)
+class SceneHooks:
+    """The scene's VIEW (as its file gives it) and its optional functions, None where it has none."""
+
+    view: Mapping[str, Any] = field(default_factory=dict)
+    measure_window: Optional[MeasureWindow] = None
+    extra_json: Optional[ExtraJson] = None
+    extra_text: Optional[ExtraText] = None
+    view_graph: Optional[Callable[[Any], dict]] = None
+
+    @classmethod
+    def of(cls, module) -> "SceneHooks":
+        """The hooks `module` defines: raises ConstantError for one that is not a function."""
+        where = (shown_path(module.__file__) if getattr(module, "__file__", None)
+                 else getattr(module, "__name__", "the scene file"))
+        view = vars(module).get("VIEW", {})
+        if not isinstance(view, Mapping):
+            raise ConstantError(f"{where}: VIEW must be a dict, like VIEW = {{\"plot\": \"y\"}}")
+        found = {name: vars(module).get(name) for name in HOOKS}
+        for name, hook in found.items():
+            if hook is not None and not callable(hook):
+                raise ConstantError(f"{where}: {name} must be a function (see scenes/_hooks.py)")
+        return cls(view=view, **found)
+
+    def measuring(self, values: Mapping[str, Any]) -> Optional[tuple[float, float]]:
+        """The measuring window (start, end), s, for these constants; None if the scene has none."""
+        if self.measure_window is None:
+            return None
+        start, end = self.measure_window(values)
+        return float(start), float(end)
