@@ -227,7 +227,8 @@ class _Case:
 
     def printed(self) -> list[str]:
         """print() of t, r and p, rounded as the command line writes them: `at t = 0.2 s: r = < 0,
-        -1.7301, 0 > m, p = < 0, -15.21, 0 > kg·m/s` (str.format, which Web VPython has too)."""
+        -1.7301, 0 > m, p = < 0, -15.21, 0 > kg·m/s` (str.format, which Web VPython has too, though
+        its own 'g' truncates the sixth digit of some numbers below 0.1: tests/test_handout.py)."""
         i, g = self.index, "{:.%dg}" % SIGNIFICANT
         text = f'"at t = {g} s: r = < {g}, {g}, {g} > m, p = < {g}, {g}, {g} > kg·m/s"'
         values = f"t, pos{i}.x, pos{i}.y, pos{i}.z, p{i}.x, p{i}.y, p{i}.z"

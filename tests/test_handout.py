@@ -7,6 +7,7 @@ from __future__ import annotations
 
 import math
 import re
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -154,3 +155,33 @@ def test_each_mass_is_answered_once_with_rounded_labels(stand_in, tmp_path):  # 
     assert len(printed) == catalog.configure("regimes").build().state.count
     assert all(line.partition(": ")[2].startswith("at t = 8 s: r = < ") for line in printed), printed
     assert not any(re.search(r"\d{10}", line) for line in printed), printed
+
+
+def test_web_vpythons_own_format_writes_the_homework_answers_alike(tmp_path):
+    """Web VPython runs str.format with its own code (String.prototype.format in glow.min.js, which
+    vpython ships): run under node, it writes vertical's and damped's answers digit for digit as
+    Python does. (It truncates rather than rounds the last digit of some numbers below 0.1, so a
+    Web VPython answer can differ from --headless there in the sixth digit.)"""
+    import importlib.util
+    import json
+    import shutil
+    import subprocess
+
+    node = shutil.which("node")
+    glow = Path(importlib.util.find_spec("vpython").submodule_search_locations[0]) / "vpython_libraries" / "glow.min.js"
+    if node is None or not glow.exists():
+        pytest.skip("needs node and vpython's glow.min.js")
+    source = glow.read_text(encoding="utf-8")
+    start = source.index("String.prototype.format=function")
+    end = source.index("function parse_html", start)
+    script = tmp_path / "format.js"
+    script.write_text("var pow = Math.pow;\n" + source[start:end] + "\nvar v = JSON.parse(process.argv[2]);\n"
+                      "console.log(JSON.stringify(v.map(function (x) { return '{:.6g}'.format(x); })));\n",
+                      encoding="utf-8")
+    values = []
+    for scene in ("vertical", "damped"):
+        answer = json.loads(main_py(scene, "--headless", "--json").stdout)
+        values += [answer["t"], *answer["r"], *answer["p"]]
+    done = subprocess.run([node, str(script), json.dumps(values)], capture_output=True, text=True, timeout=60)
+    assert done.returncode == 0, done.stderr
+    assert json.loads(done.stdout) == ["{:.6g}".format(x) for x in values]
