@@ -71,7 +71,7 @@ WEB_FIRST_LINE = "Web VPython 3.2"
 # vpython 7.6.5's own server listens on every network interface and serves any file on the disk to
 # a crafted request: the two lines after the import keep it on this computer (issue 20).
 IMPORTS = ["from vpython import *",
-           "import socket  # vpython's server would listen on every network: keep it on this computer only",
+           "import socket  # vpython's server would show files of this computer to the whole network: keep it here (Web VPython has none)",
            "socket.socket.bind = lambda s, a, bind=socket.socket.bind: bind(s, ('127.0.0.1', *a[1:]) if a[0] in ('', '0.0.0.0') else a)"]
 
 
