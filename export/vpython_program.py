@@ -7,7 +7,7 @@ teacher can set a case up and hand it to the class to read and edit:
 
     m = 10                   # kg: mass of the block
     ...
-    while t < until:
+    while t < t_end:
         rate(1/dt)
         L = pos - anchor
         Fspring = k*(L0/mag(L) - 1)*L         # Hooke's law: F = −k (|L| − L0) L̂
@@ -22,9 +22,12 @@ works it out (Hooke's law as k (L0/|L| − 1) L, drag as −½ C A ρ |v| v), th
 scene's order, and the integrator's update is the one in physics/integrators.py, in the same
 order of operations (euler-cromer works out v_i only where a force needs it; verlet's extra half
 kick for velocity-dependent forces; rk4's (k1 + 2 k2 + 2 k3 + k4) Δt/6). Time is n·Δt from a
-whole number of steps, and the loop stops after the same number of steps as a headless run
-(physics.simulate.steps_to_reach), so the program's final position and momentum are those of
-`python main.py SCENE --headless` to round-off (tests/test_export.py checks this for every scene).
+whole number of steps. The program runs as long as the page's graph shows (VIEW's window, or
+--until; :func:`run_end`) and, on the way, prints its answer at the step at which a headless run
+to the scene's question time `until` stops (physics.simulate.steps_to_reach), rounded as the
+command line writes it: `at t = 0.2 s: r = < 0, -1.7301, 0 > m, ...` is `python main.py SCENE
+--headless`'s answer, and its state at t_end is a headless run's to t_end, to round-off
+(tests/test_export.py checks both for every scene).
 
 The numbers come from the scene's model (the force objects and the initial state), written with
 repr, so the program starts from exactly the same values. Constants are named as in the scene
