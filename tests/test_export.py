@@ -251,6 +251,15 @@ def check_answer(printed, answers, expected):
         assert f"at t = {number(expected['t'])} s: r = {vector(r, 'm')}, p = {vector(p, 'kg·m/s')}" in line, line
 
 
+def run_to_end(path: Path, stand_in: Path) -> list[tuple[float, np.ndarray, np.ndarray]]:
+    """Run a written program under the stand-in vpython; its own t, pos and p when it ended, to every
+    digit, as (t, r, p), one per mass (its printed answer is rounded as the command line's)."""
+    drawn = []
+    run_program(path, stand_in, drawn)
+    t, r, p = final_state(drawn)
+    return [(t, r_i, p_i) for r_i, p_i in zip(r, p)]
+
+
 def final_state(drawn):
     """The program's own t, and each mass's pos and p, when it ended, to every digit (the stand-in's)."""
     state = next(shown for shown in drawn if shown["kind"] == "state")
