@@ -123,7 +123,7 @@ def write_programs(args, setup, model, *, warn: bool) -> None:
     """
     import export
 
-    if args.until is not None:   # the program runs that long (the scene's `until` constant)
+    if args.until is not None and args.until < model.until:   # the question time cannot be after the end
         setup = setup.with_values(until=float(args.until))
     if warn:
         try:
@@ -134,7 +134,8 @@ def write_programs(args, setup, model, *, warn: bool) -> None:
             print(warning, file=sys.stderr)
 
     try:
-        texts = [(path, export.program(setup, integrator=args.integrator, web=web, arrows=args.arrows))
+        texts = [(path, export.program(setup, integrator=args.integrator, web=web, arrows=args.arrows,
+                                       end=args.until))
                  for path, web in ((args.vpython, False), (args.webvpython, True)) if path is not None]
         for path, _ in texts:
             if path != "-":

@@ -1,14 +1,62 @@
-"""The command that shows a program's case on the simulator's page, for the program's header.
+"""The program's header: the scene's description with this case's numbers, and the command that
+shows the case on the simulator's page.
 
 `python main.py driven --preset "scenario 4" --integrator verlet`: a preset where one gives some
 of the changed constants, and --set NAME=VALUE for the others, checked by configuring the scene
 again from exactly these options.
+
+The description is the first line of the scene's docstring, written for the scene as shipped: "a
+10 kg mass hangs on a 40 N/m spring". Where this case changed a constant whose shipped value the
+line gives with its unit ("10 kg" for m), the line gives this case's value instead ("17.4 kg").
 """
 from __future__ import annotations
 
-from scenes import ConstantError, catalog
+import math
+import re
+
+from scenes import ConstantError, catalog, summary
 
 from .lines import number
+from .step_update import number as rounded
+
+DESCRIBED_DIGITS = 4        # significant digits of a changed value in the description: b = 52.76 kg/s
+STALE_NOTE = "# (Some numbers in that line are the scene's as shipped; this case's constants are below.)"
+
+
+def description(setup) -> list[str]:
+    """The header's description: `# vertical: ... a 17.4 kg mass ...`, with this case's values where
+    the line names a changed constant's shipped value with its unit; and STALE_NOTE below it where
+    a number of a changed constant's unit is left that no constant accounts for ("released at
+    1.5 m" when r0 changed)."""
+    text = summary(setup.module)
+    shipped = catalog.configure(setup.name).values
+    changed = {name for name, value in setup.values.items() if value != shipped.get(name)}
+    stale = False
+    for match in reversed(list(_quantities(text, setup))):
+        value, unit = float(match["value"]), match["unit"]
+        named = [name for name, constant in setup.constants.items() if constant.unit == unit
+                 and _scalar(shipped.get(name)) and math.isclose(float(shipped[name]), value, rel_tol=1e-12)]
+        if len(named) == 1 and named[0] in changed:
+            new = f"{rounded(setup.values[named[0]], DESCRIBED_DIGITS)} {unit}"
+            text = text[:match.start()] + new + text[match.end():]
+        elif len(named) != 1 and any(setup.constants[name].unit == unit for name in changed):
+            stale = True   # a number no single constant accounts for, of a unit whose constants changed
+    return [f"# {setup.name}: {text}", *([STALE_NOTE] if stale else [])]
+
+
+def _quantities(text: str, setup):
+    """The numbers with a unit of the scene's constants in `text`: "10 kg", "40 N/m", "1.5 m"."""
+    units = sorted({constant.unit for constant in setup.constants.values() if constant.unit not in ("", "1")},
+                   key=len, reverse=True)
+    if not units:
+        return iter(())
+    pattern = (r"(?<![\w.])(?P<value>-?\d+(?:\.\d+)?(?:e[-+]?\d+)?) (?P<unit>"
+               + "|".join(re.escape(unit) for unit in units) + r")(?![\w/²³·])")
+    return re.finditer(pattern, text)
+
+
+def _scalar(value) -> bool:
+    return isinstance(value, (int, float)) and not isinstance(value, bool)
 
 
 def command(setup, model, integrator) -> str:

@@ -12,7 +12,7 @@ import re
 
 import numpy as np
 
-from scenes import DECLARED
+from scenes import DECLARED, catalog
 
 from .lines import CONSTANT_COLUMN, ProgramError, commented, number, unit_and_meaning, vector
 
@@ -28,9 +28,15 @@ class ProgramConstants:
         self.setup, self.count = setup, count
         self.single: dict[str, object] = {}       # name -> a float, or a 3-tuple for a vector
         self.per_mass: dict[str, np.ndarray] = {}  # name -> (count,) or (count, 3)
+        self.meanings: dict[str, str] = {}         # name -> what the program means by it, where the scene's
+                                                   # meaning does not fit (t_end, until beside it)
 
-    def add(self, name: str, value, *, is_vector: bool = False) -> None:
-        """Record a value of the model: one for all the masses, or one per mass where they differ."""
+    def add(self, name: str, value, *, is_vector: bool = False, meaning: str | None = None) -> None:
+        """Record a value of the model: one for all the masses, or one per mass where they differ;
+        `meaning` (unit and meaning, `s: when the program stops`) replaces the scene's and DECLARED's
+        comment."""
+        if meaning is not None:
+            self.meanings[name] = meaning
         array = np.asarray(value, dtype=float)
         rows = np.broadcast_to(array.reshape(-1, 3) if is_vector else array.reshape(-1),
                                (self.count, 3) if is_vector else (self.count,))
@@ -62,12 +68,14 @@ class ProgramConstants:
     def comment(self, name: str, *, per_mass: bool = False) -> str:
         """`N/m: spring constant`: the scene's comment where the program's value is the scene's."""
         constant = self.setup.constants.get(name)
+        unit = DECLARED[name].unit if name in DECLARED else ""
+        if name in self.meanings:
+            return self.meanings[name]
         same = (constant is not None and not per_mass and self.setup.values.get(name) is not None
                 and np.array_equal(np.asarray(self.setup.values[name], dtype=float),
                                    np.asarray(self.single.get(name, self.setup.values[name]), dtype=float)))
         meaning = _without_none(constant.meaning) if same else (DECLARED[name].meaning if name in DECLARED else "") or name
-        return unit_and_meaning(DECLARED[name].unit if name in DECLARED else "",
-                                meaning + (", one per mass" if per_mass else ""))
+        return unit_and_meaning(unit, meaning + (", one per mass" if per_mass else ""))
 
 
 def _without_none(meaning: str) -> str:
@@ -86,6 +94,24 @@ def constants_block(setup, constants: ProgramConstants, used: set[str]) -> list[
     values.update({name: setup.values[name] for name in used if name not in values})
     scene = [name for name in setup.constants if name not in ("dt", "until")]
     order = [name for name in scene if name in values] + [name for name in values if name not in scene]
-    order = [name for name in order if name not in ("dt", "until")] + [name for name in ("dt", "until") if name in values]
-    return [commented(f"{name} = {_literal(values[name])}", constants.comment(name), width=CONSTANT_COLUMN)
+    order = [name for name in order if name not in ("dt", "until", "t_end")] + \
+        [name for name in ("dt", "until", "t_end") if name in values]
+    critical = _critical(setup, constants, order)
+    return [commented(f"b = {CRITICAL_B}", CRITICAL_COMMENT, width=CONSTANT_COLUMN) if name == "b" and critical
+            else commented(f"{name} = {_literal(values[name])}", constants.comment(name), width=CONSTANT_COLUMN)
             for name in order]
+
+
+CRITICAL_B = "2*sqrt(m*k)"   # the preset's b = None (scenes/_catalog.py resolve), in the program's arithmetic
+CRITICAL_COMMENT = unit_and_meaning(DECLARED["b"].unit, "critical damping, b = 2√(mk)")
+
+
+def _critical(setup, constants: ProgramConstants, order: list[str]) -> bool:
+    """Whether the program's b is critical damping for its m and k, as the preset works it out
+    (scenes/_catalog.py resolve), with m and k named above it: then it is written `b = 2*sqrt(m*k)`,
+    the same float (a correctly rounded square root, doubled), not 52.76362383309168."""
+    if not all(name in constants.single for name in ("b", "m", "k")) or \
+            not order.index("m") < order.index("b") > order.index("k"):
+        return False
+    single = {name: constants.single[name] for name in ("m", "k")}
+    return catalog.resolve({**single, "b": None})["b"] == constants.single["b"] != 0

@@ -18,6 +18,7 @@ from scenes import DECLARED
 
 from .lines import COMMENT, CONSTANT_COLUMN, commented, listed, number, vector
 from .numbers import clean
+from .step_update import SIGNIFICANT
 
 LABELLED = 6               # more masses than this: no labels on their curves (as the page's legend)
 
@@ -100,6 +101,6 @@ def which_mass(model, constants) -> str:
     for k, name in enumerate(shown):
         declared = DECLARED.get(name)
         unit = f" {declared.unit}" if declared and declared.unit != "1" else ""
-        parts.append(f'"{(declared.symbol if declared else "") or name} =", {constants.name(name)}, '
-                     f'"{unit.strip()}{":" if k == len(shown) - 1 else ","}"')
+        parts.append(f'"{(declared.symbol if declared else "") or name} = {{:.{SIGNIFICANT}g}}{unit}'
+                     f'{":" if k == len(shown) - 1 else ","}".format({constants.name(name)})')
     return ", ".join(parts)

@@ -7,7 +7,7 @@ teacher can set a case up and hand it to the class to read and edit:
 
     m = 10                   # kg: mass of the block
     ...
-    while t < until:
+    while t < t_end:
         rate(1/dt)
         L = pos - anchor
         Fspring = k*(L0/mag(L) - 1)*L         # Hooke's law: F = −k (|L| − L0) L̂
@@ -22,9 +22,12 @@ works it out (Hooke's law as k (L0/|L| − 1) L, drag as −½ C A ρ |v| v), th
 scene's order, and the integrator's update is the one in physics/integrators.py, in the same
 order of operations (euler-cromer works out v_i only where a force needs it; verlet's extra half
 kick for velocity-dependent forces; rk4's (k1 + 2 k2 + 2 k3 + k4) Δt/6). Time is n·Δt from a
-whole number of steps, and the loop stops after the same number of steps as a headless run
-(physics.simulate.steps_to_reach), so the program's final position and momentum are those of
-`python main.py SCENE --headless` to round-off (tests/test_export.py checks this for every scene).
+whole number of steps. The program runs as long as the page's graph shows (VIEW's window, or
+--until; :func:`run_end`) and, on the way, prints its answer at the step at which a headless run
+to the scene's question time `until` stops (physics.simulate.steps_to_reach), rounded as the
+command line writes it: `at t = 0.2 s: r = < 0, -1.7301, 0 > m, ...` is `python main.py SCENE
+--headless`'s answer, and its state at t_end is a headless run's to t_end, to round-off
+(tests/test_export.py checks both for every scene).
 
 The numbers come from the scene's model (the force objects and the initial state), written with
 repr, so the program starts from exactly the same values. Constants are named as in the scene
@@ -53,14 +56,15 @@ import numpy as np
 
 from physics.integrators import INTEGRATORS
 from physics.simulate import steps_to_reach
-from scenes import DECLARED, catalog, summary
+from scenes import DECLARED
 from scenes._view import DEFAULT_VIEW, MAX_DRAWN_MASSES
 
 from . import program_arrows
 from .exact_curve import exact_lines
 from .lines import ProgramError, align_comments, commented, vector
 from .palette import EXACT_COLOUR, EXACT_WIDTH
-from .program_command import command
+from .step_update import SIGNIFICANT
+from .program_command import command, description
 from .program_constants import ProgramConstants, constants_block
 from .program_forces import ProgramForces, update
 from .program_masses import mass_count, masses, which_mass
@@ -70,11 +74,12 @@ WEB_FIRST_LINE = "Web VPython 3.2"
 # vpython 7.6.5's own server listens on every network interface and serves any file on the disk to
 # a crafted request: the two lines after the import keep it on this computer (issue 20).
 IMPORTS = ["from vpython import *",
-           "import socket  # vpython's server would listen on every network: keep it on this computer only",
+           "import socket  # vpython's server would show files of this computer to the whole network: keep it here (Web VPython has none)",
            "socket.socket.bind = lambda s, a, bind=socket.socket.bind: bind(s, ('127.0.0.1', *a[1:]) if a[0] in ('', '0.0.0.0') else a)"]
 
 
-def program(setup, *, integrator: str | None = None, web: bool = False, arrows=None) -> str:
+def program(setup, *, integrator: str | None = None, web: bool = False, arrows=None,
+            end: float | None = None) -> str:
     """The VPython program for a configured scene (scenes._catalog.Setup), as text.
 
     integrator  the method (default: the scene's own, else euler-cromer, the page's update), as
@@ -82,12 +87,14 @@ def program(setup, *, integrator: str | None = None, web: bool = False, arrows=N
                 (integrators) keep theirs, as headless runs do.
     web         True for Web VPython (first line `Web VPython 3.2`, no imports).
     arrows      the arrows to draw (export/program_arrows.py: p, F_net); None: the scene's VIEW's
+    end         when the program stops, s (the command line's --until); None: run_end's choice.
+                It prints its answer at the scene's question time, `until`, on the way.
 
     Raises ProgramError, or ValueError from the scene's build function, with a one-line message.
     """
     model = setup.build()
     _check_size(setup, model)
-    case = _Case(setup, model, integrator, arrows)
+    case = _Case(setup, model, integrator, arrows, end)
     lines = IMPORTS + case.header() + case.constants_lines()
     lines += ["", "# ---- the objects ----"] + objects(model, case.view, case.constants, case.single)
     lines += case.exact_objects() + scene_setup_lines(case)
@@ -123,7 +130,7 @@ def _check_size(setup, model) -> None:
 class _Case:
     """One configured case being written: its model, methods, view, named values and forces."""
 
-    def __init__(self, setup, model, integrator, arrows=None):
+    def __init__(self, setup, model, integrator, arrows=None, end=None):
         self.setup, self.model, self.integrator = setup, model, integrator
         self.methods = model.methods(integrator)
         self.view = {**DEFAULT_VIEW, **getattr(setup.module, "VIEW", {})}
@@ -136,7 +143,13 @@ class _Case:
         self.constants.add("r0", model.state.r, is_vector=True)
         self.constants.add("v0", _start_velocity(setup, model), is_vector=True)
         self.constants.add("dt", model.dt)
-        self.constants.add("until", model.until)
+        self.end = run_end(model, self.view, end)
+        if self.end is None:
+            self.constants.add("until", model.until)
+        else:
+            self.constants.add("until", model.until, meaning="s: question time: the answer below is printed then")
+            self.constants.add("t_end", self.end, meaning="s: when the program stops"
+                               + (" (as long as the page's graph shows)" if end is None else ""))
         self.axes = list(self.view["plot"])
         self.m = self.constants.name("m")
         self.exact = (exact_lines(model, self.constants, self.forces, axis=self.axes[0], m=self.m)
@@ -145,9 +158,7 @@ class _Case:
     def header(self) -> list[str]:
         methods = self.methods
         how = f"the {methods[0]} integrator" if len(set(methods)) == 1 else "each mass's own integrator (the list method)"
-        shipped = self.setup.values == catalog.configure(self.setup.name).values
-        return [f"# {self.setup.name}: {summary(self.setup.module)}",
-                *([] if shipped else ["# (That is the scene as shipped; this case's constants are below.)"]),
+        return [*description(self.setup),
                 f"# Written by the spring-mass simulator with {how}. Edit the constants and run it again.",
                 f"# The same case on the simulator's page: {command(self.setup, self.model, self.integrator)}"]
 
@@ -168,10 +179,17 @@ class _Case:
         lines = ["", "# ---- the loop: one momentum update per step ----",
                  commented("t = 0", "s: time, n·Δt after n steps"), "n = 0"]
         lines += [line[4:] for line in self._each_mass(self.plot_position())]   # t = 0 (the exact curve from the first step)
-        lines += [_loop_condition(self.model), commented("    rate(1/dt)", "real time: 1/Δt steps a second")]
+        asked_at_start = steps_to_reach(self.model.until - self.model.state.t, self.model.dt) == 0
+        if self.end is not None and asked_at_start:
+            lines += self.printed()
+        lines += [_loop_condition(self.model, self.end), commented("    rate(1/dt)", "real time: 1/Δt steps a second")]
         lines += self._each_mass(self.update() + after_update_lines(self))
         lines += ["    n = n + 1", commented("    t = n*dt", "a whole number of steps: no round-off piles up")]
-        return lines + self._each_mass(self.draw())
+        lines += self._each_mass(self.draw())
+        if self.end is None or asked_at_start:
+            return lines
+        return lines + [commented(f"    if {_question_condition(self.model)}:", "the question time: where is the mass now?"),
+                        *("        " + line for line in self.printed())]
 
     def _each_mass(self, body: list[str]) -> list[str]:
         """body in the loop: as it is for one mass, else in a for loop over the masses."""
@@ -207,14 +225,20 @@ class _Case:
         return lines
 
     def answer(self) -> list[str]:
-        i = self.index
-        position = '"t =", t, "s:  r = <", pos{i}.x, ",", pos{i}.y, ",", pos{i}.z, "> m,'.format(i=i)
-        momentum = '"p = <", p{i}.x, ",", p{i}.y, ",", p{i}.z, "> kg·m/s")'.format(i=i)
+        """The answer after the loop, where the loop ends at the question time (else it is in the loop)."""
+        return [] if self.end is not None else ["", "# ---- the answer ----", *self.printed()]
+
+    def printed(self) -> list[str]:
+        """print() of t, r and p, rounded as the command line writes them: `at t = 0.2 s: r = < 0,
+        -1.7301, 0 > m, p = < 0, -15.21, 0 > kg·m/s` (str.format, which Web VPython has too, though
+        its own 'g' truncates the sixth digit of some numbers below 0.1: tests/test_handout.py)."""
+        i, g = self.index, "{:.%dg}" % SIGNIFICANT
+        text = f'"at t = {g} s: r = < {g}, {g}, {g} > m, p = < {g}, {g}, {g} > kg·m/s"'
+        values = f"t, pos{i}.x, pos{i}.y, pos{i}.z, p{i}.x, p{i}.y, p{i}.z"
         if self.single:
-            return ["", "# ---- the answer ----", f"print({position} {momentum[1:]}"]
-        return ["", "# ---- the answer ----", "for i in range(len(pos)):",
-                f"    print({which_mass(self.model, self.constants)},", f"          {position}\",",
-                f"          {momentum}"]
+            return [f"print({text}.format(", f"    {values}))"]
+        return ["for i in range(len(pos)):", f"    print({which_mass(self.model, self.constants)},",
+                f"          {text}.format(", f"              {values}))"]
 
 
 def _start_velocity(setup, model):
@@ -225,14 +249,39 @@ def _start_velocity(setup, model):
     return model.state.v
 
 
-def _loop_condition(model) -> str:
-    """`while t < until:`, unless round-off in n·Δt would make it take another step than a headless run."""
-    steps = steps_to_reach(model.until - model.state.t, model.dt)
-    if _steps_while_below(model.until, model.dt) == steps:
-        return "while t < until:"
-    if _steps_while_below(model.until - 1e-9 * model.dt, model.dt) == steps:
-        return commented("while t < until - 1e-9*dt:", "1e-9·Δt forgives round-off in n·Δt")
-    return commented(f"while n < {steps}:", "the steps that reach until")
+def run_end(model, view, end: float | None) -> float | None:
+    """When the program stops, s, where that is after the question time `until`: `end` if given
+    (--until), else the time the page's graph shows (VIEW's window), so that a handout whose
+    question is at 0.2 s (two steps) still runs long enough to watch. None: it stops at `until`."""
+    end = max(view["window"], model.until) if end is None else max(float(end), model.until)
+    later = steps_to_reach(end - model.state.t, model.dt) > steps_to_reach(model.until - model.state.t, model.dt)
+    return end if later else None
+
+
+def _loop_condition(model, end: float | None = None) -> str:
+    """`while t < until:` (or t_end), unless round-off in n·Δt would make it take another step than
+    a headless run."""
+    name = "until" if end is None else "t_end"
+    t, limit, why = _limit(model.until if end is None else end, model, name)
+    return commented(f"while {t} < {limit}:", why)
+
+
+def _question_condition(model) -> str:
+    """`t >= until and (n - 1)*dt < until`: true at the one step at which a headless run to `until`
+    stops (see _limit); (n - 1)*dt is the float the step before had as t."""
+    t, limit, _ = _limit(model.until, model, "until")
+    return f"n == {limit}" if t == "n" else f"t >= {limit} and (n - 1)*dt < {limit}"
+
+
+def _limit(limit: float, model, name: str) -> tuple[str, str, str]:
+    """("t", "until", "") for `t < until`, which takes the steps of a headless run to `limit` unless
+    round-off in n·Δt makes it take one more or fewer; then the limit that does, and why."""
+    steps = steps_to_reach(limit - model.state.t, model.dt)
+    if _steps_while_below(limit, model.dt) == steps:
+        return "t", name, ""
+    if _steps_while_below(limit - 1e-9 * model.dt, model.dt) == steps:
+        return "t", f"{name} - 1e-9*dt", "1e-9·Δt forgives round-off in n·Δt"
+    return "n", str(steps), f"the steps that reach {name}"
 
 
 def _steps_while_below(limit: float, dt: float) -> int:

@@ -23,6 +23,7 @@ import pytest
 
 from export.palette import EXACT_COLOUR
 from scenes import catalog
+from scenes._view import DEFAULT_VIEW
 
 ROOT = Path(__file__).resolve().parent.parent
 NUMBER = r"(-?[0-9.]+(?:e[-+]?\d+)?|-?inf|nan)"
@@ -89,16 +90,21 @@ def rate(frequency):
 def _plain(value):
     if isinstance(value, vector):
         return [value.x, value.y, value.z]
+    if isinstance(value, list):
+        return [_plain(item) for item in value]
     return value if isinstance(value, (int, float, str)) else repr(value)
 
 
 @atexit.register
 def _report():
-    """What was drawn, as JSON in the file $STAND_IN_REPORT: each object's kind and attributes."""
+    """What was drawn, as JSON in the file $STAND_IN_REPORT: each object's kind and attributes, and
+    last the program's own t, pos and p when it ended, to every digit (kind "state")."""
+    import __main__
     report = [{"kind": type(shown).__name__, **{key: _plain(value) for key, value in vars(shown).items()
                                                  if key != "points"},
                **({"points": [list(point) for point in shown.points]} if hasattr(shown, "points") else {})}
               for shown in DRAWN]
+    report.append({"kind": "state", **{name: _plain(getattr(__main__, name, None)) for name in ("t", "pos", "p")}})
     with open(os.environ["STAND_IN_REPORT"], "w") as out:
         json.dump(report, out)
 '''
@@ -124,10 +130,12 @@ def main_py(*args, cwd=ROOT, timeout=300):
                           cwd=cwd, timeout=timeout)
 
 
-def run_program(path: Path, stand_in: Path, drawn: list | None = None) -> list[tuple[float, np.ndarray, np.ndarray]]:
+def run_program(path: Path, stand_in: Path, drawn: list | None = None,
+                printed: list | None = None) -> list[tuple[float, np.ndarray, np.ndarray]]:
     """Run a written program under the stand-in vpython; its answers as (t, r, p), one per mass.
 
-    drawn, if given, receives what the program drew: one dict per object (kind, attributes, points).
+    drawn, if given, receives what the program drew: one dict per object (kind, attributes, points),
+    and last its t, pos and p when it ended (kind "state"); printed, the lines of its answer.
     """
     report = path.with_suffix(".drawn.json")
     env = {**os.environ, "PYTHONPATH": str(stand_in), "STAND_IN_REPORT": str(report)}
@@ -138,6 +146,8 @@ def run_program(path: Path, stand_in: Path, drawn: list | None = None) -> list[t
     for line in done.stdout.splitlines():
         match = ANSWER.search(line)
         if match:
+            if printed is not None:
+                printed.append(line)
             numbers = [float(x) for x in match.groups()]
             answers.append((numbers[0], np.array(numbers[1:4]), np.array(numbers[4:7])))
     assert answers, f"no answer printed: {done.stdout!r}"
@@ -212,25 +222,56 @@ def test_program_reaches_the_headless_state(case, stand_in, tmp_path):
     headless = main_py(*case, "--headless", "--json")
     assert headless.returncode == 0, headless.stderr
     expected = json.loads(headless.stdout)
-    drawn = []
-    answers = run_program(path, stand_in, drawn)
-    check_drawing(drawn, expected, answers)
-    r_expected = np.atleast_2d(expected["r"])
-    p_expected = np.atleast_2d(expected["p"])
-    assert len(answers) == len(r_expected)
-    for (t, r, p), r_engine, p_engine in zip(answers, r_expected, p_expected):
-        assert t == pytest.approx(expected["t"], rel=rtol, abs=1e-12)
+    drawn, printed = [], []
+    answers = run_program(path, stand_in, drawn, printed)
+    check_answer(printed, answers, expected)
+    t_end, r_end, p_end = final_state(drawn)   # the program runs on past the question time, to watch
+    assert t_end >= max(expected["t"], {**DEFAULT_VIEW, **catalog.load(case[0]).VIEW}["window"]) - 1e-9
+    ended = main_py(*case, "--headless", "--json", "--until", repr(t_end))
+    assert ended.returncode == 0, ended.stderr
+    expected = json.loads(ended.stdout)
+    check_drawing(drawn, expected, r_end)
+    assert t_end == pytest.approx(expected["t"], rel=rtol, abs=1e-12)
+    for r, p, r_engine, p_engine in zip(r_end, p_end, np.atleast_2d(expected["r"]), np.atleast_2d(expected["p"])):
         scale_r = np.max(np.abs(r_engine))
         scale_p = max(np.max(np.abs(p_engine)), 1e-300)
         assert np.max(np.abs(r - r_engine)) <= rtol * scale_r, (r, r_engine)
         assert np.max(np.abs(p - p_engine)) <= rtol * scale_p, (p, p_engine)
 
 
-def check_drawing(drawn, expected, answers):
+def check_answer(printed, answers, expected):
+    """The printed answer, one line per mass at the question time, is the command line's, digit for
+    digit: `at t = 0.2 s: r = < 0, -1.7301, 0 > m, p = < 0, -15.21, 0 > kg·m/s` beside --headless's
+    `r = < 0, -1.7301, 0 > m` (it printed -1.7301000000000002)."""
+    from export.step_update import number, vector
+
+    r_expected, p_expected = np.atleast_2d(expected["r"]), np.atleast_2d(expected["p"])
+    assert len(answers) == len(r_expected) == len(printed)
+    for line, r, p in zip(printed, r_expected, p_expected):
+        assert f"at t = {number(expected['t'])} s: r = {vector(r, 'm')}, p = {vector(p, 'kg·m/s')}" in line, line
+
+
+def run_to_end(path: Path, stand_in: Path) -> list[tuple[float, np.ndarray, np.ndarray]]:
+    """Run a written program under the stand-in vpython; its own t, pos and p when it ended, to every
+    digit, as (t, r, p), one per mass (its printed answer is rounded as the command line's)."""
+    drawn = []
+    run_program(path, stand_in, drawn)
+    t, r, p = final_state(drawn)
+    return [(t, r_i, p_i) for r_i, p_i in zip(r, p)]
+
+
+def final_state(drawn):
+    """The program's own t, and each mass's pos and p, when it ended, to every digit (the stand-in's)."""
+    state = next(shown for shown in drawn if shown["kind"] == "state")
+    return state["t"], np.atleast_2d(state["pos"]), np.atleast_2d(state["p"])
+
+
+def check_drawing(drawn, expected, final_r):
     """A support box, a helix ending at each sphere, a sphere at each final position, and curves
     with a point per step ending at the final coordinate; the exact curve ends at headless's exact r."""
     kinds = [shown["kind"] for shown in drawn]
-    count = len(answers)
+    count = len(final_r)
+    answers = [(final_state(drawn)[0], r, None) for r in final_r]
     assert kinds.count("box") == 1 and kinds.count("graph") == 1
     assert kinds.count("helix") == count and kinds.count("sphere") == count
     helices = [shown for shown in drawn if shown["kind"] == "helix"]

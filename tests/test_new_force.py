@@ -27,7 +27,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from test_export import run_program, stand_in  # noqa: F401  (stand_in is a fixture)
+from test_export import run_to_end, stand_in  # noqa: F401  (stand_in is a fixture)
 
 ROOT = Path(__file__).resolve().parent.parent
 
@@ -169,7 +169,7 @@ def test_the_brake_in_csv_shrinks_each_step_by_the_same_factor(folder, tmp_path)
 @pytest.mark.parametrize("integrator", ["euler-cromer", "verlet", "rk4", "euler"])
 def test_the_program_with_the_brake_reaches_the_engines_state(folder, integrator, stand_in, tmp_path):  # noqa: F811
     path = tmp_path / "brake_program.py"
-    written = main_py(folder, "--integrator", integrator, "--set", "until=1", "--vpython", str(path))
+    written = main_py(folder, "--integrator", integrator, "--until", "1", "--vpython", str(path))   # ends at 1 s
     assert written.returncode == 0, written.stderr
     text = path.read_text(encoding="utf-8")
     assert "Fbrake = -beta*(v - dot(v, field_axis)*field_axis)" in text
@@ -177,7 +177,7 @@ def test_the_program_with_the_brake_reaches_the_engines_state(folder, integrator
     headless = main_py(folder, "--integrator", integrator, "--set", "until=1", "--headless", "--json")
     assert headless.returncode == 0, headless.stderr
     expected = json.loads(headless.stdout)
-    ((t, r, p),) = run_program(path, stand_in)
+    ((t, r, p),) = run_to_end(path, stand_in)
     assert t == pytest.approx(expected["t"], rel=1e-12)
     assert np.allclose(r, expected["r"], rtol=1e-12, atol=1e-12 * np.max(np.abs(expected["r"])))
     assert np.allclose(p, expected["p"], rtol=1e-12, atol=1e-12 * np.max(np.abs(expected["p"])))

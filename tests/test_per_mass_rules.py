@@ -22,7 +22,7 @@ import numpy as np
 import pytest
 
 from scenes._constants import SCENE_CONSTANTS
-from test_export import run_program, stand_in  # noqa: F401  (stand_in is a fixture)
+from test_export import run_to_end, stand_in  # noqa: F401  (stand_in is a fixture)
 
 ROOT = Path(__file__).resolve().parent.parent
 
@@ -82,7 +82,7 @@ def main_py(folder, *args):
 
 def test_a_rule_no_scene_of_ours_has_is_written_as_the_rule(folder, stand_in, tmp_path):  # noqa: F811
     path = tmp_path / "ladder.py"
-    written = main_py(folder, "--vpython", str(path))
+    written = main_py(folder, "--vpython", str(path), "--until", "2")   # it ends at the question time, 2 s
     assert written.returncode == 0, written.stderr
     text = path.read_text(encoding="utf-8")
     assert re.search(r"^    b_each\.append\(b\*\(i \+ 1\)\) +# kg/s: each b more than the one before$", text, re.M)
@@ -91,7 +91,7 @@ def test_a_rule_no_scene_of_ours_has_is_written_as_the_rule(folder, stand_in, tm
     headless = main_py(folder, "--headless", "--json")
     assert headless.returncode == 0, headless.stderr
     expected = json.loads(headless.stdout)
-    answers = run_program(path, stand_in)
+    answers = run_to_end(path, stand_in)
     assert len(answers) == 4
     for (t, r, p), r_engine, p_engine in zip(answers, expected["r"], expected["p"]):
         assert t == pytest.approx(expected["t"], rel=1e-12)
@@ -99,7 +99,7 @@ def test_a_rule_no_scene_of_ours_has_is_written_as_the_rule(folder, stand_in, tm
         assert np.allclose(p, p_engine, rtol=1e-12, atol=1e-12)
     # b edited in the program: the whole row follows, as --set b does for the engine
     path.write_text(re.sub(r"^b = 0\.75", "b = 2", text, flags=re.M), encoding="utf-8")
-    edited = run_program(path, stand_in)
+    edited = run_to_end(path, stand_in)
     again = json.loads(main_py(folder, "--set", "b=2", "--headless", "--json").stdout)
     for (t, r, p), r_engine in zip(edited, again["r"]):
         assert np.allclose(r, r_engine, rtol=1e-12, atol=1e-12)

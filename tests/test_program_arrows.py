@@ -12,23 +12,25 @@ from physics.forces import net_force
 from physics.state import velocity
 from reports import headless
 from scenes import catalog
-from test_export import main_py, run_program, stand_in  # noqa: F401 (stand_in is a fixture)
+from test_export import final_state, main_py, run_program, stand_in  # noqa: F401 (stand_in is a fixture)
 
 
 @pytest.mark.parametrize("args", [("vertical",), ("damped", "--set", "until=3"), ("pendulum", "--set", "until=2"),
                                   ("driven", "--scenario", "3", "--integrator", "rk4", "--set", "until=4"),
                                   ("regimes", "--arrows", "p,F_net", "--set", "until=2")])
 def test_the_programs_arrows_end_on_the_final_p_and_F_net(args, stand_in, tmp_path):  # noqa: F811
-    path = tmp_path / "program.py"
-    done = main_py(*args, "--vpython", str(path))
-    assert done.returncode == 0, done.stderr
-    drawn = []
-    answers = run_program(path, stand_in, drawn)
     scene, rest = args[0], args[1:]
     assignments = [rest[n + 1] for n in range(len(rest)) if rest[n] == "--set"]
     scenario = int(rest[rest.index("--scenario") + 1]) if "--scenario" in rest else None
     integrator = rest[rest.index("--integrator") + 1] if "--integrator" in rest else None
     setup = catalog.configure(scene, assignments=assignments, scenario=scenario)
+    path = tmp_path / "program.py"   # ending at the question time, as the headless run below does
+    done = main_py(*args, "--vpython", str(path), "--until", repr(setup.values["until"]))
+    assert done.returncode == 0, done.stderr
+    drawn = []
+    run_program(path, stand_in, drawn)
+    t_end, r_end, p_end = final_state(drawn)   # the program's own, to every digit
+    answers = [(t_end, r, p) for r, p in zip(r_end, p_end)]
     model = setup.build()
     scales = choose_scales(model, integrator=integrator)
     result = headless.simulate(setup, model=model, integrator=integrator, every_step=True, progress=None)
