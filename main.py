@@ -144,11 +144,11 @@ def write_programs(args, setup, model, *, warn: bool) -> None:
             raise UsageError(f"a program called {os.path.basename(args.vpython)} cannot run: its "
                              f"`from vpython import *` would import the program itself instead of the vpython "
                              f"library; give it another name, like spring.py")
-        for path, text in texts:
+        for path, program_text in texts:
             if path == "-":
-                print(text, end="")
+                print(program_text, end="")
             else:
-                export.write_program(path, text, overwrite=args.overwrite)
+                export.write_program(path, program_text, overwrite=args.overwrite)
                 print(f"wrote {path}", file=sys.stderr)
     except ValueError as problem:   # export.ProgramError, or constants the physics cannot take
         raise UsageError(str(problem)) from None

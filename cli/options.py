@@ -62,7 +62,9 @@ def build_parser() -> argparse.ArgumentParser:
     parser.add_argument("--integrator", choices=list(INTEGRATORS), default=None,
                         help=f"stepping method (default {DEFAULT_INTEGRATOR}, the page's update)")
     parser.add_argument("--until", type=float, metavar="T",
-                        help="run until this time, s (default: the scene's question time)")
+                        help="run until this time, s (default: the scene's question time; a handed-out "
+                             "program runs as long as the page's graph shows and prints its answer at the "
+                             "question time)")
     parser.add_argument("--json", action="store_true", help="with --headless: print one JSON object")
     parser.add_argument("--csv", metavar="FILE", help="with --headless: write every step to a CSV file")
     parser.add_argument("--steps", type=int, metavar="N",
