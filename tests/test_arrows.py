@@ -223,3 +223,29 @@ def test_the_notebooks_show_checks_its_arrows_before_anything_is_drawn():
 
     with pytest.raises(ConstantError, match="got 'q'"):
         show("vertical", arrows=("p", "q"))
+
+
+def test_the_masses_are_see_through_while_an_arrow_starts_inside_them():
+    """An arrow shorter than the ball's radius (driven --scenario 3's steady motion) would hide in
+    it: while any arrow is shown the masses are drawn see-through, and solid again when none is;
+    the arrows themselves keep their length, scale × the engine's value."""
+    from browser.arrows3d import SEE_THROUGH, MomentumArrows
+    from browser.clock import LiveRun
+    from test_trail import Shape
+
+    model = catalog.configure("driven", scenario=3).build()
+    live = LiveRun(model, integrator="euler-cromer")
+    ball = Shape(opacity=1.0)
+    arrows = MomentumArrows(stand_in_with_arrows(), model=model, integrator="euler-cromer", shown={"p"},
+                            radius=0.32, masses=[ball])
+    live.advance(round(20.0 / model.dt))   # the steady motion: p is far shorter than the ball
+    arrows.draw(live)
+    length = np.linalg.norm(np.array(arrows.p[0].axis))
+    assert 0 < length < 0.32 and np.isclose(length * arrows.scales.p_unit, np.linalg.norm(live.state.p[0]))
+    assert 0 < SEE_THROUGH < 1 and ball.opacity == SEE_THROUGH
+    arrows.set_shown("p", False)
+    arrows.draw(live)
+    assert ball.opacity == 1.0
+    arrows.set_shown("split", True)
+    arrows.draw(live)
+    assert ball.opacity == SEE_THROUGH
