@@ -33,7 +33,7 @@ from export.palette import ARROW_COLOURS
 from physics.forces import net_force
 from physics.state import velocity
 
-SEE_THROUGH = 0.35   # the masses' opacity while an arrow is shown: the arrow inside the ball shows
+SEE_THROUGH = 0.5    # the masses' opacity while an arrow is shown: the arrow inside the ball shows
 
 
 
