@@ -249,3 +249,45 @@ def test_the_masses_are_see_through_while_an_arrow_starts_inside_them():
     arrows.set_shown("split", True)
     arrows.draw(live)
     assert ball.opacity == SEE_THROUGH
+
+
+@pytest.mark.parametrize("name, scenario", [("vertical", None), ("damped", None), ("driven", 3), ("pendulum", None),
+                                            ("resonance", None), ("regimes", None)])
+def test_the_arrows_stay_in_the_picture_the_page_frames(name, scenario):
+    """Every p and F_net arrow, at the run's scales, ends inside the 3-D view the page frames
+    (browser/scene3d.py, drawn on the stand-in vpython, its camera looking along `forward`) over
+    the 30 s the scales are chosen for; at most its head (3 shaft widths, 0.6 radius) may reach
+    past the edge; under a ceiling, no arrow goes up through it. `resonance --arrows p` had its
+    scale chosen from the whole row's width (4.8 m) while each spring moves 1.8 m: its p arrows
+    ran 2 m up, through the ceiling to the top of the view."""
+    from browser.scene3d import CANVAS_SIZE, Scene3D
+    from browser.view import DEFAULT_VIEW
+    from physics.simulate import every, trajectory
+    from test_trail import stand_in_vpython
+
+    setup = catalog.configure(name, scenario=scenario)
+    model = setup.build()
+    vp = stand_in_vpython()
+    scene = Scene3D(vp, model=model, view={**DEFAULT_VIEW, **setup.module.VIEW}, title=name)
+    forward = np.array([vp.scene.forward.x, vp.scene.forward.y, vp.scene.forward.z])
+    forward /= np.linalg.norm(forward)
+    up = np.array([0.0, 1.0, 0.0]) - forward[1] * forward          # the screen's up, m per m
+    up /= np.linalg.norm(up)
+    right = np.cross(forward, up)
+    width, height = CANVAS_SIZE
+    half = np.array([scene.range * width / height, scene.range]) + 0.6 * scene.radius
+    scales = choose_scales(model)
+    engine = model.simulation()
+    steps = round(30.0 / model.dt)
+    traj = trajectory(engine, engine.advance(steps, record=every(max(1, steps // 500))), with_energy=False)
+    kept = [i for i in range(model.state.count) if i not in model.expected_runaways(engine.methods)]
+    for n in range(len(traj.t)):
+        r, p = traj.r[n][kept], traj.p[n][kept]
+        F = net_force(model.forces, traj.t[n], traj.r[n], velocity(traj.p[n], traj.m), traj.m)[kept]
+        for tips in (r + scales.momentum_axis(p), r + scales.force_axis(F)):
+            on_screen = np.stack([(tips - scene.centre) @ right, (tips - scene.centre) @ up], axis=1)
+            out = np.abs(on_screen) - half
+            assert np.all(out <= 0), f"{name}: an arrow ends {out.max():.2f} m outside the view at t = {traj.t[n]:.2f} s"
+            if not scene.wall:
+                through = tips[:, 1] - scene.support_box[0][1]
+                assert np.all(through <= 0), f"{name}: an arrow ends {through.max():.2f} m above the ceiling"
