@@ -150,8 +150,8 @@ def motion_size(r, anchors, kept) -> float:
 
 def choose_scales(model, *, integrator: str | None = None) -> ArrowScales:
     """One scale for momentum and one for forces, for a run of this model: the largest magnitude
-    of each (largest) fits in an arrow REACH × the size of one mass's motion with its support long, rounded up to 1, 2 or
-    5 × 10ⁿ, so the longest arrow is between 0.4 and 1 times that length."""
+    of each (largest) fits in an arrow REACH × the size of one mass's motion with its support
+    long, rounded up to 1, 2 or 5 × 10ⁿ, so the longest arrow is between 0.4 and 1 times that length."""
     p_max, F_max, size = largest(model, integrator=integrator)
     reach = REACH * size
     return ArrowScales(p_unit=round_scale(p_max / reach), F_unit=round_scale(F_max / reach), reach=reach)
