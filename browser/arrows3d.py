@@ -9,6 +9,11 @@ switched on, each with a check box under the picture (and `--arrows` on the comm
     forces   each force on its own arrow, tip to tail, ending at F_net's tip, labelled
     split    F∥ (along p, sky blue) and F⊥ (across p, white), labelled with their magnitudes
 
+While any arrow that starts at the centre is switched on, the masses are drawn see-through
+(SEE_THROUGH), so an arrow shorter than the ball's radius (a small force, the steady motion of
+`driven --scenario 3`, F∥ near a pendulum's turning point) still shows inside it; its axis stays
+exactly scale × the engine's value.
+
 A Step while paused draws the update itself, at the momentum scale, just beside the mass: p_i (dark
 yellow), F_net Δt from p_i's tip (reddish purple) and p_f from p_i's start to the sum (yellow, a
 little further aside so that on a line the two do not cover each other), and the caption shows
@@ -27,6 +32,9 @@ from export.arrows import ARROW_LABELS, ARROWS, choose_scales, force_name, force
 from export.palette import ARROW_COLOURS
 from physics.forces import net_force
 from physics.state import velocity
+
+SEE_THROUGH = 0.5    # the masses' opacity while an arrow is shown: the arrow inside the ball shows
+
 
 
 def arrow_checkboxes(vp, put, shown) -> dict:
@@ -47,10 +55,11 @@ class MomentumArrows:
     integrator  the method chosen, for the short run that chooses the scales
     shown       the kinds of arrow switched on (a subset of export.arrows.ARROWS)
     radius      the masses' radius, m: the arrows' shafts are a fraction of it
+    masses      the masses' spheres, drawn see-through while an arrow is shown
     """
 
-    def __init__(self, vp, *, model, integrator: str, shown, radius: float):
-        self.vp, self.radius = vp, radius
+    def __init__(self, vp, *, model, integrator: str, shown, radius: float, masses=()):
+        self.vp, self.radius, self.masses = vp, radius, list(masses)
         self.shown = shown if isinstance(shown, set) else set(shown)   # the view's own set: kept across rebuilds
         self.model, self.integrator = model, integrator
         self._scales = None                 # chosen when an arrow is first shown (a short engine run)
@@ -84,10 +93,11 @@ class MomentumArrows:
         return vp.arrow(pos=vp.vector(0, 0, 0), axis=vp.vector(width, 0, 0), color=vp.vector(*ARROW_COLOURS[colour]),
                         shaftwidth=width, visible=False)
 
-    def _label(self, colour: str):
+    def _label(self, colour: str, *, below: bool = False):
+        """A label in the arrow's colour, 18 px (read from the back row), above its point or below it."""
         vp = self.vp
-        label = vp.label(pos=vp.vector(0, 0, 0), text="", height=14, color=vp.vector(*ARROW_COLOURS[colour]),
-                         box=False, line=False, xoffset=20, yoffset=10, visible=False)
+        label = vp.label(pos=vp.vector(0, 0, 0), text="", height=18, color=vp.vector(*ARROW_COLOURS[colour]),
+                         box=False, line=False, xoffset=20, yoffset=-16 if below else 16, visible=False)
         self.shapes.append(label)
         return label
 
@@ -138,6 +148,7 @@ class MomentumArrows:
 
     def draw(self, live) -> None:
         """Put every arrow shown on its mass, at the state now (once per frame)."""
+        self._see_through(bool(self.shown))
         if not self.shown and not self.stepping:
             for arrow in self.p + self.F_net:
                 if arrow.visible:
@@ -169,6 +180,13 @@ class MomentumArrows:
                 self._place(self.F_net[i], r[i], scales.force_axis(F_net[i]), ok and "F_net" in self.shown)
             self._draw_forces(i, r[i], each, ok and "forces" in self.shown)
             self._draw_split(i, r[i], along, across, ok and "split" in self.shown)
+
+    def _see_through(self, on: bool) -> None:
+        """The masses see-through while arrows start at their centres, solid otherwise."""
+        opacity = SEE_THROUGH if on else 1.0
+        for mass in self.masses:
+            if mass.opacity != opacity:
+                mass.opacity = opacity
 
     def _place(self, arrow, at, axis, visible: bool) -> None:
         """An arrow from `at` along `axis` (m); hidden when off or of no length."""
@@ -204,7 +222,8 @@ class MomentumArrows:
     def _draw_split(self, i: int, at, along, across, visible: bool) -> None:
         """F∥ and F⊥ of mass i, each labelled with its magnitude in N."""
         if visible and not self.parts[i]:
-            self.parts[i] = [self._arrow("F_par"), self._arrow("F_perp"), self._label("F_par"), self._label("F_perp")]
+            self.parts[i] = [self._arrow("F_par"), self._arrow("F_perp"), self._label("F_par"),
+                             self._label("F_perp", below=True)]   # short F∥ and F⊥: their labels apart
             self.shapes += self.parts[i][:2]
             self.publish()
         if not self.parts[i]:

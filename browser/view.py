@@ -115,7 +115,7 @@ class SceneView:
             self.arrows_scene = setup.name
             self.arrows_shown = set(view["arrows"] if self.arrows_asked is None else self.arrows_asked)
         self.arrows = MomentumArrows(self.vp, model=model, integrator=self.integrator,
-                                     shown=self.arrows_shown, radius=scene.radius)
+                                     shown=self.arrows_shown, radius=scene.radius, masses=scene.masses)
         controls = Controls(self.vp, setup=setup, view=view, integrators=model.integrators,
                             integrator=self.integrator, speed=self.speed, preset=preset,
                             arrows=self.arrows_shown)

@@ -106,7 +106,7 @@ def split(F_net, p) -> tuple[np.ndarray, np.ndarray]:
 
 
 def largest(model, *, integrator: str | None = None) -> tuple[float, float, float]:
-    """The largest |p| (kg·m/s), |F_net| (N) and size of the motion (m)
+    """The largest |p| (kg·m/s), |F_net| (N) and size of one mass's motion (m, motion_size)
     over a short run of the engine from the model's start (SCALE_RUN s, at most SCALE_STEPS steps).
 
     Masses the scene expects to run away are left out, and a run that blows up is judged on the
@@ -131,16 +131,27 @@ def largest(model, *, integrator: str | None = None) -> tuple[float, float, floa
         F_net = net_force(model.forces, t[n], r[n], velocity(p[n], m), m)
         F_max = max(F_max, float(np.max(np.linalg.norm(F_net[kept], axis=-1))))
         p_max = max(p_max, float(np.max(np.linalg.norm(p[n][kept], axis=-1))))
-    points = np.concatenate([np.reshape(r[:, kept], (-1, 3)), model.anchors[kept]])
-    points = points[np.all(np.isfinite(points), axis=1)]
-    size = float(np.max(points.max(axis=0) - points.min(axis=0))) if len(points) else 1.0
-    return p_max, F_max, size or 1.0
+    return p_max, F_max, motion_size(r, model.anchors, kept) or 1.0
+
+
+def motion_size(r, anchors, kept) -> float:
+    """The size of one mass's motion with its support, m: the largest extent of the box around a
+    mass's positions r[:, i] and its anchor, over the masses kept. Each arrow starts on its own
+    mass, so it is this, not the whole row's width (`resonance`: 13 springs 4.8 m wide, each
+    moving 1.8 m), that an arrow must stay within to stay in the picture."""
+    sizes = [0.0]
+    for i in kept:
+        points = np.concatenate([r[:, i], anchors[i][None]])
+        points = points[np.all(np.isfinite(points), axis=1)]
+        if len(points):
+            sizes.append(float(np.max(points.max(axis=0) - points.min(axis=0))))
+    return max(sizes)
 
 
 def choose_scales(model, *, integrator: str | None = None) -> ArrowScales:
     """One scale for momentum and one for forces, for a run of this model: the largest magnitude
-    of each (largest) fits in an arrow REACH × the size of the motion long, rounded up to 1, 2 or
-    5 × 10ⁿ, so the longest arrow is between 0.4 and 1 times that length."""
+    of each (largest) fits in an arrow REACH × the size of one mass's motion with its support
+    long, rounded up to 1, 2 or 5 × 10ⁿ, so the longest arrow is between 0.4 and 1 times that length."""
     p_max, F_max, size = largest(model, integrator=integrator)
     reach = REACH * size
     return ArrowScales(p_unit=round_scale(p_max / reach), F_unit=round_scale(F_max / reach), reach=reach)

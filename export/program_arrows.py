@@ -1,9 +1,9 @@
-"""The handed-out program's momentum and net-force arrows, as the page draws them.
+"""The handed-out program's arrows, as the page draws them: p, F_net, each force and F∥/F⊥.
 
 The program (export/vpython_program.py) gets, after its objects, the two scales (the page's, from
-export/arrows.py, written in a comment) and an arrow per mass for p and for F_net in the page's
-colours (export/palette.py); and, in its loop right after each mass's update, the lines that move
-them:
+export/arrows.py, written in a comment) and the arrows `--arrows` asked for, per mass, in the
+page's colours (export/palette.py); and, in its loop right after each mass's update, the lines
+that move them:
 
     pscale = 1/20          # m per kg·m/s: an arrow 1 m long is 20 kg·m/s
     parrow = arrow(pos=pos, axis=pscale*p, color=vector(0.95, 0.88, 0.2), shaftwidth=0.2*radius)
@@ -11,26 +11,50 @@ them:
         parrow.pos = pos
         parrow.axis = pscale*p                  # the momentum just updated
 
-F_net's arrow shows Fnet, the net force the update just used. The arrows only read the state, so
-the program's arithmetic stays the engine's. Only p and F_net are written: the page's other
-arrows (each force, F∥ and F⊥) are for the page.
+F_net's arrow shows Fnet, the net force the update just used. "forces" puts each force the update
+added up (Fspring, Fgravity, ... in the order of Fnet's sum) on its own thin grey arrow, tip to
+tail, so the last ends at F_net's tip. "split" draws F∥ = (F_net·p̂) p̂ (sky blue, it changes the
+speed) and F⊥ = F_net − F∥ (white, it changes the direction); from rest (p = 0) F∥ is all of F_net,
+as on the page (export/arrows.py's split). The arrows only read the state, so the program's
+arithmetic stays the engine's. The lines keep to what GlowScript 3.2 (Web VPython) reads: no
+f-strings, no conditional expressions, lists made with append.
 """
 from __future__ import annotations
 
-from .arrows import choose_scales
+from .arrows import ARROWS, choose_scales, force_name
 from .lines import commented
 from .palette import ARROW_COLOURS
 
-WRITTEN = ("p", "F_net")   # the arrows a program draws
+WRITTEN = ARROWS   # the arrows a program draws: all the page's (p, F_net, forces, split)
+SHAFT, THIN = "0.2*radius", "0.12*radius"   # shaft widths, as on the page (browser/arrows3d.py)
 
 
-def _colour(rgb) -> str:
-    return "vector(" + ", ".join(f"{c:g}" for c in rgb) + ")"
+def _colour(kind: str) -> str:
+    return "vector(" + ", ".join(f"{c:g}" for c in ARROW_COLOURS[kind]) + ")"
 
 
-def _names(kind: str) -> tuple[str, str, str]:
-    """(arrow variable, scale variable, what it points along) for p or F_net."""
-    return ("parrow", "pscale", "p") if kind == "p" else ("Farrow", "Fscale", "Fnet")
+def _arrow(kind: str, *, at: str, axis: str = "vector(0, 0, 0)", shaft: str = SHAFT) -> str:
+    return f"arrow(pos={at}, axis={axis}, color={_colour(kind)}, shaftwidth={shaft})"
+
+
+def _made(name: str, make: str, *, single: bool, comment: str) -> list[str]:
+    """`name = arrow(...)` for one mass, else the list `names` with one such arrow per mass."""
+    if single:
+        return [commented(f"{name} = {make}", comment)]
+    return [commented(f"{name}s = []", comment), "for i in range(len(pos)):",
+            f"    {name}s.append({make.replace('pos=pos', 'pos=pos[i]').replace('*p,', '*p[i],')})"]
+
+
+def _made_per_force(model, *, single: bool) -> list[str]:
+    """forcearrows: a thin grey arrow per force (per mass: forcearrows[i]), in the order of Fnet's sum."""
+    make = _arrow("forces", at="pos" if single else "pos[i]", shaft=THIN)
+    names = ", ".join(force_name(force) for force in model.forces)
+    each = f"for j in range({len(model.forces)}):"
+    lines = [commented("forcearrows = []", f"grey, tip to tail, one per force: {names}")]
+    if single:
+        return lines + [each, f"    forcearrows.append({make})"]
+    return lines + ["for i in range(len(pos)):", "    forcearrows.append([])", f"    {each}",
+                    f"        forcearrows[i].append({make})"]
 
 
 def setup_lines(model, *, shown, integrator: str | None, single: bool) -> list[str]:
@@ -39,35 +63,46 @@ def setup_lines(model, *, shown, integrator: str | None, single: bool) -> list[s
     if not kinds:
         return []
     scales = choose_scales(model, integrator=integrator)
-    lines = ["", "# ---- the arrows: p and F_net at fixed scales, as on the page ----"]
+    lines = ["", f"# ---- the arrows: {', '.join(kinds)} at fixed scales, as on the page ----"]
     if "p" in kinds:
         lines.append(commented(f"pscale = 1/{scales.p_unit:g}",
                                f"m per kg·m/s: an arrow 1 m long is {scales.p_unit:g} kg·m/s"))
-    if "F_net" in kinds:
+    if set(kinds) - {"p"}:
         lines.append(commented(f"Fscale = 1/{scales.F_unit:g}", f"m per N: an arrow 1 m long is {scales.F_unit:g} N"))
-    for kind in kinds:
-        arrow, scale, along = _names(kind)
-        start = f"{scale}*p" if kind == "p" else "vector(0, 0, 0)"   # F_net: from the first update on
-        colour = _colour(ARROW_COLOURS[kind])
-        if single:
-            lines.append(f"{arrow} = arrow(pos=pos, axis={start}, color={colour}, shaftwidth=0.2*radius)")
-        else:
-            start = start.replace("*p", "*p[i]")
-            lines += [f"{arrow}s = []", "for i in range(len(pos)):",
-                      f"    {arrow}s.append(arrow(pos=pos[i], axis={start}, color={colour}, shaftwidth=0.2*radius))"]
+    if "p" in kinds:
+        lines += _made("parrow", _arrow("p", at="pos", axis="pscale*p"), single=single, comment="yellow: momentum p")
+    if "F_net" in kinds:   # from the first update on
+        lines += _made("Farrow", _arrow("F_net", at="pos"), single=single, comment="reddish purple: net force")
+    if "forces" in kinds:
+        lines += _made_per_force(model, single=single)
+    if "split" in kinds:
+        lines += _made("pararrow", _arrow("F_par", at="pos"), single=single, comment="sky blue: F∥, along p")
+        lines += _made("perparrow", _arrow("F_perp", at="pos"), single=single, comment="white: F⊥, across p")
     return lines
 
 
-def loop_lines(*, shown, single: bool) -> list[str]:
+def loop_lines(model, *, shown, single: bool) -> list[str]:
     """Each arrow moved to its mass and its quantity, right after the mass's update."""
     i = "" if single else "[i]"
+    each = "" if single else "s[i]"
     lines = []
-    for kind in WRITTEN:
-        if kind in shown:
-            arrow, scale, along = _names(kind)
-            name = f"{arrow}{'' if single else 's[i]'}"
-            quantity = f"p{i}" if kind == "p" else "Fnet"
-            lines += [f"{name}.pos = pos{i}",
-                      commented(f"{name}.axis = {scale}*{quantity}",
-                                "the momentum just updated" if kind == "p" else "the net force the update used")]
+    if "p" in shown:
+        lines += [f"parrow{each}.pos = pos{i}",
+                  commented(f"parrow{each}.axis = pscale*p{i}", "the momentum just updated")]
+    if "F_net" in shown:
+        lines += [f"Farrow{each}.pos = pos{i}",
+                  commented(f"Farrow{each}.axis = Fscale*Fnet", "the net force the update used")]
+    if "forces" in shown:
+        lines.append(commented(f"Ftail = pos{i}", "each force from the tip of the one before"))
+        for n, force in enumerate(model.forces):
+            lines += [f"forcearrows{i}[{n}].pos = Ftail", f"forcearrows{i}[{n}].axis = Fscale*{force.TERM}",
+                      f"Ftail = Ftail + Fscale*{force.TERM}"]
+    if "split" in shown:
+        lines += [commented(f"phat = norm(p{i})", "the direction of p"),
+                  f"if mag(p{i}) == 0:",
+                  commented("    phat = norm(Fnet)", "from rest: all of F_net starts the motion"),
+                  commented("Fpar = dot(Fnet, phat)*phat", "F∥ = (F_net·p̂) p̂: changes the speed"),
+                  commented("Fperp = Fnet - Fpar", "F⊥ = F_net − F∥: changes the direction")]
+        for name, part in (("pararrow", "Fpar"), ("perparrow", "Fperp")):
+            lines += [f"{name}{each}.pos = pos{i}", f"{name}{each}.axis = Fscale*{part}"]
     return lines

@@ -86,7 +86,7 @@ def program(setup, *, integrator: str | None = None, web: bool = False, arrows=N
                 Model.methods picks it; scenes that step each mass with its own method
                 (integrators) keep theirs, as headless runs do.
     web         True for Web VPython (first line `Web VPython 3.2`, no imports).
-    arrows      the arrows to draw (export/program_arrows.py: p, F_net); None: the scene's VIEW's
+    arrows      the arrows to draw (export/program_arrows.py: p, F_net, forces, split); None: the scene's VIEW's
     end         when the program stops, s (the command line's --until); None: run_end's choice.
                 It prints its answer at the scene's question time, `until`, on the way.
 
@@ -107,16 +107,16 @@ def program(setup, *, integrator: str | None = None, web: bool = False, arrows=N
 
 def scene_setup_lines(case) -> list[str]:
     """Lines after the objects are made, before the loop: where another writer adds objects of its
-    own, from case.model and case.constants (the p and F_net arrows, export/program_arrows.py)."""
+    own, from case.model and case.constants (the arrows, export/program_arrows.py)."""
     return program_arrows.setup_lines(case.model, shown=case.arrows, integrator=case.integrator,
                                       single=case.single)
 
 
 def after_update_lines(case) -> list[str]:
     """Lines in the loop after one mass's momentum update, before time moves on: where another
-    writer adds what follows the update (the arrows for p and F_net). `case.index` is "" for one
+    writer adds what follows the update (the arrows). `case.index` is "" for one
     mass or "[i]" inside the loop over the masses."""
-    return program_arrows.loop_lines(shown=case.arrows, single=case.single)
+    return program_arrows.loop_lines(case.model, shown=case.arrows, single=case.single)
 
 
 def _check_size(setup, model) -> None:

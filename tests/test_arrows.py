@@ -222,3 +222,71 @@ def test_the_notebooks_show_checks_its_arrows_before_anything_is_drawn():
 
     with pytest.raises(ConstantError, match="got 'q'"):
         show("vertical", arrows=("p", "q"))
+
+
+def test_the_masses_are_see_through_while_an_arrow_starts_inside_them():
+    """An arrow shorter than the ball's radius (driven --scenario 3's steady motion) would hide in
+    it: while any arrow is shown the masses are drawn see-through, and solid again when none is;
+    the arrows themselves keep their length, scale × the engine's value."""
+    from browser.arrows3d import SEE_THROUGH, MomentumArrows
+    from browser.clock import LiveRun
+    from test_trail import Shape
+
+    model = catalog.configure("driven", scenario=3).build()
+    live = LiveRun(model, integrator="euler-cromer")
+    ball = Shape(opacity=1.0)
+    arrows = MomentumArrows(stand_in_with_arrows(), model=model, integrator="euler-cromer", shown={"p"},
+                            radius=0.32, masses=[ball])
+    live.advance(round(20.0 / model.dt))   # the steady motion: p is far shorter than the ball
+    arrows.draw(live)
+    length = np.linalg.norm(np.array(arrows.p[0].axis))
+    assert 0 < length < 0.32 and np.isclose(length * arrows.scales.p_unit, np.linalg.norm(live.state.p[0]))
+    assert 0 < SEE_THROUGH < 1 and ball.opacity == SEE_THROUGH
+    arrows.set_shown("p", False)
+    arrows.draw(live)
+    assert ball.opacity == 1.0
+    arrows.set_shown("split", True)
+    arrows.draw(live)
+    assert ball.opacity == SEE_THROUGH
+
+
+@pytest.mark.parametrize("name, scenario", [("vertical", None), ("damped", None), ("driven", 3), ("pendulum", None),
+                                            ("resonance", None), ("regimes", None)])
+def test_the_arrows_stay_in_the_picture_the_page_frames(name, scenario):
+    """Every p and F_net arrow, at the run's scales, ends inside the 3-D view the page frames
+    (browser/scene3d.py, drawn on the stand-in vpython, its camera looking along `forward`) over
+    the 30 s the scales are chosen for; at most its head (3 shaft widths, 0.6 radius) may reach
+    past the edge; under a ceiling, no arrow goes up through it. `resonance --arrows p` had its
+    scale chosen from the whole row's width (4.8 m) while each spring moves 1.8 m: its p arrows
+    ran 2 m up, through the ceiling to the top of the view."""
+    from browser.scene3d import CANVAS_SIZE, Scene3D
+    from browser.view import DEFAULT_VIEW
+    from physics.simulate import every, trajectory
+    from test_trail import stand_in_vpython
+
+    setup = catalog.configure(name, scenario=scenario)
+    model = setup.build()
+    vp = stand_in_vpython()
+    scene = Scene3D(vp, model=model, view={**DEFAULT_VIEW, **setup.module.VIEW}, title=name)
+    forward = np.array([vp.scene.forward.x, vp.scene.forward.y, vp.scene.forward.z])
+    forward /= np.linalg.norm(forward)
+    up = np.array([0.0, 1.0, 0.0]) - forward[1] * forward          # the screen's up, m per m
+    up /= np.linalg.norm(up)
+    right = np.cross(forward, up)
+    width, height = CANVAS_SIZE
+    half = np.array([scene.range * width / height, scene.range]) + 0.6 * scene.radius
+    scales = choose_scales(model)
+    engine = model.simulation()
+    steps = round(30.0 / model.dt)
+    traj = trajectory(engine, engine.advance(steps, record=every(max(1, steps // 500))), with_energy=False)
+    kept = [i for i in range(model.state.count) if i not in model.expected_runaways(engine.methods)]
+    for n in range(len(traj.t)):
+        r, p = traj.r[n][kept], traj.p[n][kept]
+        F = net_force(model.forces, traj.t[n], traj.r[n], velocity(traj.p[n], traj.m), traj.m)[kept]
+        for tips in (r + scales.momentum_axis(p), r + scales.force_axis(F)):
+            on_screen = np.stack([(tips - scene.centre) @ right, (tips - scene.centre) @ up], axis=1)
+            out = np.abs(on_screen) - half
+            assert np.all(out <= 0), f"{name}: an arrow ends {out.max():.2f} m outside the view at t = {traj.t[n]:.2f} s"
+            if not scene.wall:
+                through = tips[:, 1] - scene.support_box[0][1]
+                assert np.all(through <= 0), f"{name}: an arrow ends {through.max():.2f} m above the ceiling"

@@ -12,6 +12,7 @@ student would, with Ctrl+Enter, in this order:
   curve, and t advances; Pause and Run, clicked in the page, reach the kernel (the screenshot
   notebook.png is taken here, into docs/screenshots/ only with UPDATE_SCREENSHOTS=1);
 * running the cell again starts the scene again from t = 0 in that cell;
+* its p and F_net arrows show, with their legend and check boxes, and unchecking the boxes hides them;
 * the cells of `pendulum` and then `resonance` (with its own resonance graph) each stop the scene
   running before and run under their own cell;
 * the page's scene menu switches scene in place, inside the cell.
@@ -319,6 +320,56 @@ def test_running_the_cell_again_starts_the_scene_again_from_0(page):
     assert cell.locator("b").filter(has_text=TIME).count() == 1  # the old output is gone
     assert cell.locator(".glowscript-canvas-wrapper").count() == 1
     wait_until_running(cell)
+
+
+def arrow_pixels(image, kind: str) -> int:
+    """Pixels of the 3-D canvas in the colour of one kind of arrow (export/palette.py), lit and shaded."""
+    from export.palette import ARROW_COLOURS
+
+    return pixels_like(image, tuple(round(255 * c) for c in ARROW_COLOURS[kind]), within=60)
+
+
+@browser
+@needs_browser
+def test_the_notebook_shows_the_arrows_and_its_check_boxes_reach_the_kernel(page):
+    """As on the page: `vertical` opens with its p (yellow) and F_net (reddish purple) arrows on,
+    its checked boxes and the legend of the scales, and the mass see-through around them.
+    Unchecking both boxes in the cell hides both arrows (at every moment one of them is over
+    1 m long: |p|/20 and |F_net|/50 are never small together) and makes the mass solid again."""
+    from export.arrows import choose_scales
+    from export.palette import mass_colour
+
+    cell = running_scene_cell(page, "vertical")
+    scales = choose_scales(catalog.configure("vertical").build())
+    assert scales.legend() in cell.inner_text()   # an arrow of 1 m = 20 kg·m/s for p, 50 N for forces
+    boxes = cell.locator("input[type=checkbox]")
+    assert boxes.count() == 4                      # p, F_net, forces, F∥ and F⊥
+    assert [boxes.nth(n).is_checked() for n in range(4)] == [True, True, False, False]
+    orange = tuple(round(255 * c) for c in mass_colour(0))
+
+    def drawn():
+        image = look(cell, canvas=canvas(cell))["canvas"]
+        return arrow_pixels(image, "p"), arrow_pixels(image, "F_net"), pixels_like(image, orange, within=60)
+    shown = wait_for(lambda: max((seen := drawn())[:2]) > 150 and seen, timeout=120.0,
+                     what="the p or F_net arrow on the canvas")
+    boxes.nth(0).uncheck()
+    boxes.nth(1).uncheck()
+    # a solid ball's highlights give a few yellowish pixels: a shown p arrow under 40 of them is
+    # under 0.3 of its longest, and then F_net is over 0.95 of its own and far over 10
+    last = []
+
+    def gone():
+        last[:] = drawn()
+        return last[0] < 40 and last[1] < 10
+    try:
+        wait_for(gone, timeout=120.0, what="both arrows to go after their boxes were unchecked")
+    except pytest.fail.Exception:
+        pytest.fail(f"the arrows stayed after their boxes were unchecked: (p, F_net, orange) pixels {last}")
+    # see-through, the ball had few pixels of its own orange; solid, it has far more
+    assert last[2] > max(100, 2 * shown[2]), f"the mass did not turn solid with no arrow shown: {shown} then {last}"
+    boxes.nth(0).check()
+    boxes.nth(1).check()
+    wait_for(lambda: max(drawn()[:2]) > 150, timeout=120.0, what="the arrows back after checking their boxes")
 
 
 @browser

@@ -1,6 +1,7 @@
-"""The handed-out program's p and F_net arrows (export/program_arrows.py), run under the stand-in
-vpython of tests/test_export.py: the page's colours and scales, and at the end of the run each arrow
-is scale × the program's own final p and F_net, parallel to the engine's."""
+"""The handed-out program's arrows (export/program_arrows.py), run under the stand-in vpython of
+tests/test_export.py: the page's colours and scales, and at the end of the run each arrow is
+scale × the program's own final p and F_net, parallel to the engine's; each force tip to tail
+ends at F_net's tip, and F∥ + F⊥ = F_net with F⊥ across p."""
 from __future__ import annotations
 
 import numpy as np
@@ -69,3 +70,67 @@ def test_no_arrows_writes_none(stand_in, tmp_path):  # noqa: F811
     drawn = []
     run_program(path, stand_in, drawn)
     assert not [shown for shown in drawn if shown["kind"] == "arrow"] and "arrow" not in path.read_text()
+
+
+@pytest.mark.parametrize("args", [("vertical", "--set", "until=3"), ("pendulum", "--set", "until=2"),
+                                  ("regimes", "--set", "until=2"),
+                                  ("driven", "--scenario", "3", "--integrator", "rk4", "--set", "until=4")])
+def test_the_programs_forces_and_split_arrows_are_the_pages(args, stand_in, tmp_path):  # noqa: F811
+    """`--arrows forces,split`: the program draws each force on its own thin grey arrow, tip to tail,
+    ending at F_net's tip, and F∥ (sky blue) and F⊥ (white), in the page's colours and at the
+    page's force scale; at the end F⊥ is across the final p, F∥ + F⊥ = F_net, and each force is
+    the engine's force of the last update (euler-cromer) at that scale."""
+    from export.arrows import forces_each, split
+
+    path = tmp_path / "program.py"
+    web = tmp_path / "web.py"
+    done = main_py(*args, "--arrows", "p,F_net,forces,split", "--vpython", str(path), "--webvpython", str(web))
+    assert done.returncode == 0, done.stderr
+    drawn = []
+    answers = run_program(path, stand_in, drawn)
+    rest = args[1:]
+    setup = catalog.configure(args[0], assignments=[rest[n + 1] for n in range(len(rest)) if rest[n] == "--set"],
+                              scenario=int(rest[rest.index("--scenario") + 1]) if "--scenario" in rest else None)
+    integrator = rest[rest.index("--integrator") + 1] if "--integrator" in rest else None
+    model = setup.build()
+    scales = choose_scales(model, integrator=integrator)
+    traj = headless.simulate(setup, model=model, integrator=integrator, every_step=True, progress=None).trajectory
+    m, count, kinds = traj.m, model.state.count, len(model.forces)
+    each_last = forces_each(model.forces, traj.t[-2], traj.r[-2], velocity(traj.p[-2], m), m)
+    along, across = split(net_force(model.forces, traj.t[-1], traj.r[-1], velocity(traj.p[-1], m), m), traj.p[-1])
+
+    def arrows(kind):
+        return [shown for shown in drawn
+                if shown["kind"] == "arrow" and shown["color"] == pytest.approx(list(ARROW_COLOURS[kind]))]
+    F_arrows, force_arrows = arrows("F_net"), arrows("forces")
+    par, perp = arrows("F_par"), arrows("F_perp")
+    assert len(F_arrows) == len(par) == len(perp) == count and len(force_arrows) == count * kinds
+    for i in range(count):
+        r, p = answers[i][1], answers[i][2]
+        F = np.array(F_arrows[i]["axis"])
+        mine = force_arrows[i * kinds:(i + 1) * kinds]
+        assert np.allclose(mine[0]["pos"], r, atol=1e-9)
+        for a, b in zip(mine, mine[1:]):   # tip to tail
+            assert np.allclose(np.array(a["pos"]) + a["axis"], b["pos"], atol=1e-9)
+        assert np.allclose(np.array(mine[-1]["pos"]) + mine[-1]["axis"], r + F, atol=1e-9)   # ends at F_net's tip
+        assert all(a["shaftwidth"] < F_arrows[i]["shaftwidth"] for a in mine)               # thin, as on the page
+        if integrator is None:   # euler-cromer: each force of the last update, at the page's scale
+            for n in range(kinds):
+                assert np.allclose(np.array(mine[n]["axis"]) * scales.F_unit, each_last[n][i], rtol=1e-6, atol=1e-9)
+        F_par, F_perp = np.array(par[i]["axis"]), np.array(perp[i]["axis"])
+        assert np.allclose(par[i]["pos"], r) and np.allclose(perp[i]["pos"], r)
+        assert np.allclose(F_par + F_perp, F, atol=1e-12)
+        assert abs(F_perp @ p) <= 1e-9 * max(1.0, np.linalg.norm(F_perp) * np.linalg.norm(p))   # across p
+        assert abs(F_par @ p) == pytest.approx(np.linalg.norm(F_par) * np.linalg.norm(p), rel=1e-9)  # along p
+        # parallel to the engine's own split of the final F_net along the final p
+        for drawn_part, engine_part in ((F_par, along[i]), (F_perp, across[i])):
+            size = np.linalg.norm(engine_part) / scales.F_unit
+            if size > 0.05 * np.linalg.norm(F):
+                assert drawn_part @ engine_part / scales.F_unit > 0.98 * np.linalg.norm(drawn_part) * size
+    # the Web VPython program: what GlowScript 3.2 reads, an if statement, not a conditional
+    # expression; no f-strings
+    code = [line.split("#")[0] for line in web.read_text().splitlines()]
+    assert code[0].startswith("Web VPython 3.2") and ".axis = Fscale*Fpar" in web.read_text()
+    assert "Fpar = dot(Fnet, phat)*phat" in [line.strip() for line in code]
+    assert all(line.strip().startswith("if ") for line in code if " if " in f" {line.strip()} ")
+    assert not any('f"' in line or "f'" in line for line in code)
