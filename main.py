@@ -13,6 +13,7 @@
         [--fit k,b] [--data-column NAME] [--run N] [--coordinate x|y|z] [--json] [--plot FILE.png]
     python main.py SCENE --mystery FILE [--seed N]   a measured-looking run with hidden k and b
     python main.py SCENE --show-answer --seed N      the hidden k and b of that mystery file
+    python main.py SCENE --data FILE --page         the data on the browser page, with its Fit button
 
 --arrows p,F_net,forces,split (or --no-arrows) chooses the arrows drawn on each mass, in the browser
 and in the program --vpython and --webvpython write (default: the scene's VIEW).
@@ -124,6 +125,9 @@ def build_parser() -> argparse.ArgumentParser:
     data.add_argument("--run", type=int, metavar="N", help="with --data: read run N of several (default 1)")
     data.add_argument("--coordinate", choices=("x", "y", "z"),
                       help="with --data: the model's coordinate to compare (default: the scene's plotted one)")
+    data.add_argument("--page", action="store_true",
+                      help="with --data: show the data on the browser page instead (dots on its position "
+                           "graph, the RMS residual, a Fit button that fits --fit's names, or k,b)")
     data.add_argument("--mystery", metavar="FILE",
                       help="write a measured-looking run of a spring with hidden k and b (Vernier CSV)")
     data.add_argument("--seed", type=int, metavar="N", help="with --mystery or --show-answer: which mystery")
@@ -196,11 +200,11 @@ def headless_run(args) -> bool:
     """Whether the command runs without the browser: --headless, and --steps and --plot, which imply it
     (and --data, --mystery and --show-answer, which never open the page)."""
     return (args.headless or args.steps is not None or args.plot is not None
-            or lab_command(args) is not None)
+            or (lab_command(args) is not None and not args.page))
 
 
 LAB_OPTIONS = (("--fit", "fit"), ("--data-column", "data_column"), ("--run", "run"),
-               ("--coordinate", "coordinate"), ("--seed", "seed"))
+               ("--coordinate", "coordinate"), ("--seed", "seed"), ("--page", "page"))
 
 
 def lab_command(args) -> str | None:
@@ -220,7 +224,7 @@ def check_lab_options(args) -> None:
     for flag, attribute in (("--list", "list"), ("--constants", "constants")):
         if command and _given(args, attribute):
             raise UsageError(f"{flag} only lists, so {command} would do nothing; leave out one of them")
-    allowed = {"--data": {"fit", "data_column", "run", "coordinate"},
+    allowed = {"--data": {"fit", "data_column", "run", "coordinate", "page"},
                "--mystery": {"seed", "coordinate"}, "--show-answer": {"seed", "coordinate"}}.get(command, set())
     for flag, attribute in LAB_OPTIONS:
         if _given(args, attribute) and attribute not in allowed:
@@ -233,12 +237,16 @@ def check_lab_options(args) -> None:
     if args.run is not None and args.run < 1:
         raise UsageError(f"--run needs a whole number of 1 or more (got {args.run})")
     others = [(flag, attribute) for flag, attribute in (("--csv", "csv"), ("--steps", "steps"),
-                                                        ("--until", "until"), *PROGRAM_OPTIONS, *BROWSER_ONLY)]
+                                                        ("--until", "until"), *PROGRAM_OPTIONS)]
+    others += [("--json", "json"), ("--plot", "plot"), ("--headless", "headless")] if args.page else BROWSER_ONLY
     if command != "--data":
         others += [("--json", "json"), ("--plot", "plot"), ("--integrator", "integrator")]
     for flag, attribute in others:
         if _given(args, attribute):
-            raise UsageError(f"{flag} does nothing with {command}; leave out one of them")
+            page = (" (add --page to show the data on the page)" if command == "--data" and
+                    (flag, attribute) in BROWSER_ONLY else "")
+            raise UsageError(f"{flag} does nothing with {command}{' --page' if args.page else ''}; "
+                             f"leave out one of them{page}")
 
 
 def _given(args, attribute) -> bool:
@@ -443,7 +451,9 @@ def main(argv=None) -> int:
             print(presets_report(setup))
             return 0
         model = build_model(args, setup)
-        if lab_command(args) is not None:
+        if args.page:
+            data = page_data(args, setup)
+        elif lab_command(args) is not None:
             from reports import measured
 
             run_lab = {"--data": measured.run_data, "--mystery": measured.run_mystery,
@@ -480,7 +490,19 @@ def main(argv=None) -> int:
                        if label.startswith(f"scenario {args.scenario}:")), None)
     sys.exit(show(setup, model, integrator=integrator, port=args.port,
                   open_browser=not args.no_browser, preset=preset, projector=args.projector,
-                  arrows=args.arrows))
+                  arrows=args.arrows, data=data if args.page else None))
+
+
+def page_data(args, setup):
+    """--data FILE --page: the file read (a bad one is one line before any page opens) and the
+    names the page's Fit button fits (--fit, checked now), for browser/data_panel.py."""
+    from browser.data_panel import MeasuredData
+    from lab import compare, readers
+
+    coordinate = compare.coordinate_of(setup, args.coordinate)
+    measured = readers.read(args.data, column=args.data_column, run=args.run, coordinate=coordinate)
+    names = compare.check_names(setup, args.fit.split(",")) if args.fit else ()
+    return MeasuredData(measured=measured, fit_names=names, coordinate=args.coordinate)
 
 
 class Terminated(BaseException):

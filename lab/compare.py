@@ -58,6 +58,14 @@ class Estimate:
     uncertainty: float
     unit: str
 
+    def __str__(self) -> str:
+        """`54.997 ± 0.003 N/m`: the uncertainty to two significant digits, the value to the same place."""
+        value, sigma, unit = self.value, self.uncertainty, self.unit
+        if not (math.isfinite(sigma) and sigma > 0):
+            return f"{value:.6g} {unit}"
+        decimals = max(0, 1 - math.floor(math.log10(sigma)))
+        return f"{value:.{decimals}f} ± {sigma:.{decimals}f} {unit}"
+
 
 @dataclass
 class Comparison:
@@ -125,6 +133,15 @@ class ModelRun:
         slope = ((6 * s2 - 6 * s) * r0 + (3 * s2 - 4 * s + 1) * v0 + (6 * s - 6 * s2) * r1
                  + (3 * s2 - 2 * s) * v1) / self.dt
         return np.where(held, self.r[0], r), np.where(held, 0.0, slope)
+
+
+def coordinate_of(setup, asked: str | None = None) -> str:
+    """The coordinate compared: `asked` (--coordinate), else the one the scene plots (vertical: y;
+    driven: x)."""
+    if asked:
+        return asked
+    plotted = getattr(setup.module, "VIEW", {}).get("plot", "y")
+    return plotted if plotted in AXES else "y"
 
 
 def _constants_said(setup, names=None) -> str:
