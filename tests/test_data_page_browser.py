@@ -10,7 +10,9 @@ the k and b of `--data FILE --fit k,b`, with the page's integrator and Δt (the 
    but the page (a foreign Origin, or none) is refused; then the mystery file loads, its dots are
    drawn on the position graph in the data colour, and Fit moves the k and b sliders to the
    command line's fitted values.
-2. `--data FILE --page` shows the same comparison from the start.
+2. `--data FILE --page` shows the same comparison from the start; at a small Δt, where the fit
+   takes seconds, the page says "fitting k, b…" while its clock goes on, then shows the values
+   `--fit k,b` prints.
 
 Skipped, with the reason, where Chromium or Playwright is missing.
 """
@@ -150,10 +152,13 @@ def test_load_data_overlay_and_fit_move_the_sliders(browser, tmp_path):
     assert not [line for line in program.errors if "Traceback" in line], program.errors
 
 
-def test_data_on_the_command_line_shows_on_the_page(browser, tmp_path):
+def test_data_on_the_command_line_shows_on_the_page_and_fitting_does_not_stop_the_run(browser, tmp_path):
+    """--data FILE --page, at a Δt small enough that the fit takes seconds: the page shows the
+    comparison from the start, says "fitting k, b…" while the run goes on, then the fit's values."""
     path = mystery(tmp_path)
-    compared = headless(path)
-    program = Program("damped", "--data", str(path), "--page")
+    model = ("--integrator", "rk4", "--set", "dt=0.0005")
+    compared, fitted = headless(path, *model), headless(path, *model, "--fit", "k,b")
+    program = Program("damped", "--data", str(path), "--page", *model)
     try:
         page = browser.new_page(viewport={"width": 1920, "height": 1080})
         page.goto(program.url())
@@ -164,6 +169,16 @@ def test_data_on_the_command_line_shows_on_the_page(browser, tmp_path):
         wait_for(lambda: position_graph_blue(page, tmp_path, "cli") > 100, timeout=120,
                  what="the measured dots on the position graph")
         page.screenshot(path=str(screenshot_folder() / "data-loaded-1920x1080.png"))
+
+        page.get_by_role("button", name="Fit", exact=True).click()
+        wait_for(lambda: "fitting k, b…" in data_lines(page), timeout=120, what="the page to say it is fitting")
+        during = shown_time(page)
+        wait_for(lambda: "fitting k, b…" in data_lines(page) and shown_time(page) > during,
+                 timeout=120, what="the run to go on while the fit works")
+        shown = wait_for(lambda: page.locator(".sm-fit").count() and page.locator(".sm-fit").inner_text(),
+                         timeout=300, what="the fitted values")
+        for name, unit in (("k", "N/m"), ("b", "kg/s")):
+            assert f"{name} = {Estimate(**fitted['fit'][name])}" in shown.replace("\u00a0", " ")
         page.close()
     finally:
         program.stop()
