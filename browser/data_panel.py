@@ -78,19 +78,15 @@ class MeasuredData:
         self.result = None        # the Comparison shown (lab/compare.py)
         self.shown_for = None     # the scene, values and integrator it was made for
         self.job = 0              # the newest request's number
-        self.working = ""         # "comparing" or "fitting" while a thread works, else ""
+        self.working = ""         # "reading", "comparing" or "fitting" while a thread works, else ""
+        self.reading = ""         # the name of the file being read
         self.problem = ""         # the last one-line error (a bad file, a fit refused)
         self.answers: queue.SimpleQueue = queue.SimpleQueue()
 
-    def load(self, raw: bytes, name: str, setup) -> bool:
-        """Read a file the page sent. A bad file keeps what was loaded before and says why."""
-        try:
-            measured = readers.from_bytes(raw, name, coordinate=compare.coordinate_of(setup, self.coordinate))
-        except LabError as problem:
-            self.problem = str(problem)
-            return False
-        self.measured, self.result, self.shown_for, self.problem = measured, None, None, ""
-        return True
+    def load(self, raw: bytes, name: str, setup, integrator: str) -> None:
+        """Read a file the page sent, then compare it with `setup`, on a thread of its own (a file
+        of 200,000 rows takes seconds to read). A bad file keeps what was loaded before and says why."""
+        self._start("reading", setup, integrator, (), None, upload=(raw, name))
 
     # ---- the work, on a thread ----
 
@@ -99,39 +95,49 @@ class MeasuredData:
         its own; a comparison already shown for the same constants is not made again."""
         if self.measured is None or (not fit and self.shown_for == _key(setup, integrator)):
             return
+        self._start("fitting" if fit else "comparing", setup, integrator, self.fit_names if fit else (),
+                    self.measured)
+
+    def _start(self, working: str, setup, integrator: str, names, measured, upload=None) -> None:
         self.job += 1
-        self.working, self.problem = ("fitting" if fit else "comparing"), ""
-        names = self.fit_names if fit else ()
-        threading.Thread(target=self._work, args=(self.job, setup, integrator, names, self.measured),
+        self.working, self.problem = working, ""
+        self.reading = upload[1] if upload else ""
+        threading.Thread(target=self._work, args=(self.job, setup, integrator, names, measured, upload),
                          name="measured-data-fit", daemon=True).start()
 
-    def _work(self, job: int, setup, integrator: str, names, measured) -> None:
+    def _work(self, job: int, setup, integrator: str, names, measured, upload) -> None:
+        loaded = None if upload is None else False      # False: a file sent but not read (yet)
+        coordinate = compare.coordinate_of(setup, self.coordinate)
         try:
+            if upload is not None:
+                measured = loaded = readers.from_bytes(*upload, coordinate=coordinate)
             answer = compare.compare(setup, measured.t, measured.position, integrator=integrator,
-                                     coordinate=compare.coordinate_of(setup, self.coordinate), fit=names)
+                                     coordinate=coordinate, fit=names)
         except LabError as problem:
             answer = str(problem)
         except Exception as problem:  # a bug of ours: one line on the page, never a traceback
             answer = f"unexpected {type(problem).__name__}: {problem}"
-        self.answers.put((job, integrator, bool(names), answer))
+        self.answers.put((job, integrator, bool(names), loaded, answer))
 
     def finished(self):
         """The newest request's answer if it has come: the Comparison (also kept as the one
-        shown), or None after an error (kept in problem: a comparison that cannot be made takes
-        the points off, a fit that cannot be made leaves the comparison shown); False while none
-        has come."""
+        shown), or None after an error (kept in problem: a file that cannot be read leaves what was
+        loaded before, a comparison that cannot be made takes the points off, a fit that cannot be
+        made leaves the comparison shown); False while none has come."""
         newest = False
         while True:
             try:
-                job, integrator, fit, answer = self.answers.get_nowait()
+                job, integrator, fit, loaded, answer = self.answers.get_nowait()
             except queue.Empty:
                 return newest
             if job != self.job:
                 continue          # overtaken by a newer request
             self.working = ""
+            if loaded:
+                self.measured, self.result, self.shown_for = loaded, None, None
             if isinstance(answer, str):
                 self.problem, newest = answer, None
-                if not fit:
+                if not fit and loaded is not False:   # a bad file leaves what was shown
                     self.result, self.shown_for = None, None
             else:
                 self.result, self.shown_for, newest = answer, _key(answer.setup, integrator), answer
@@ -161,7 +167,8 @@ class MeasuredData:
                          f"{html.escape(measured.choice, quote=False)}")
         if self.working:
             names = ", ".join(self.fit_names)
-            lines.append(f"<i>fitting {names}…</i>" if self.working == "fitting" else "<i>comparing…</i>")
+            lines.append({"fitting": f"<i>fitting {names}…</i>", "comparing": "<i>comparing…</i>",
+                          "reading": f"<i>reading {html.escape(self.reading, quote=False)}…</i>"}[self.working])
         elif result is not None:
             c = result.coordinate
             lines.append(f"<b>RMS residual = {_metres(result.rms)}</b>; blue dots: the data at t − t₀, {c} − {c}₀ "

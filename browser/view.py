@@ -370,13 +370,12 @@ class SceneView:
     # ---- measured data (browser/data_panel.py) ----
 
     def _take_upload(self) -> bool:
-        """A file sent by the Load data button: read it, and compare it with the run (a bad file
-        says why in one line and loads nothing)."""
+        """A file sent by the Load data button: read it and compare it with the run, on a thread
+        (a bad file says why in one line and loads nothing)."""
         upload = self.server.uploaded() if hasattr(self.server, "uploaded") else None
         if upload is None:
             return False
-        if self.data.load(upload[1], upload[0], self.setup):
-            self.data.compare(self.setup, self.integrator)
+        self.data.load(upload[1], upload[0], self.setup, self.integrator)   # on a thread
         self._show_data()
         return True
 

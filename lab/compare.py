@@ -34,6 +34,8 @@ from scenes._constants import DECLARED
 
 AXES = {"x": 0, "y": 1, "z": 2}
 MAX_STEPS_PER_RUN = 2_000_000     # a fit runs the engine dozens of times: each run stays this short
+START_POINTS = 2000              # points and release times the start's grid search uses at most
+START_OFFSETS = 5000
 CONDITION_LIMIT = 1e8             # beyond this the fitted values cannot be told apart
 # Constants that enter the motion only in a combination: fitting two of a group is meaningless.
 TIED = [
@@ -278,15 +280,19 @@ class _Problem:
 
 def _start_offsets(problem, theta_constants, t, y):
     """t_offset and position_offset to start from: the release time that matches the data best,
-    searched over a grid of 1/50 period (linear interpolation, the position offset from the mean)."""
+    searched over a grid of 1/50 period (linear interpolation, the position offset from the mean).
+    A long record (200,000 rows) is searched on START_POINTS of its points and START_OFFSETS
+    release times at most: it is only a start, and the full search took minutes."""
     span = t[-1] - t[0]
     omega = _frequency(t, y) or 2 * math.pi / span
     period = 2 * math.pi / omega
     earliest, latest = t[0] - 0.5 * span - period, t[0] + 0.5 * span
     run = problem.run(theta_constants, t[-1] - earliest)
     grid = np.arange(0.0, run.end + run.dt / 2, run.dt)[: len(run.r)]
+    every = max(1, len(t) // START_POINTS)
+    t, y = t[::every], y[::every]
     best = (math.inf, t[0], 0.0)
-    for t_offset in np.arange(earliest, latest, period / 50):
+    for t_offset in np.arange(earliest, latest, max(period / 50, (latest - earliest) / START_OFFSETS)):
         tau = t - t_offset
         model = np.where(tau < 0, run.r[0], np.interp(tau, grid, run.r))
         offset = float(np.mean(y - model))

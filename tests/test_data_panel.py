@@ -45,9 +45,8 @@ def test_a_loaded_file_is_compared_off_the_calling_thread_and_shown(spring):
     setup, raw = spring
     data = MeasuredData()
     assert data.text() == "" and data.points() == []
-    assert data.load(raw, "spring.csv", setup)
-    data.compare(setup, "euler-cromer")
-    assert data.working == "comparing" and "comparing…" in data.text()
+    data.load(raw, "spring.csv", setup, "euler-cromer")
+    assert data.working == "reading" and "reading spring.csv…" in data.text()
     result = answer(data)
     expected = compare.compare(setup, data.measured.t, data.measured.position, integrator="euler-cromer",
                                coordinate="y")
@@ -64,12 +63,17 @@ def test_a_loaded_file_is_compared_off_the_calling_thread_and_shown(spring):
     # The same constants again: nothing to work out.
     data.compare(setup, "euler-cromer")
     assert data.working == "" and data.finished() is False
+    # Other constants: compared again, on the thread.
+    data.compare(setup.with_values(k=45.0), "euler-cromer")
+    assert data.working == "comparing" and "comparing…" in data.text()
+    assert answer(data).setup.values["k"] == 45.0
 
 
 def test_fit_gives_the_command_lines_values_and_says_fitting_meanwhile(spring):
     setup, raw = spring
     data = MeasuredData()
-    data.load(raw, "spring.csv", setup)
+    data.load(raw, "spring.csv", setup, "euler-cromer")
+    answer(data)
     data.compare(setup, "euler-cromer", fit=True)
     assert "fitting k, b…" in data.text()
     result = answer(data)
@@ -87,7 +91,8 @@ def test_fit_gives_the_command_lines_values_and_says_fitting_meanwhile(spring):
 def test_an_answer_overtaken_by_a_newer_request_is_dropped(spring):
     setup, raw = spring
     data = MeasuredData()
-    data.load(raw, "spring.csv", setup)
+    data.load(raw, "spring.csv", setup, "euler-cromer")
+    answer(data)
     data.compare(setup, "euler-cromer", fit=True)
     moved = setup.with_values(k=50.0)
     data.compare(moved, "euler-cromer")          # a slider moved while the fit ran
@@ -100,22 +105,22 @@ def test_an_answer_overtaken_by_a_newer_request_is_dropped(spring):
 def test_a_bad_file_says_its_one_line_and_keeps_what_was_loaded(spring):
     setup, raw = spring
     data = MeasuredData()
-    assert not data.load(b"\x00\x01\x02\x03" * 64, "scope.bin", setup)
+    data.load(b"\x00\x01\x02\x03" * 64, "scope.bin", setup, "euler-cromer")
+    assert answer(data) is None
     assert data.measured is None and data.text().startswith("<b>Data:</b> scope.bin line 1:")
     assert data.text().count("\n") == 0
-    data.load(raw, "spring.csv", setup)
-    data.compare(setup, "euler-cromer")
-    answer(data)
-    assert not data.load("t,y\n0,1\n0,2\n".encode(), "<b>x</b>.csv", setup)
-    assert data.measured.path == "spring.csv" and data.result is not None
+    data.load(raw, "spring.csv", setup, "euler-cromer")
+    shown = answer(data)
+    data.load("t,y\n0,1\n0,2\n".encode(), "<b>x</b>.csv", setup, "euler-cromer")
+    assert answer(data) is None
+    assert data.measured.path == "spring.csv" and data.result is shown and data.points()
     assert "&lt;b&gt;x&lt;/b&gt;.csv" in data.text() and "<b>x</b>" not in data.text()
 
 
 def test_a_fit_that_cannot_be_made_says_so_and_keeps_the_comparison(spring):
     setup, raw = spring
     data = MeasuredData(fit_names=("k", "m"))
-    data.load(raw, "spring.csv", setup)
-    data.compare(setup, "euler-cromer")
+    data.load(raw, "spring.csv", setup, "euler-cromer")
     shown = answer(data)
     data.compare(setup, "euler-cromer", fit=True)
     assert answer(data) is None
@@ -125,8 +130,7 @@ def test_a_fit_that_cannot_be_made_says_so_and_keeps_the_comparison(spring):
 def test_a_scene_the_data_cannot_be_compared_with_takes_the_dots_off(spring):
     setup, raw = spring
     data = MeasuredData()
-    data.load(raw, "spring.csv", setup)
-    data.compare(setup, "euler-cromer")
+    data.load(raw, "spring.csv", setup, "euler-cromer")
     answer(data)
     data.compare(catalog.configure("integrators"), "euler-cromer")
     assert answer(data) is None
