@@ -92,8 +92,10 @@ class MeasuredData:
 
     def compare(self, setup, integrator: str, *, fit: bool = False) -> None:
         """Start comparing the data with `setup` (and fitting fit_names, if fit) on a thread of
-        its own; a comparison already shown for the same constants is not made again."""
-        if self.measured is None or (not fit and self.shown_for == _key(setup, integrator)):
+        its own; a comparison already shown for the same constants is not made again, and none
+        starts while a file is read (the frame loop asks again once it is in)."""
+        if self.measured is None or self.working == "reading" or \
+                (not fit and self.shown_for == _key(setup, integrator)):
             return
         self._start("fitting" if fit else "comparing", setup, integrator, self.fit_names if fit else (),
                     self.measured)

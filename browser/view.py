@@ -398,6 +398,8 @@ class SceneView:
                 self._rebuild(changes=fitted, integrator=self.integrator)
             else:  # a slider's span does not reach its fitted value: new controls, spanning it
                 self._switch(self.setup.with_values(**fitted))
+        elif answer is not None:   # the constants may have moved while it worked (a file was read)
+            self.data.compare(self.setup, self.integrator)
         self._show_data()
         return True
 

@@ -102,6 +102,21 @@ def test_an_answer_overtaken_by_a_newer_request_is_dropped(spring):
     assert data.finished() is False and data.result is result
 
 
+def test_a_slider_moved_while_a_file_is_read_does_not_drop_the_file(spring):
+    setup, raw = spring
+    data = MeasuredData()
+    data.load(raw, "first.csv", setup, "euler-cromer")
+    answer(data)
+    data.load(raw, "spring.csv", setup, "euler-cromer")
+    data.compare(setup.with_values(k=45.0), "euler-cromer")     # a slider moved meanwhile
+    data.compare(setup.with_values(k=45.0), "euler-cromer", fit=True)
+    assert data.working == "reading"
+    result = answer(data)
+    assert data.measured.path == "spring.csv" and result.setup.values["k"] == setup.values["k"]
+    data.compare(setup.with_values(k=45.0), "euler-cromer")     # what the frame loop then asks
+    assert answer(data).setup.values["k"] == 45.0
+
+
 def test_a_bad_file_says_its_one_line_and_keeps_what_was_loaded(spring):
     setup, raw = spring
     data = MeasuredData()
