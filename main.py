@@ -13,6 +13,7 @@
         [--fit k,b] [--data-column NAME] [--run N] [--coordinate x|y|z] [--json] [--plot FILE.png]
     python main.py SCENE --mystery FILE [--seed N]   a measured-looking run with hidden k and b
     python main.py SCENE --show-answer --seed N      the hidden k and b of that mystery file
+    python main.py SCENE --data FILE --page         the data on the browser page, with its Fit button
 
 --arrows p,F_net,forces,split (or --no-arrows) chooses the arrows drawn on each mass, in the browser
 and in the program --vpython and --webvpython write (default: the scene's VIEW).
@@ -172,7 +173,9 @@ def main(argv=None) -> int:
             print(text.presets_report(setup))
             return 0
         model = build_model(args, setup)
-        if lab_command(args) is not None:
+        if args.page:
+            data = page_data(args, setup)
+        elif lab_command(args) is not None:
             from reports import measured
 
             run_lab = {"--data": measured.run_data, "--mystery": measured.run_mystery,
@@ -209,7 +212,19 @@ def main(argv=None) -> int:
                        if label.startswith(f"scenario {args.scenario}:")), None)
     sys.exit(show(setup, model, integrator=integrator, port=args.port,
                   open_browser=not args.no_browser, preset=preset, projector=args.projector,
-                  arrows=args.arrows))
+                  arrows=args.arrows, data=data if args.page else None))
+
+
+def page_data(args, setup):
+    """--data FILE --page: the file read (a bad one is one line before any page opens) and the
+    names the page's Fit button fits (--fit, checked now), for browser/data_panel.py."""
+    from browser.data_panel import MeasuredData
+    from lab import compare, readers
+
+    coordinate = compare.coordinate_of(setup, args.coordinate)
+    measured = readers.read(args.data, column=args.data_column, run=args.run, coordinate=coordinate)
+    names = compare.check_names(setup, args.fit.split(",")) if args.fit else ()
+    return MeasuredData(measured=measured, fit_names=names, coordinate=args.coordinate)
 
 
 class Terminated(BaseException):

@@ -46,10 +46,11 @@ class Controls:
     integrator   the integrator chosen now; speed: the speed chosen now (a key of SPEEDS)
     preset       the label of the preset applied, shown in the preset menu
     arrows       the kinds of arrow switched on now, ticked in their check boxes
+    load_button  the Load data button's HTML (browser/data_panel.py), '' where files cannot be sent
     """
 
     def __init__(self, vp, *, setup, view: dict, integrators, integrator: str, speed: str,
-                 preset: str | None = None, arrows=()):
+                 preset: str | None = None, arrows=(), load_button: str = ""):
         self.vp = vp
         self.commands: queue.SimpleQueue = queue.SimpleQueue()
         self.downloads = 0  # links offered so far: each gets its own id
@@ -87,7 +88,14 @@ class Controls:
         vp.button(text="Download program", bind=lambda _: put(("program",)))
         caption(" ")
         self.download_text = vp.wtext(text="")
-        caption("\n\n")
+        caption("\n\nmeasured data ")
+        if load_button:
+            vp.wtext(text="").text = load_button  # set, not made with it: the setter runs its script
+            caption(" ")
+        vp.button(text="Fit", bind=lambda _: put(("fit",)))
+        caption("\n")
+        self.data_text = vp.wtext(text="")
+        caption("\n")
         self.time_text = vp.wtext(text="t = 0.00 s")
         caption("    ")
         self.error_text = vp.wtext(text="")
@@ -177,6 +185,24 @@ class Controls:
         """The constants no longer match the preset chosen: the menu shows its prompt again."""
         if self.preset_menu is not None:
             self.preset_menu.selected = PRESET_PROMPT
+
+    def show_data(self, text: str) -> None:
+        """The lines on the measured data (browser/data_panel.py), if they changed."""
+        if text != self.data_text.text:
+            self.data_text.text = text
+
+    def move_sliders(self, values: dict) -> bool:
+        """Put the constants' sliders at `values` (a fit's); a constant without a slider is shown
+        in the constants line only. False, moving none, if a slider's span does not reach its value
+        (vpython cannot change a slider's span once it is made: the controls must be built again)."""
+        moved = {name: value for name, value in values.items() if name in self.sliders}
+        for name, value in moved.items():
+            slider = self.sliders[name]
+            if round_slider_values(name, value) or not slider.min <= value <= slider.max:
+                return False
+        for name, value in moved.items():
+            self.sliders[name].value = value
+        return True
 
     def offer(self, *, kind: str, name: str, href: str, note: str) -> None:
         """Hand a file to the browser: a data: link that a one-line script clicks; the link stays

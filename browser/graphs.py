@@ -24,6 +24,7 @@ from collections import deque
 import numpy as np
 
 from export.numbers import CSV_HEADER, ENERGY_KEYS, clean, clean_time
+from export.palette import BLUE as DATA_COLOUR  # the measured points, as in --data --plot
 from export.palette import (ENERGY_COLOURS, EXACT_COLOUR, EXACT_WIDTH, LIVE_COLOUR, curve_colour, energy_label,
                             mass_colours, shade, simulation_width)
 from physics.energy import kinetic, potential, rest_potential
@@ -72,6 +73,7 @@ class Graphs:
         if has_own:
             self._build_scene_graph(setup.module.view_graph(setup))
         self.position_graph = self._build_position_graph(model)
+        self.data_dots, self.data_values = None, []   # measured points (show_data), on top of the curves
         self.exact_curves = bool(view["exact"]) and model.exact is not None
         self.show_exact = self.exact_curves
         if self.show_exact:
@@ -191,6 +193,8 @@ class Graphs:
         """Empty every curve and the recorded samples, and show t from 0 again."""
         self.position_fit.clear()
         self.energy_fit.clear()
+        if self.data_values:
+            _fit(self.position_graph, self.position_fit, self.data_values)
         for _, trace, _ in self.curves:
             trace.clear()
         self.recorded.clear()
@@ -203,6 +207,22 @@ class Graphs:
         for graph in self.graphs:
             graph.delete()
         self.graphs = []
+
+    # ---- measured data ----
+
+    def show_data(self, points, *, label: str) -> None:
+        """The measured points [[t, position], ...] on the position graph (browser/data_panel.py),
+        as dots in DATA_COLOUR; [] takes them off. The position axis widens to hold them."""
+        if self.data_dots is None and points:
+            self.data_dots = self.vp.gdots(graph=self.position_graph, label=label,
+                                           color=self.vp.vector(*DATA_COLOUR), radius=2.5)
+        if self.data_dots is not None:
+            if self.data_dots.label != label:
+                self.data_dots.label = label
+            replace_points(self.data_dots, points)
+        self.data_values = [y for _, y in points]
+        if points:
+            _fit(self.position_graph, self.position_fit, self.data_values)
 
     # ---- plotting ----
 

@@ -31,6 +31,7 @@ from .clock import LiveRun, RealTimeClock, StepBudget
 from .controls import (PRESET_PROMPT, SPEEDS, Controls, constants_text, csv_href, program_href,
                        scene_menu_choices, slider_names, slider_range, symbol, time_decimals)
 from .arrows3d import MomentumArrows
+from .data_panel import MeasuredData, load_button_html
 from .graphs import SAMPLE_EVERY, Graphs, csv_text
 from .page_layout import PROJECTOR_BUTTON, page_head
 from .scene3d import Scene3D
@@ -44,13 +45,15 @@ FRAME_RATE = 50           # frames per second the loop aims for
 
 
 def show(setup, model, *, integrator: str, port: int | None, open_browser: bool,
-         preset: str | None = None, projector: bool = False, arrows=None) -> int:
+         preset: str | None = None, projector: bool = False, arrows=None, data=None) -> int:
     """Show a scene in the browser and run it in real time until the page is closed.
 
     model   the scene's model, built from `setup` (the command line has built and checked it)
     preset  the label of the preset already applied to `setup` (--preset), shown in the menu.
     projector  start in projector mode (--projector; browser/page_layout.py)
     arrows  the kinds of arrow to show (--arrows, export/arrows.py), None for each scene's VIEW
+    data    the measured data to show from the start (--data --page): browser/data_panel.py's
+            MeasuredData, or None (the page's Load data button loads one)
 
     Returns 2 (after a one-line message) if the server cannot start. Otherwise the program ends
     through SystemExit(0) when the tab closes, and Ctrl-C (while waiting for a browser or while
@@ -61,7 +64,7 @@ def show(setup, model, *, integrator: str, port: int | None, open_browser: bool,
     try:
         server = start(port=port, open_browser=open_browser)
         SceneView(setup=setup, model=model, integrator=integrator, server=server, preset=preset,
-                  projector=projector, arrows=arrows).run_forever()
+                  projector=projector, arrows=arrows, data=data).run_forever()
     except ServerError as problem:
         print(f"error: {problem}", file=sys.stderr)
         return 2
@@ -85,7 +88,7 @@ class SceneView:
     """
 
     def __init__(self, *, setup, model, integrator: str, server, preset: str | None = None,
-                 projector: bool = False, arrows=None):
+                 projector: bool = False, arrows=None, data=None):
         import vpython as vp  # already imported, loopback-only, by loopback_server.start
 
         self.vp, self.server = vp, server
@@ -98,6 +101,7 @@ class SceneView:
         self.budget = StepBudget()
         self.loads_shown = self._page_loads()
         self.setup = setup
+        self.data = data or MeasuredData()
         self.live = LiveRun(model, integrator=integrator, sample_every=SAMPLE_EVERY)
         self.scene, self.controls, self.graphs = self._build_parts(preset=preset)
         self._start_run()
@@ -118,7 +122,8 @@ class SceneView:
                                      shown=self.arrows_shown, radius=scene.radius, masses=scene.masses)
         controls = Controls(self.vp, setup=setup, view=view, integrators=model.integrators,
                             integrator=self.integrator, speed=self.speed, preset=preset,
-                            arrows=self.arrows_shown)
+                            arrows=self.arrows_shown,
+                            load_button=load_button_html() if hasattr(self.server, "uploaded") else "")
         graphs = Graphs(self.vp, setup=setup, model=model, view=view)
         return scene, controls, graphs
 
@@ -140,6 +145,8 @@ class SceneView:
         self.clock.dt = self.live.model.dt
         self._reset()
         self.controls.show_constants(self.setup)
+        self.data.compare(self.setup, self.integrator)   # on a thread: the run starts at once
+        self._show_data()
         self._draw()
         self.clock.restart(now=time.perf_counter())
 
@@ -214,7 +221,9 @@ class SceneView:
         start = time.perf_counter()
         if self._page_loads() > self.loads_shown:
             self._page_reloaded()
-        changed = self._apply_commands(now=start)
+        changed = self._take_upload()
+        changed = self._apply_commands(now=start) or changed
+        changed = self._data_answered() or changed
         steps = self.clock.steps_due(now=start, running=self.running and not self.live.problem,
                                      quiet=self.server.seconds_since_contact(),
                                      max_steps=self.budget.max_steps)
@@ -262,6 +271,8 @@ class SceneView:
                 self._offer_csv()
             elif kind == "program":
                 self._offer_program()
+            elif kind == "fit":
+                self._fit()
             elif kind in ("preset", "scene"):
                 try:
                     if kind == "preset" and command[1] != PRESET_PROMPT:
@@ -355,6 +366,46 @@ class SceneView:
         self.controls.show_status(problem=live.problem, runaways=[reason for _, reason in live.runaways.values()],
                                   slow_dt=live.model.dt if self.clock.dropped > 0.01 else None,
                                   advice=live.advice)
+
+    # ---- measured data (browser/data_panel.py) ----
+
+    def _take_upload(self) -> bool:
+        """A file sent by the Load data button: read it and compare it with the run, on a thread
+        (a bad file says why in one line and loads nothing)."""
+        upload = self.server.uploaded() if hasattr(self.server, "uploaded") else None
+        if upload is None:
+            return False
+        self.data.load(upload[1], upload[0], self.setup, self.integrator)   # on a thread
+        self._show_data()
+        return True
+
+    def _fit(self) -> None:
+        if self.data.measured is None:
+            self.data.problem = "load a file of measured positions first (Load data), then press Fit"
+        else:
+            self.data.compare(self.setup, self.integrator, fit=True)
+        self._show_data()
+
+    def _data_answered(self) -> bool:
+        """A comparison or fit finished on its thread: show it; a fit moves the sliders to its
+        values and restarts the run with them."""
+        answer = self.data.finished()
+        if answer is False:
+            return False
+        if answer is not None and answer.fitted:
+            fitted = {name: estimate.value for name, estimate in answer.fitted.items()}
+            if self.controls.move_sliders(fitted):
+                self._rebuild(changes=fitted, integrator=self.integrator)
+            else:  # a slider's span does not reach its fitted value: new controls, spanning it
+                self._switch(self.setup.with_values(**fitted))
+        elif answer is not None:   # the constants may have moved while it worked (a file was read)
+            self.data.compare(self.setup, self.integrator)
+        self._show_data()
+        return True
+
+    def _show_data(self) -> None:
+        self.controls.show_data(self.data.text())
+        self.graphs.show_data(self.data.points(), label="measured")
 
     # ---- downloads ----
 

@@ -106,6 +106,9 @@ def _add_lab_options(parser: argparse.ArgumentParser) -> None:
     data.add_argument("--run", type=int, metavar="N", help="with --data: read run N of several (default 1)")
     data.add_argument("--coordinate", choices=("x", "y", "z"),
                       help="with --data: the model's coordinate to compare (default: the scene's plotted one)")
+    data.add_argument("--page", action="store_true",
+                      help="with --data: show the data on the browser page instead (dots on its position "
+                           "graph, the RMS residual, a Fit button that fits --fit's names, or k,b)")
     data.add_argument("--mystery", metavar="FILE",
                       help="write a measured-looking run of a spring with hidden k and b (Vernier CSV)")
     data.add_argument("--seed", type=int, metavar="N", help="with --mystery or --show-answer: which mystery")
@@ -124,11 +127,11 @@ def headless_run(args) -> bool:
     """Whether the command runs without the browser: --headless, and --steps and --plot, which imply it
     (and --data, --mystery and --show-answer, which never open the page)."""
     return (args.headless or args.steps is not None or args.plot is not None
-            or lab_command(args) is not None)
+            or (lab_command(args) is not None and not args.page))
 
 
 LAB_OPTIONS = (("--fit", "fit"), ("--data-column", "data_column"), ("--run", "run"),
-               ("--coordinate", "coordinate"), ("--seed", "seed"))
+               ("--coordinate", "coordinate"), ("--seed", "seed"), ("--page", "page"))
 
 
 LAB_COMMANDS = (("--data", "data"), ("--mystery", "mystery"), ("--show-answer", "show_answer"))
@@ -154,7 +157,7 @@ def check_lab_options(args) -> None:
     for flag, attribute in (("--list", "list"), ("--constants", "constants")):
         if command and _given(args, attribute):
             raise UsageError(f"{flag} only lists, so {command} would do nothing; leave out one of them")
-    allowed = {"--data": {"fit", "data_column", "run", "coordinate"},
+    allowed = {"--data": {"fit", "data_column", "run", "coordinate", "page"},
                "--mystery": {"seed", "coordinate"}, "--show-answer": {"seed", "coordinate"}}.get(command, set())
     for flag, attribute in LAB_OPTIONS:
         if _given(args, attribute) and attribute not in allowed:
@@ -167,12 +170,16 @@ def check_lab_options(args) -> None:
     if args.run is not None and args.run < 1:
         raise UsageError(f"--run needs a whole number of 1 or more (got {args.run})")
     others = [(flag, attribute) for flag, attribute in (("--csv", "csv"), ("--steps", "steps"),
-                                                        ("--until", "until"), *PROGRAM_OPTIONS, *BROWSER_ONLY)]
+                                                        ("--until", "until"), *PROGRAM_OPTIONS)]
+    others += [("--json", "json"), ("--plot", "plot"), ("--headless", "headless")] if args.page else BROWSER_ONLY
     if command != "--data":
         others += [("--json", "json"), ("--plot", "plot"), ("--integrator", "integrator")]
     for flag, attribute in others:
         if _given(args, attribute):
-            raise UsageError(f"{flag} does nothing with {command}; leave out one of them")
+            page = (" (add --page to show the data on the page)" if command == "--data" and
+                    (flag, attribute) in BROWSER_ONLY else "")
+            raise UsageError(f"{flag} does nothing with {command}{' --page' if args.page else ''}; "
+                             f"leave out one of them{page}")
 
 
 def _given(args, attribute) -> bool:

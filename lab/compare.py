@@ -28,12 +28,14 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from . import LabError
-from physics.simulate import BlowUpError, every, trajectory
+from physics.simulate import BlowUpError, every, steps_to_reach, trajectory
 from scenes import ConstantError, check_value
 from scenes._constants import DECLARED
 
 AXES = {"x": 0, "y": 1, "z": 2}
 MAX_STEPS_PER_RUN = 2_000_000     # a fit runs the engine dozens of times: each run stays this short
+START_POINTS = 2000              # points and release times the start's grid search uses at most
+START_OFFSETS = 5000
 CONDITION_LIMIT = 1e8             # beyond this the fitted values cannot be told apart
 # Constants that enter the motion only in a combination: fitting two of a group is meaningless.
 TIED = [
@@ -57,6 +59,14 @@ class Estimate:
     value: float
     uncertainty: float
     unit: str
+
+    def __str__(self) -> str:
+        """`54.997 ± 0.003 N/m`: the uncertainty to two significant digits, the value to the same place."""
+        value, sigma, unit = self.value, self.uncertainty, self.unit
+        if not (math.isfinite(sigma) and sigma > 0):
+            return f"{value:.6g} {unit}"
+        decimals = max(0, 1 - math.floor(math.log10(sigma)))
+        return f"{value:.{decimals}f} ± {sigma:.{decimals}f} {unit}"
 
 
 @dataclass
@@ -93,7 +103,11 @@ class ModelRun:
     through each step's position and velocity; before τ = 0 the mass is held at its start.
     """
 
-    def __init__(self, setup, *, integrator, axis: int, until: float):
+    def __init__(self, setup, *, integrator, axis: int, until: float, spacing: float = 0.0):
+        """spacing: keep the engine's values every stride = spacing // Δt steps (every step if that
+        is 0): the engine still takes every step, but reading out every one costs more than taking
+        it. A cubic through values h = stride·Δt apart is off by h⁴/384 · |d⁴r/dt⁴| at most, far
+        below a measurement's noise when h is a quarter of the data's sample interval."""
         model = setup.build()
         if model.state.count != 1:
             raise FitError(f"scene {setup.name!r} has {model.state.count} masses; measured data is "
@@ -103,12 +117,14 @@ class ModelRun:
                            f"dt = {model.dt:g} s per run of the model, more than the {MAX_STEPS_PER_RUN:,} "
                            f"a fit may take; use a larger dt or a shorter stretch of data")
         engine = model.simulation(integrator)
+        stride = max(1, int(spacing / engine.dt))
+        steps = stride * math.ceil(steps_to_reach(until - engine.t, engine.dt) / stride)
         try:
-            samples = engine.run_until(until, record=every(1))
+            samples = engine.advance(steps, record=every(stride))
         except BlowUpError as problem:
             raise FitError(f"the model blew up with {_constants_said(setup)}: {problem}") from None
         path = trajectory(engine, samples, with_energy=False)
-        self.dt = engine.dt
+        self.dt = engine.dt * stride        # s between the values kept
         self.end = float(path.t[-1])
         self.r = path.r[:, 0, axis]
         self.v = path.v[:, 0, axis]
@@ -125,6 +141,15 @@ class ModelRun:
         slope = ((6 * s2 - 6 * s) * r0 + (3 * s2 - 4 * s + 1) * v0 + (6 * s - 6 * s2) * r1
                  + (3 * s2 - 2 * s) * v1) / self.dt
         return np.where(held, self.r[0], r), np.where(held, 0.0, slope)
+
+
+def coordinate_of(setup, asked: str | None = None) -> str:
+    """The coordinate compared: `asked` (--coordinate), else the one the scene plots (vertical: y;
+    driven: x)."""
+    if asked:
+        return asked
+    plotted = setup.hooks.view.get("plot", "y")
+    return plotted if plotted in AXES else "y"
 
 
 def _constants_said(setup, names=None) -> str:
@@ -210,6 +235,8 @@ class _Problem:
         self.setup, self.t, self.y = setup, t, y
         self.names, self.integrator, self.axis = names, integrator, axis
         self._runs: dict = {}
+        gaps = np.diff(t)
+        self.spacing = float(np.min(gaps)) / 4 if len(gaps) else 0.0   # s: see ModelRun
 
     def run(self, constants, until: float) -> ModelRun:
         key = tuple(float(c) for c in constants)
@@ -223,8 +250,8 @@ class _Problem:
                     raise FitError(f"the fit went out of range: {problem}") from None
             if len(self._runs) > 8:
                 self._runs.clear()
-            cached = ModelRun(self.setup.with_values(**changes), integrator=self.integrator,
-                              axis=self.axis, until=max(until, 0.0) + 2 * self.setup.values.get("dt", 0.01))
+            cached = ModelRun(self.setup.with_values(**changes), integrator=self.integrator, axis=self.axis,
+                              until=max(until, 0.0) + 2 * self.setup.values.get("dt", 0.01), spacing=self.spacing)
             self._runs[key] = cached
         return cached
 
@@ -253,15 +280,19 @@ class _Problem:
 
 def _start_offsets(problem, theta_constants, t, y):
     """t_offset and position_offset to start from: the release time that matches the data best,
-    searched over a grid of 1/50 period (linear interpolation, the position offset from the mean)."""
+    searched over a grid of 1/50 period (linear interpolation, the position offset from the mean).
+    A long record (200,000 rows) is searched on START_POINTS of its points and START_OFFSETS
+    release times at most: it is only a start, and the full search took minutes."""
     span = t[-1] - t[0]
     omega = _frequency(t, y) or 2 * math.pi / span
     period = 2 * math.pi / omega
     earliest, latest = t[0] - 0.5 * span - period, t[0] + 0.5 * span
     run = problem.run(theta_constants, t[-1] - earliest)
     grid = np.arange(0.0, run.end + run.dt / 2, run.dt)[: len(run.r)]
+    every = max(1, len(t) // START_POINTS)
+    t, y = t[::every], y[::every]
     best = (math.inf, t[0], 0.0)
-    for t_offset in np.arange(earliest, latest, period / 50):
+    for t_offset in np.arange(earliest, latest, max(period / 50, (latest - earliest) / START_OFFSETS)):
         tau = t - t_offset
         model = np.where(tau < 0, run.r[0], np.interp(tau, grid, run.r))
         offset = float(np.mean(y - model))

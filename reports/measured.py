@@ -3,7 +3,6 @@
 """
 from __future__ import annotations
 
-import math
 import os
 import secrets
 import shlex
@@ -20,20 +19,13 @@ from reports.json_report import to_json
 
 
 def coordinate_of(args, setup) -> str:
-    """The coordinate compared: --coordinate, else the one the scene plots (vertical: y; driven: x)."""
-    if getattr(args, "coordinate", None):
-        return args.coordinate
-    plotted = setup.hooks.view.get("plot", "y")
-    return plotted if plotted in compare.AXES else "y"
+    """The coordinate compared: --coordinate, else the one the scene plots (lab/compare.py)."""
+    return compare.coordinate_of(setup, getattr(args, "coordinate", None))
 
 
 def measured_value(estimate) -> str:
-    """`54.997 ± 0.003 N/m`: the uncertainty to two significant digits, the value to the same place."""
-    value, sigma, unit = estimate.value, estimate.uncertainty, estimate.unit
-    if not (math.isfinite(sigma) and sigma > 0):
-        return f"{value:.6g} {unit}"
-    decimals = max(0, 1 - math.floor(math.log10(sigma)))
-    return f"{value:.{decimals}f} ± {sigma:.{decimals}f} {unit}"
+    """`54.997 ± 0.003 N/m` (lab/compare.py's Estimate says itself so, on the page too)."""
+    return str(estimate)
 
 
 def run_data(args, setup) -> int:

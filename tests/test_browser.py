@@ -57,12 +57,12 @@ def browser():
 
 
 class Program:
-    """`python main.py SCENE --no-browser --port P`, its output read on a thread, always killed."""
+    """`python main.py SCENE [EXTRA...] --no-browser --port P`, its output read on a thread, always killed."""
 
-    def __init__(self, scene: str):
+    def __init__(self, scene: str, *extra: str):
         self.port = free_port()
         self.process = subprocess.Popen(
-            [sys.executable, str(ROOT / "main.py"), scene, "--no-browser", "--port", str(self.port)],
+            [sys.executable, str(ROOT / "main.py"), scene, *extra, "--no-browser", "--port", str(self.port)],
             cwd=ROOT, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
         self.lines: queue.Queue = queue.Queue()
         self.errors: list[str] = []

@@ -174,3 +174,19 @@ def test_bytes_in_hand_read_as_the_file_does(points, tmp_path):
     assert from_file.t == pytest.approx(in_hand.t) and from_file.position == pytest.approx(in_hand.position)
     with pytest.raises(readers.DataError, match=r"^upload.txt line 4: time 0.1 does not increase"):
         readers.from_bytes(b"t,y\n0,1\n0.1,2\n0.1,3\n0.2,4\n", "upload.txt")
+
+
+@pytest.mark.parametrize("integrator, within", [("euler-cromer", 2e-5), ("rk4", 1e-8)])
+def test_a_model_run_read_every_few_steps_follows_the_one_read_every_step(integrator, within):
+    """The fit keeps the engine's values every quarter of the data's sample interval (a cubic
+    between them), not every step: it reads the same curve within far less than a measurement's
+    noise (mm), and the engine still takes every step."""
+    setup = catalog.configure("damped", assignments=["k=55", "b=2.5", "dt=0.001"])
+    every_step = ModelRun(setup, integrator=integrator, axis=1, until=12.0)
+    few = ModelRun(setup, integrator=integrator, axis=1, until=12.0, spacing=0.005)
+    assert few.dt == pytest.approx(0.005) and len(few.r) < len(every_step.r) / 4
+    tau = np.random.default_rng(1).uniform(-0.5, 12.0, 4000)
+    (r_all, v_all), (r_few, v_few) = every_step.at(tau), few.at(tau)
+    assert np.max(np.abs(r_few - r_all)) < within
+    assert np.max(np.abs(v_few - v_all)) < 1e3 * within
+    assert np.ptp(r_all) > 0.5      # a real swing, not a mass at rest

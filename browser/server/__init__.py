@@ -11,7 +11,8 @@ corrections in place, listed with what each corrects in ``patches.py``.
 
 - ``start.py``: start(), which reserves the port, prints the URL and imports vpython's servers.
 - ``state.py``: ServerState, everything one run knows, shared by the threads; ServerInfo.
-- ``http_server.py``: the page's files, on 127.0.0.1, to this program's own host name only.
+- ``http_server.py``: the page's files, on 127.0.0.1, to this program's own host name only, and
+  the file the page's Load data button sends (POST /data, from the page's own Origin only).
 - ``websocket.py``: the page's websocket, to the page's own Origin only.
 - ``lifecycle.py``: one open page, its reloads, a second tab, the end when it closes.
 - ``tab.js``: added to the page: says why when the page stops (a second tab, a program ended).

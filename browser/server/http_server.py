@@ -1,7 +1,8 @@
 """The page's HTTP server: vpython's, on 127.0.0.1 only, answering only what the page needs.
 
 It serves "/" (vpython's page, with tab.js added at the top of its head), "/status" and
-"/loading" (asked by tab.js), and the files that exist in vpython's own ``vpython_libraries/``
+"/loading" (asked by tab.js), takes a POST to "/data" (the bytes of a file the page's Load data
+button read, from the page's own Origin only, at most lab.readers.MAX_BYTES), and the files that exist in vpython's own ``vpython_libraries/``
 (and its ``images/``) and ``vpython_data/`` folders, looked up by exact name. Anything else is
 404, so no path can climb out, and nothing is served from the current directory. Only requests
 addressed to this program's own host name and port are answered (421 otherwise).
@@ -15,6 +16,8 @@ import webbrowser
 from http.server import ThreadingHTTPServer
 from pathlib import Path
 from urllib.parse import unquote
+
+from lab.readers import MAX_BYTES
 
 from .state import LOOPBACK, ServerState
 
@@ -136,8 +139,29 @@ def safe_handler(vpython_handler, state: ServerState):
             with open(file, "rb") as f:
                 self._send(f.read(), CONTENT_TYPES[os.path.splitext(file)[1]])
 
-        def _send(self, body: bytes, content_type: str, *, fresh: bool = False) -> None:
-            self.send_response(200)
+        def do_POST(self):
+            # Only the page itself may send a file: our own Host (DNS rebinding) and our own
+            # Origin (a form on another site can POST to 127.0.0.1, but not with our Origin).
+            if self.headers.get("Host", "") not in state.hosts or \
+                    self.headers.get("Origin", "") not in state.origins:
+                state.refusals.add("a file sent from another web page or program")
+                return self.send_error(403)
+            if unquote(self.path.split("?", 1)[0]) != "/data":
+                return self.send_error(404)
+            try:
+                size = int(self.headers.get("Content-Length", ""))
+            except ValueError:
+                return self.send_error(411)
+            if not 0 <= size <= MAX_BYTES:
+                self.close_connection = True
+                return self._send(f"the file is {size / 1e6:.0f} MB, more than the {MAX_BYTES // 2**20} MB "
+                                  f"this program reads".encode(), "text/plain", status=413)
+            raw = self.rfile.read(size)
+            state.uploads.put(upload_name(self.headers.get("X-File-Name", "")), raw)
+            return self._send(b"", "text/plain", fresh=True)
+
+        def _send(self, body: bytes, content_type: str, *, fresh: bool = False, status: int = 200) -> None:
+            self.send_response(status)
             self.send_header("Content-Type", content_type)
             self.send_header("Content-Length", str(len(body)))
             if fresh:  # the page names this run's websocket port; /status changes
@@ -146,3 +170,11 @@ def safe_handler(vpython_handler, state: ServerState):
             self.wfile.write(body)
 
     return SafeHandler
+
+
+def upload_name(header: str) -> str:
+    """The name a sent file is called in messages: its base name (the page sends it URL-encoded),
+    printable characters only, at most 80 of them; "the file" if there is none."""
+    name = os.path.basename(unquote(header).replace("\\", "/"))
+    name = "".join(c for c in name if c.isprintable())[:80].strip()
+    return name or "the file"

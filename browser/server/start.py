@@ -69,7 +69,8 @@ def start(*, port: int | None = None, open_browser: bool = True,
         waiting.set()
         if not state.handed_over:
             state.reservation.close()
-    return ServerInfo(url=state.url, http_port=http_port, socket_port=state.socket_port, life=state.life)
+    return ServerInfo(url=state.url, http_port=http_port, socket_port=state.socket_port, life=state.life,
+                      uploads=state.uploads)
 
 
 def announce(state: ServerState, remind_after: float, waiting: threading.Event) -> None:

@@ -9,6 +9,7 @@ tally of refusals (Refusals).
 from __future__ import annotations
 
 import math
+import queue
 import socket
 import sys
 import threading
@@ -65,6 +66,29 @@ class Refusals:
                   file=self.stream or sys.stderr, flush=True)
 
 
+class Uploads:
+    """Files the page sent (its Load data button: POST /data), waiting for the frame loop.
+
+    The HTTP server's threads put (name, bytes); the frame loop takes them between frames. Only
+    the newest file counts, so a student who picks twice in quick succession gets the second.
+    """
+
+    def __init__(self):
+        self.waiting: queue.SimpleQueue = queue.SimpleQueue()
+
+    def put(self, name: str, raw: bytes) -> None:
+        self.waiting.put((name, raw))
+
+    def newest(self) -> tuple[str, bytes] | None:
+        """The newest file sent since the last call (name, bytes), None if none."""
+        newest = None
+        while True:
+            try:
+                newest = self.waiting.get_nowait()
+            except queue.Empty:
+                return newest
+
+
 @dataclass
 class ServerState:
     """Everything the loopback server knows about this run (one per process)."""
@@ -80,6 +104,7 @@ class ServerState:
     interrupted: bool = False  # the user pressed Ctrl-C (before or after the page connected)
     life: PageLife = field(default_factory=PageLife)
     refusals: Refusals = field(default_factory=Refusals)
+    uploads: Uploads = field(default_factory=Uploads)
 
     @classmethod
     def on(cls, reservation: socket.socket, *, open_browser: bool) -> "ServerState":
@@ -100,6 +125,7 @@ class ServerInfo:
     http_port: int
     socket_port: int
     life: PageLife = field(repr=False, compare=False)
+    uploads: Uploads = field(default_factory=Uploads, repr=False, compare=False)
 
     def last_contact(self) -> float:
         """time.monotonic() of the page's last message (or of its connecting, before any).
@@ -125,3 +151,7 @@ class ServerInfo:
         still holds changes to objects of the old page, which the new one would choke on.
         """
         self.life.scene_built(load)
+
+    def uploaded(self) -> tuple[str, bytes] | None:
+        """The newest file the page's Load data button sent since the last call: (name, bytes)."""
+        return self.uploads.newest()

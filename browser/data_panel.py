@@ -1,0 +1,192 @@
+"""The page's measured data: Load data, the points on the position graph, and the Fit button.
+
+A file arrives from the page's Load data button (its bytes are sent to the loopback server, POST
+/data; browser/server/http_server.py) or from `--data FILE` on the command line. It is read by
+lab/readers.py, as the command line reads it, and compared with the scene as it runs now by
+lab/compare.py: the data's clock and zero are the file's own, so the comparison fits a time offset
+t₀ and a position offset, and the graph shows each measured point at (t − t₀, position − offset),
+on the model's own axes, with the RMS residual in metres. Fit fits the constants (k and b, or the
+names given with --fit), and the frame loop moves the sliders to the fitted values.
+
+Comparing and fitting run the engine many times, so they run on a thread of their own: the page's
+frame loop keeps going, says "fitting…" meanwhile, and picks the answer up when it is there. Each
+request has a number; an answer to a request overtaken by a newer one (a slider moved meanwhile) is
+dropped.
+"""
+from __future__ import annotations
+
+import html
+import os
+import queue
+import threading
+
+import numpy as np
+
+from lab import LabError, compare, readers
+
+from .controls import symbol
+
+DEFAULT_FIT = ("k", "b")     # what the Fit button fits unless --fit names others
+MAX_DOTS = 1500              # measured points drawn at most (a long file is thinned evenly)
+SENDING_SCRIPT = """<script>
+window.smLoadData = function (input) {
+  var file = input.files && input.files[0], note = document.getElementById('sm-data-note');
+  input.value = '';  // choosing the same file again is a new choice
+  if (!file) return;
+  function say(text) { note.textContent = text; }
+  if (file.size > %(limit)d) {
+    say(file.name + ': the file is ' + Math.round(file.size / 1e6) + ' MB, more than the %(limit_mb)d MB ' +
+        'this program reads; keep the part of the run you need');
+    return;
+  }
+  say('sending ' + file.name + '\\u2026');
+  file.arrayBuffer().then(function (bytes) {
+    return fetch('/data', {method: 'POST', body: bytes, cache: 'no-store',
+                           headers: {'X-File-Name': encodeURIComponent(file.name)}});
+  }).then(function (reply) {
+    if (reply.ok) { say(''); return; }
+    return reply.text().then(function (text) { say(file.name + ': ' + (text || 'not accepted')); });
+  }).catch(function () { say(file.name + ': could not be sent (has the program ended?)'); });
+};
+</script>"""
+
+
+def load_button_html() -> str:
+    """The Load data button: a hidden file input it opens, a note the page's script writes while
+    it sends the file, and that script (vpython has no file input of its own)."""
+    limit = readers.MAX_BYTES
+    return ("<button type='button' id='sm-load-data' onclick=\"document.getElementById('sm-data-file').click()\">"
+            "Load data</button>"
+            "<input type='file' id='sm-data-file' style='display:none' "
+            "accept='.csv,.txt,.tsv,.dat,.cmbl,text/csv,text/plain' onchange='smLoadData(this)'>"
+            " <span id='sm-data-note'></span>"
+            + SENDING_SCRIPT % {"limit": limit, "limit_mb": limit // 2 ** 20})
+
+
+class MeasuredData:
+    """The measured file shown on the page, its comparison with the scene, and the fits under way.
+
+    measured    the file read (lab/readers.py's Measured), or None before one is loaded
+    fit_names   the constants the Fit button fits
+    coordinate  --coordinate, or None for the scene's plotted one
+    """
+
+    def __init__(self, *, measured=None, fit_names=(), coordinate: str | None = None):
+        self.measured = measured
+        self.fit_names = tuple(fit_names) or DEFAULT_FIT
+        self.coordinate = coordinate
+        self.result = None        # the Comparison shown (lab/compare.py)
+        self.shown_for = None     # the scene, values and integrator it was made for
+        self.job = 0              # the newest request's number
+        self.working = ""         # "reading", "comparing" or "fitting" while a thread works, else ""
+        self.reading = ""         # the name of the file being read
+        self.problem = ""         # the last one-line error (a bad file, a fit refused)
+        self.answers: queue.SimpleQueue = queue.SimpleQueue()
+
+    def load(self, raw: bytes, name: str, setup, integrator: str) -> None:
+        """Read a file the page sent, then compare it with `setup`, on a thread of its own (a file
+        of 200,000 rows takes seconds to read). A bad file keeps what was loaded before and says why."""
+        self._start("reading", setup, integrator, (), None, upload=(raw, name))
+
+    # ---- the work, on a thread ----
+
+    def compare(self, setup, integrator: str, *, fit: bool = False) -> None:
+        """Start comparing the data with `setup` (and fitting fit_names, if fit) on a thread of
+        its own; a comparison already shown for the same constants is not made again, and none
+        starts while a file is read (the frame loop asks again once it is in)."""
+        if self.measured is None or self.working == "reading" or \
+                (not fit and self.shown_for == _key(setup, integrator)):
+            return
+        self._start("fitting" if fit else "comparing", setup, integrator, self.fit_names if fit else (),
+                    self.measured)
+
+    def _start(self, working: str, setup, integrator: str, names, measured, upload=None) -> None:
+        self.job += 1
+        self.working, self.problem = working, ""
+        self.reading = upload[1] if upload else ""
+        threading.Thread(target=self._work, args=(self.job, setup, integrator, names, measured, upload),
+                         name="measured-data-fit", daemon=True).start()
+
+    def _work(self, job: int, setup, integrator: str, names, measured, upload) -> None:
+        loaded = None if upload is None else False      # False: a file sent but not read (yet)
+        coordinate = compare.coordinate_of(setup, self.coordinate)
+        try:
+            if upload is not None:
+                measured = loaded = readers.from_bytes(*upload, coordinate=coordinate)
+            answer = compare.compare(setup, measured.t, measured.position, integrator=integrator,
+                                     coordinate=coordinate, fit=names)
+        except LabError as problem:
+            answer = str(problem)
+        except Exception as problem:  # a bug of ours: one line on the page, never a traceback
+            answer = f"unexpected {type(problem).__name__}: {problem}"
+        self.answers.put((job, integrator, bool(names), loaded, answer))
+
+    def finished(self):
+        """The newest request's answer if it has come: the Comparison (also kept as the one
+        shown), or None after an error (kept in problem: a file that cannot be read leaves what was
+        loaded before, a comparison that cannot be made takes the points off, a fit that cannot be
+        made leaves the comparison shown); False while none has come."""
+        newest = False
+        while True:
+            try:
+                job, integrator, fit, loaded, answer = self.answers.get_nowait()
+            except queue.Empty:
+                return newest
+            if job != self.job:
+                continue          # overtaken by a newer request
+            self.working = ""
+            if loaded:
+                self.measured, self.result, self.shown_for = loaded, None, None
+            if isinstance(answer, str):
+                self.problem, newest = answer, None
+                if not fit and loaded is not False:   # a bad file leaves what was shown
+                    self.result, self.shown_for = None, None
+            else:
+                self.result, self.shown_for, newest = answer, _key(answer.setup, integrator), answer
+
+    # ---- what the page shows ----
+
+    def points(self):
+        """The measured points on the model's axes, (t − t₀, position − offset), at most MAX_DOTS."""
+        result = self.result
+        if result is None:
+            return []
+        keep = np.unique(np.linspace(0, result.points - 1, min(result.points, MAX_DOTS)).astype(int))
+        t = result.t[keep] - result.t_offset.value
+        y = result.data[keep] - result.position_offset.value
+        return [[float(a), float(b)] for a, b in zip(t, y) if np.isfinite(a) and np.isfinite(b)]
+
+    def text(self) -> str:
+        """The caption's lines on the data (HTML): what was read, the offsets, the RMS residual,
+        the fitted values, and what is under way or went wrong."""
+        lines = []
+        if self.problem:
+            lines.append(f"<b>Data:</b> {html.escape(self.problem, quote=False)}")
+        measured, result = self.measured, self.result
+        if measured is not None:
+            name = os.path.basename(measured.path)
+            lines.append(f"<b>Data</b> {html.escape(name, quote=False)}: {measured.position.size} points, "
+                         f"{html.escape(measured.choice, quote=False)}")
+        if self.working:
+            names = ", ".join(self.fit_names)
+            lines.append({"fitting": f"<i>fitting {names}…</i>", "comparing": "<i>comparing…</i>",
+                          "reading": f"<i>reading {html.escape(self.reading, quote=False)}…</i>"}[self.working])
+        elif result is not None:
+            c = result.coordinate
+            lines.append(f"<b>RMS residual = {_metres(result.rms)}</b>; blue dots: the data at t − t₀, {c} − {c}₀ "
+                         f"with t₀ = {result.t_offset}, {c}₀ = {result.position_offset} (fitted offsets)")
+            if result.fitted:
+                lines.append("<b>Fit:</b> <span class='sm-fit'>" + ", ".join(
+                    f"{symbol(name)} = {estimate}" for name, estimate in result.fitted.items()) + "</span>")
+            lines += [html.escape(note.removeprefix("note: "), quote=False) for note in result.notes]
+        elif measured is None and not self.problem:
+            return ""
+        return "\n".join(line.replace(" ± ", "\u00a0±\u00a0") for line in lines)
+
+
+def _metres(value: float) -> str:
+    return f"{value:.3g} m ({value * 1000:.3g} mm)"
+
+
+def _key(setup, integrator: str):
+    return setup.name, repr(sorted(setup.values.items())), integrator

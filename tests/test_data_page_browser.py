@@ -1,0 +1,187 @@
+"""The page's measured data in a real browser: Load data, the dots on the position graph, Fit.
+
+The fixture is the program's own: `main.py damped --mystery FILE --seed N` (a Vernier CSV of a
+spring with hidden k and b). The page is driven as a student drives it: the file is chosen in the
+Load data button's file input (Playwright's set_input_files), and Fit is clicked. What the page
+shows is held against the command line on the same file: the RMS residual of `--data FILE`, and
+the k and b of `--data FILE --fit k,b`, with the page's integrator and Δt (the scene's own).
+
+1. A bad file (binary) shows its one line on the page and loads nothing; a file sent by anything
+   but the page (a foreign Origin, or none) is refused; then the mystery file loads, its dots are
+   drawn on the position graph in the data colour, and Fit moves the k and b sliders to the
+   command line's fitted values.
+2. `--data FILE --page` shows the same comparison from the start; at a small Δt, where the fit
+   takes seconds, the page says "fitting k, b…" while its clock goes on, then shows the values
+   `--fit k,b` prints.
+
+Skipped, with the reason, where Chromium or Playwright is missing.
+"""
+from __future__ import annotations
+
+import http.client
+import json
+import re
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+from lab.compare import Estimate
+from browser_support import launched, pixels_like, require_browser, screenshot_folder, wait_for
+from test_browser import Program, crop, graph_boxes, shown_time
+
+ROOT = Path(__file__).resolve().parent.parent
+DATA_BLUE = (0, 114, 178)          # export/palette.py's BLUE, the measured points' colour
+SEED = 5
+
+pytestmark = pytest.mark.browser
+sync_api, Image = require_browser()
+
+
+@pytest.fixture(scope="module")
+def browser():
+    with launched(sync_api) as chromium:
+        yield chromium
+
+
+def cli(*args: str) -> subprocess.CompletedProcess:
+    return subprocess.run([sys.executable, str(ROOT / "main.py"), *args], cwd=ROOT,
+                          capture_output=True, text=True, timeout=300)
+
+
+def mystery(tmp_path: Path) -> Path:
+    path = tmp_path / "spring.csv"
+    made = cli("damped", "--mystery", str(path), "--seed", str(SEED))
+    assert made.returncode == 0, made.stderr
+    return path
+
+
+def headless(path: Path, *fit: str) -> dict:
+    done = cli("damped", "--data", str(path), *fit, "--json")
+    assert done.returncode == 0, done.stderr
+    return json.loads(done.stdout)
+
+
+def data_lines(page) -> str:
+    """The page's text, its no-break spaces (kept around ±) read as spaces."""
+    return page.locator("body").inner_text().replace("\u00a0", " ")
+
+
+def rms_shown(page) -> str | None:
+    found = re.search(r"RMS residual = (\S+) m", data_lines(page))
+    return found.group(1) if found else None
+
+
+def position_graph_blue(page, tmp_path: Path, name: str) -> int:
+    """Pixels of the data colour inside the position graph's plot (the legend is outside it)."""
+    shot = tmp_path / f"{name}.png"
+    page.screenshot(path=str(shot), full_page=True)
+    return pixels_like(crop(shot, graph_boxes(page)[0]), DATA_BLUE, within=60)
+
+
+def slider_values(page) -> list[tuple[float, float]]:
+    """Each slider's (value, step) as the page's jQuery UI sliders hold them, in page order (m, k, b)."""
+    return page.evaluate("Array.from(document.querySelectorAll('.ui-slider')).map(function (e) {"
+                         " return [$(e).slider('value'), $(e).slider('option', 'step')]; })")
+
+
+def post(port: int, body: bytes, origin: str | None) -> int:
+    connection = http.client.HTTPConnection("127.0.0.1", port, timeout=30)
+    headers = {"Content-Type": "application/octet-stream", "X-File-Name": "evil.csv"}
+    if origin:
+        headers["Origin"] = origin
+    connection.request("POST", "/data", body=body, headers=headers)
+    status = connection.getresponse().status
+    connection.close()
+    return status
+
+
+def test_load_data_overlay_and_fit_move_the_sliders(browser, tmp_path):
+    path = mystery(tmp_path)
+    compared, fitted = headless(path), headless(path, "--fit", "k,b")
+    bad = tmp_path / "scope.bin"
+    bad.write_bytes(bytes(range(256)) * 8)
+    program = Program("damped")
+    try:
+        page = browser.new_page(viewport={"width": 1280, "height": 800})
+        page.goto(program.url())
+        wait_for(lambda: shown_time(page) > 0, what="the scene to run")
+        assert rms_shown(page) is None and position_graph_blue(page, tmp_path, "before") < 20
+
+        # Only the page itself may send a file.
+        assert post(program.port, path.read_bytes(), origin="http://evil.example") == 403
+        assert post(program.port, path.read_bytes(), origin=None) == 403
+
+        page.locator("#sm-data-file").set_input_files(str(bad))
+        wait_for(lambda: "scope.bin line" in data_lines(page), timeout=120, what="the bad file's one line")
+        error = next(line for line in data_lines(page).splitlines() if "scope.bin line" in line)
+        assert error.startswith("Data: scope.bin line 1:") and "binary" in error
+        assert rms_shown(page) is None and not re.search(r"\d+ points", data_lines(page))
+        assert position_graph_blue(page, tmp_path, "refused") < 20
+
+        page.locator("#sm-data-file").set_input_files(str(path))
+        wait_for(lambda: rms_shown(page), timeout=120, what="the comparison's RMS residual")
+        assert rms_shown(page) == f"{compared['rms_residual']:.3g}"
+        assert "spring.csv: 312 points" in data_lines(page) and "scope.bin" not in data_lines(page)
+
+        page.get_by_role("button", name="Fit", exact=True).click()
+        shown = wait_for(lambda: page.locator(".sm-fit").count() and page.locator(".sm-fit").inner_text(),
+                         timeout=240, what="the fitted values")
+        for name, unit in (("k", "N/m"), ("b", "kg/s")):
+            value, sigma = map(float, re.search(rf"{name} = (\S+)\s±\s(\S+) {unit}", shown).groups())
+            expected = fitted["fit"][name]
+            assert abs(value - expected["value"]) <= 0.1 * expected["uncertainty"], (name, value, expected)
+            assert sigma == pytest.approx(expected["uncertainty"], rel=0.05)
+
+        def sliders_at_the_fit():
+            values = slider_values(page)
+            return len(values) == 3 and all(
+                abs(values[i][0] - fitted["fit"][name]["value"]) <= 0.51 * values[i][1]
+                for i, name in ((1, "k"), (2, "b"))) and values
+        wait_for(sliders_at_the_fit, timeout=120, what="the k and b sliders to move to the fitted values")
+        k = fitted["fit"]["k"]["value"]
+        wait_for(lambda: f"k = {k:.6g} N/m" in data_lines(page), timeout=120, what="the fitted k in the caption")
+        wait_for(lambda: shown_time(page) > 1.0, timeout=120, what="the run to go on with the fitted values")
+        # The fitted release is at the data's start, so the dots are on the graph from t = 0.
+        wait_for(lambda: position_graph_blue(page, tmp_path, "fitted") > 100, timeout=300,
+                 what="the measured dots on the position graph")
+        page.screenshot(path=str(screenshot_folder() / "data-fitted-1280x800.png"))
+        page.close()
+    finally:
+        program.stop()
+    assert not [line for line in program.errors if "Traceback" in line], program.errors
+
+
+def test_data_on_the_command_line_shows_on_the_page_and_fitting_does_not_stop_the_run(browser, tmp_path):
+    """--data FILE --page, at a Δt small enough that the fit takes seconds: the page shows the
+    comparison from the start, says "fitting k, b…" while the run goes on, then the fit's values."""
+    path = mystery(tmp_path)
+    model = ("--integrator", "rk4", "--set", "dt=0.0005")
+    compared, fitted = headless(path, *model), headless(path, *model, "--fit", "k,b")
+    program = Program("damped", "--data", str(path), "--page", *model)
+    try:
+        page = browser.new_page(viewport={"width": 1920, "height": 1080})
+        page.goto(program.url())
+        wait_for(lambda: rms_shown(page), timeout=120, what="the comparison's RMS residual")
+        assert rms_shown(page) == f"{compared['rms_residual']:.3g}"
+        for symbol, key in (("t₀", "t_offset"), ("y₀", "position_offset")):
+            assert f"{symbol} = {Estimate(**compared['fit'][key])}" in data_lines(page)
+        # With the scene's own k and b the data's release lands at the model's t ≈ 9 s: the dots
+        # show once the page's clock gets there.
+        wait_for(lambda: position_graph_blue(page, tmp_path, "cli") > 100, timeout=600,
+                 what="the measured dots on the position graph")
+        page.screenshot(path=str(screenshot_folder() / "data-loaded-1920x1080.png"))
+
+        page.get_by_role("button", name="Fit", exact=True).click()
+        wait_for(lambda: "fitting k, b…" in data_lines(page), timeout=120, what="the page to say it is fitting")
+        during = shown_time(page)
+        wait_for(lambda: "fitting k, b…" in data_lines(page) and shown_time(page) > during,
+                 timeout=120, what="the run to go on while the fit works")
+        shown = wait_for(lambda: page.locator(".sm-fit").count() and page.locator(".sm-fit").inner_text(),
+                         timeout=300, what="the fitted values")
+        for name, unit in (("k", "N/m"), ("b", "kg/s")):
+            assert f"{name} = {Estimate(**fitted['fit'][name])}" in shown.replace("\u00a0", " ")
+        page.close()
+    finally:
+        program.stop()
