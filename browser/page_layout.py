@@ -12,7 +12,9 @@ browser, where the window's size is known, and again whenever the window is resi
 * text at least BODY_PX (18 px) — body, buttons, menus, axis ticks, legends, graph titles — and in
   projector mode (the page's Projector button, key P, or `--projector`) at least PROJECTOR_PX
   (22 px), with every graph line LINE_FACTOR times thicker and black on white;
-* each graph's legend in a line of its own above the graph, never over its data;
+* each graph's legend in a line of its own above the graph, never over its data, each colour box
+  kept on one line with its label (a legend that wraps breaks between entries);
+* the 3-D view's labels grow with projector mode as the page's text does;
 * keys: Space runs or pauses, → steps, R resets, + and − change the speed, P projector mode; every
   control is reached with Tab and shows a thick outline when it has the focus.
 
@@ -46,6 +48,7 @@ button { padding: 2px 10px; }
 .sm-key { display: flex; flex-wrap: wrap; align-items: center; }
 .sm-key table, .sm-key tbody, .sm-key tr { display: contents; }
 .sm-key td { display: inline-block; }
+.sm-key .sm-entry { display: inline-flex; align-items: center; white-space: nowrap; }
 .sm-legend td.legendLabel { padding: 0 14px 0 4px; white-space: nowrap; }
 .sm-legend td.legendColorBox > div { border: none !important; }
 .sm-legend td.legendColorBox > div > div { border-width: 8px !important; }
@@ -81,6 +84,18 @@ SCRIPT = """
     if (!right) { right = document.createElement('div'); right.id = 'sm-graphs'; document.body.appendChild(right); }
     return right;
   }
+  // Each legend entry, colour box and label, in one span that never wraps, so that a long legend
+  // breaks between entries, never between a box and its label.
+  function pairUp(key) {
+    key.querySelectorAll('td.legendColorBox').forEach(function (box) {
+      if (box.parentNode.classList.contains('sm-entry')) return;
+      var label = box.nextElementSibling, entry = document.createElement('span');
+      entry.className = 'sm-entry';
+      box.parentNode.insertBefore(entry, box);
+      entry.appendChild(box);
+      if (label && label.classList.contains('legendLabel')) entry.appendChild(label);
+    });
+  }
   function headerFor(g) {
     var el = g.container && g.container[0];
     if (!el) return;
@@ -95,6 +110,11 @@ SCRIPT = """
     var heading = box.querySelector('.sm-title');
     if (heading.innerHTML !== title) heading.innerHTML = title;
     var key = box.querySelector('.sm-key');
+    if (!key.__smObserved) {  // flot writes the legend anew at each redraw: pair it up each time
+      key.__smObserved = true;
+      new MutationObserver(function () { pairUp(key); }).observe(key, {childList: true, subtree: true});
+    }
+    pairUp(key);
     var legend = g.graph_options.legend || (g.graph_options.legend = {});
     if (legend.container !== key) { legend.container = key; legend.noColumns = 99; g.__changed = true; }
   }
@@ -105,11 +125,33 @@ SCRIPT = """
       if (s.width !== want) s.width = want;
     });
   }
+  function grow(o) {  // a 3-D label's text, as the page's text, TITLE_PX[1]/TITLE_PX[0] larger in projector mode
+    if (o.__smHeight === undefined) o.__smHeight = o.height;
+    var want = window.smProjector ? Math.round(o.__smHeight * TITLE_PX[1] / TITLE_PX[0]) : o.__smHeight;
+    if (o.height !== want) o.height = want;
+  }
+  // The graphs in the order Python made them (vpython places a graph when its first point
+  // arrives, and a graph of errors gets none at t = 0, where every error is 0), each under its legend.
+  function inOrder(right, graphs) {
+    var want = graphs.map(function (g) { return g.container[0]; }).filter(function (el) {
+      return el && el.parentNode === right;
+    });
+    var have = Array.prototype.filter.call(right.children, function (el) {
+      return el.classList.contains('glowscript-graph');
+    });
+    if (want.every(function (el, i) { return have[i] === el; })) return;
+    want.forEach(function (el) {
+      var box = el.previousElementSibling;
+      if (box && box.classList.contains('sm-legend')) right.appendChild(box);
+      right.appendChild(el);
+    });
+  }
   function layout() {
     document.body.classList.toggle('sm-projector', !!window.smProjector);
     if (typeof fontsize !== 'undefined') fontsize = TITLE_PX[window.smProjector ? 1 : 0];
     var button = document.getElementById('sm-projector');
     if (button) button.textContent = window.smProjector ? 'Projector: on (P)' : 'Projector: off (P)';
+    objects(function (o) { return o.constructor && o.constructor.name === 'label'; }).forEach(grow);
     if (inNotebook) return;
     // Always a vertical scrollbar: one that came and went would change the width, the layout the
     // height, and the scrollbar again, so the controls would jump about.
@@ -134,12 +176,18 @@ SCRIPT = """
       var next = box.nextElementSibling;
       if (!next || !next.classList.contains('glowscript-graph')) box.remove();
     });
-    objects(function (o) { return o.graph_options && o.container; }).forEach(function (g) {
-      if (g.__deleted) return;
-      if (g.width !== gw) g.width = gw;
+    var graphs = objects(function (o) { return o.graph_options && o.container && !o.__deleted; });
+    graphs.forEach(function (g) {
+      // vpython writes a graph's titles inside it when its first point arrives, until its width
+      // changes; the legend line above says them. A graph whose first point came after the layout
+      // had set its width (an error graph: every error is 0 at t = 0) is narrowed by a pixel once,
+      // and widened back at the next layout, so it looks as the others do.
+      if (g.__activated && !g.__smResized) { g.__smResized = true; g.width = gw - 1; }
+      else if (g.width !== gw) g.width = gw;
       headerFor(g);
       thicken(g);
     });
+    inOrder(right, graphs);
   }
   window.smLayout = layout;
   if (!window.smInstalled && !inNotebook) {

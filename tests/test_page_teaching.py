@@ -58,3 +58,45 @@ def test_the_camera_follows_the_falling_balls_of_drag(browser, viewport):
     finally:
         page.close()
         program.stop()
+
+
+# Each graph's title and its curves, as the page holds them (vpython's gcurve points).
+GRAPH_DATA = """() => glowObjs.filter(o => o && o.graph_series && !o.__deleted).map(g => ({
+  title: g.title, ytitle: g.ytitle,
+  series: g.graph_series.map(s => ({label: s.label, points: (s.__data || []).map(p => [p[0], p[1]])}))}))"""
+
+
+def test_integrators_graphs_each_methods_error_on_a_log_scale_as_the_engine_has_it(browser):
+    """One curve per method of log₁₀ |x − x_exact|, each point the engine's own error at that t,
+    and the orders apart: euler (1) above euler-cromer (1) above verlet (2) above rk4 (4)."""
+    import numpy as np
+
+    from physics.recording import time_grid
+    from scenes import catalog
+
+    program, page = open_page(browser, ["integrators"], {"width": 1280, "height": 800})
+    try:
+        wait_for(lambda: shown_time(page) >= 5.0, timeout=180.0, what="t to reach 5 s")
+        graphs = page.evaluate(GRAPH_DATA)
+        [error] = [g for g in graphs if g["title"].startswith("Error")]
+        assert error["ytitle"] == "log₁₀ |x − x_exact| (m)"
+        model = catalog.configure("integrators").build()
+        assert [s["label"] for s in error["series"]] == list(model.labels)
+        end = max(p[0] for s in error["series"] for p in s["points"])
+        engine = model.simulation()
+        samples = engine.run_until(end, record=time_grid(model.dt, t0=0.0, dt=model.dt))
+        exact = model.exact(samples.t)[0]
+        means = []
+        for i, series in enumerate(error["series"]):
+            t, shown = np.array(series["points"]).T
+            assert len(t) > 20, f"{series['label']}: only {len(t)} points"
+            n = np.rint(t / model.dt).astype(int) - 1             # samples[0] is the first step
+            assert np.allclose(samples.t[n], t, atol=1e-9)
+            expected = np.log10(np.abs(samples.r[n, i, 0] - exact[n, i, 0]))
+            assert np.allclose(shown, expected, atol=1e-6), f"{series['label']}: not the engine's error"
+            means.append(float(np.mean(shown[t <= 5.0])))
+        assert means == sorted(means, reverse=True), f"mean log₁₀ errors over 0-5 s: {means}"
+        assert means[2] - means[3] > 1.0, "rk4 not ten times closer than verlet"
+    finally:
+        page.close()
+        program.stop()
