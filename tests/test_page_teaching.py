@@ -100,3 +100,44 @@ def test_integrators_graphs_each_methods_error_on_a_log_scale_as_the_engine_has_
     finally:
         page.close()
         program.stop()
+
+
+# Each legend colour box and the label after it, where the page draws them.
+LEGEND_PAIRS = """() => Array.from(document.querySelectorAll('.sm-legend td.legendColorBox')).map(box => {
+  const label = box.nextElementSibling, a = box.getBoundingClientRect();
+  const b = label ? label.getBoundingClientRect() : null;
+  return {box: [a.top, a.bottom, a.right], label: b && [b.top, b.bottom, b.left], text: label && label.textContent};
+})"""
+LABEL_HEIGHTS = """() => glowObjs.filter(o => o && !o.__deleted && o.constructor.name === 'label' && o.visible)
+                            .map(o => o.height)"""
+
+
+def test_legends_wrap_between_entries_and_projector_mode_enlarges_the_3d_labels(browser):
+    """drag at 1024 × 768: its position legend is longer than the graph is wide; each colour box
+    stays on its label's line. Key P: the 3-D labels grow from LABEL_HEIGHT as the text does."""
+    from browser.scene3d import LABEL_HEIGHT
+
+    program, page = open_page(browser, ["drag"], {"width": 1024, "height": 768})
+    try:
+        wait_for(lambda: shown_time(page) >= 1.0, timeout=180.0, what="t to reach 1 s")
+        pairs = wait_for(lambda: len(p := page.evaluate(LEGEND_PAIRS)) >= 6 and p, timeout=60.0,
+                         what="the legends")
+        lines = {round(top) for pair in pairs for top in (pair["box"][0], pair["label"][0])}
+        assert len(lines) > 2, "no legend wrapped: the test needs a legend longer than its graph"
+        for pair in pairs:
+            box_top, box_bottom, box_right = pair["box"]
+            label_top, label_bottom, label_left = pair["label"]
+            middle = 0.5 * (box_top + box_bottom)
+            assert label_top <= middle <= label_bottom, f"box apart from its label {pair['text']!r}"
+            assert 0 <= label_left - box_right < 20, f"box apart from its label {pair['text']!r}"
+        assert page.evaluate(LABEL_HEIGHTS) == [LABEL_HEIGHT, LABEL_HEIGHT]
+        page.locator("body").press("p")
+        grown = round(LABEL_HEIGHT * PROJECTOR_PX / BODY_PX)
+        wait_for(lambda: page.evaluate(LABEL_HEIGHTS) == [grown, grown], timeout=30.0,
+                 what=f"the 3-D labels to grow to {grown} px")
+        page.locator("body").press("p")
+        wait_for(lambda: page.evaluate(LABEL_HEIGHTS) == [LABEL_HEIGHT, LABEL_HEIGHT], timeout=30.0,
+                 what="the 3-D labels back to their size")
+    finally:
+        page.close()
+        program.stop()
