@@ -31,6 +31,7 @@ from physics.state import State, velocity
 
 from .axes import AxisFit, nice_range, time_axis
 from .clock import Trace, window
+from .page_layout import NOTE_MARK
 
 SAMPLE_EVERY = 0.05       # s of simulation time between graph points
 LEGEND_MASSES = 6         # more masses than this: no legend entry per mass
@@ -86,7 +87,8 @@ class Graphs:
         # constant m g h would flatten every curve).
         self.per_mass_energy = bool(model.integrators)
         self.energy_offset = 0.0 if self.per_mass_energy else (rest_potential(model.state, model.forces) or 0.0)
-        self.energy_graph = self._build_energy_graph(model)
+        self.energy_note = view.get("energy_note")  # VIEW["energy_note"]: a line under the energy graph
+        self.energy_graph = self._build_energy_graph(model, setup)
         self.graphs = [graph for graph in (self.scene_graph, self.position_graph, self.error_graph,
                                            self.energy_graph) if graph is not None]
 
@@ -176,11 +178,17 @@ class Graphs:
                         width=3, span=self.error_span)
         return graph
 
-    def _build_energy_graph(self, model):
-        vp = self.vp
-        width, height = self.size
+    def _energy_title(self, setup) -> str:
+        """The energy graph's title, and after NOTE_MARK the scene's line under it (the page's
+        script, browser/page_layout.py, puts that line under the graph)."""
         title = ("Energy of each mass, E = K + U" if self.per_mass_energy else
                  "Energy, measured from rest at equilibrium" if self.energy_offset else "Energy")
+        return title + (NOTE_MARK + self.energy_note(setup) if self.energy_note else "")
+
+    def _build_energy_graph(self, model, setup):
+        vp = self.vp
+        width, height = self.size
+        title = self._energy_title(setup)
         graph = vp.graph(title=title, xtitle="t (s)", ytitle="energy (J)",
                          width=width, height=height, align="left", fast=True, xmin=0, xmax=self.span)
         if self.per_mass_energy:
@@ -206,6 +214,8 @@ class Graphs:
         for the new constants, and show the exact curves if the new model has a closed form."""
         if self.scene_graph is not None and changes:
             self._fill_scene_graph(setup.module.view_graph(setup))
+        if self.energy_note and changes and self.energy_graph.title != self._energy_title(setup):
+            self.energy_graph.title = self._energy_title(setup)
         self.show_exact = self.exact_curves and model.exact is not None
         self.spacing = max(model.dt, SAMPLE_EVERY)   # s between graph points
 

@@ -33,6 +33,7 @@ LINE_FACTOR = 1.6        # graph lines this much thicker in projector mode
 GRAPH_WIDTH = (420, 760)  # px: the graph column's narrowest and widest
 GRAPH_SHARE = 0.45       # of the window's width, for the graph column, within GRAPH_WIDTH
 GAP = 16                 # px: between the view's column and the graphs'
+NOTE_MARK = " ¶ "         # in a graph's title: what follows is a line to show under the graph
 
 STYLE = """
 body { font-size: %(body)dpx; }
@@ -43,6 +44,7 @@ button { padding: 2px 10px; }
 #sm-graphs { position: absolute; top: 8px; }
 #sm-graphs .glowscript-graph { float: none !important; display: block; margin: 0 0 6px 0 !important; }
 .glowscript-graph .tickLabels, .glowscript-graph .tickLabel { font-size: %(body)dpx !important; color: #000 !important; }
+.sm-note { font-size: %(body)dpx; margin: 0 0 10px 0; max-width: 760px; }
 .sm-legend { font-size: %(body)dpx; min-height: 4px; line-height: 1.25; }
 .sm-legend table { font-size: %(body)dpx !important; color: #000; border-collapse: collapse; }
 .sm-key { display: flex; flex-wrap: wrap; align-items: center; }
@@ -56,7 +58,7 @@ button { padding: 2px 10px; }
 button:focus-visible, select:focus-visible, .ui-slider-handle:focus, #sm-projector:focus-visible
   { outline: 4px solid #0072b2 !important; outline-offset: 2px; }
 body.sm-projector, body.sm-projector button, body.sm-projector select,
-body.sm-projector .sm-legend, body.sm-projector .sm-legend table,
+body.sm-projector .sm-legend, body.sm-projector .sm-legend table, body.sm-projector .sm-note,
 body.sm-projector .glowscript-graph .tickLabels, body.sm-projector .glowscript-graph .tickLabel
   { font-size: %(projector)dpx !important; }
 body.sm-projector { background: #fff; color: #000; font-weight: 600; }
@@ -68,7 +70,7 @@ body.sm-projector button, body.sm-projector select { border: 2px solid #000; col
 SCRIPT = """
 (function () {
   var ASPECT = %(aspect)s, GRAPH_WIDTH = %(graph_width)s, SHARE = %(share)s, GAP = %(gap)s,
-      FACTOR = %(factor)s, TITLE_PX = [%(body)d, %(projector)d];
+      FACTOR = %(factor)s, TITLE_PX = [%(body)d, %(projector)d], NOTE_MARK = %(note_mark)s;
   if (window.smProjector === undefined) window.smProjector = %(projector_on)s;
   // In a Jupyter notebook the scene is one cell's output: the notebook lays out its page and owns
   // its keys (Space, R and arrows move between cells), so only the text sizes apply there.
@@ -96,6 +98,15 @@ SCRIPT = """
       if (label && label.classList.contains('legendLabel')) entry.appendChild(label);
     });
   }
+  function noteFor(el, text) {  // the line under a graph (a title's part after NOTE_MARK)
+    var note = el.nextElementSibling;
+    if (!note || !note.classList.contains('sm-note')) {
+      if (!text) return;
+      note = document.createElement('div'); note.className = 'sm-note';
+      el.parentNode.insertBefore(note, el.nextSibling);
+    }
+    if (note.textContent !== text) note.textContent = text;
+  }
   function headerFor(g) {
     var el = g.container && g.container[0];
     if (!el) return;
@@ -105,7 +116,9 @@ SCRIPT = """
       box.innerHTML = '<div class="sm-title"></div><div class="sm-key"></div>';
       el.parentNode.insertBefore(box, el);
     }
-    var title = '<b>' + (g.title || '') + '</b>' +
+    var parts = (g.title || '').split(NOTE_MARK);
+    noteFor(el, parts[1] || '');
+    var title = '<b>' + parts[0] + '</b>' +
         (g.ytitle ? ': ' + g.ytitle + (g.xtitle ? ' against ' + g.xtitle : '') : '');
     var heading = box.querySelector('.sm-title');
     if (heading.innerHTML !== title) heading.innerHTML = title;
@@ -142,8 +155,10 @@ SCRIPT = """
     if (want.every(function (el, i) { return have[i] === el; })) return;
     want.forEach(function (el) {
       var box = el.previousElementSibling;
+      var note = el.nextElementSibling;
       if (box && box.classList.contains('sm-legend')) right.appendChild(box);
       right.appendChild(el);
+      if (note && note.classList.contains('sm-note')) right.appendChild(note);
     });
   }
   function layout() {
@@ -175,6 +190,10 @@ SCRIPT = """
     right.querySelectorAll('.sm-legend').forEach(function (box) {
       var next = box.nextElementSibling;
       if (!next || !next.classList.contains('glowscript-graph')) box.remove();
+    });
+    right.querySelectorAll('.sm-note').forEach(function (note) {
+      var before = note.previousElementSibling;
+      if (!before || !before.classList.contains('glowscript-graph')) note.remove();
     });
     var graphs = objects(function (o) { return o.graph_options && o.container && !o.__deleted; });
     graphs.forEach(function (g) {
@@ -246,5 +265,5 @@ def page_head(*, projector: bool = False) -> str:
     script = SCRIPT % {**numbers, "aspect": json.dumps(CANVAS_SIZE[0] / CANVAS_SIZE[1]),
                        "graph_width": json.dumps(list(GRAPH_WIDTH)), "share": json.dumps(GRAPH_SHARE),
                        "gap": json.dumps(GAP), "factor": json.dumps(LINE_FACTOR),
-                       "projector_on": json.dumps(bool(projector))}
+                       "projector_on": json.dumps(bool(projector)), "note_mark": json.dumps(NOTE_MARK)}
     return f"<style>{STYLE % numbers}</style><script>{script}</script>"
