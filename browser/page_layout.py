@@ -167,7 +167,11 @@ SCRIPT = """
     var button = document.getElementById('sm-projector');
     if (button) button.textContent = window.smProjector ? 'Projector: on (P)' : 'Projector: off (P)';
     objects(function (o) { return o.constructor && o.constructor.name === 'label'; }).forEach(grow);
-    if (inNotebook) return;
+    if (inNotebook) {  // vpython writes the titles in the graphs there: without the line meant under one
+      objects(function (o) { return o.graph_options && o.title && o.title.indexOf(NOTE_MARK) >= 0; })
+        .forEach(function (g) { g.title = g.title.split(NOTE_MARK)[0]; });
+      return;
+    }
     // Always a vertical scrollbar: one that came and went would change the width, the layout the
     // height, and the scrollbar again, so the controls would jump about.
     document.documentElement.style.overflowY = 'scroll';
