@@ -94,8 +94,11 @@ class Scene3D:
                        for colour in colours] if view["trail"] else []
         self.runaway_labels: dict = {}  # mass index -> its label, once it has run away
         self.last_open: dict = {}       # mass index -> its last position inside the picture, m
-        self.labels = [(spec, self._make_label(spec, model.state.r[spec.index], view))
-                       for spec in mass_labels(model, view)]
+        specs = mass_labels(model, view)
+        # the outermost labelled masses of a hanging row: their labels go outward, beside them
+        xs = [float(model.state.r[spec.index][0]) for spec in specs if spec.side == "above"]
+        self.outer_x = (min(xs), max(xs)) if len(xs) > 1 and view["support"] == "ceiling" else ()
+        self.labels = [(spec, self._make_label(spec, model.state.r[spec.index], view)) for spec in specs]
         self.shapes = [support, *self.springs, *self.masses, *self.trails, *(label for _, label in self.labels)]
 
     def _make_label(self, spec, r, view):
@@ -105,9 +108,9 @@ class Scene3D:
         xoffset, yoffset, align = 0, 0, "center"
         if spec.side == "left":
             xoffset = -(pixels + 60)
-        elif self.follows_from_start and spec.side == "above":  # beside the ball, outward: under them,
-            outward = -1 if r[0] < self.centre[0] else 1          # two balls close together in the
-            xoffset = outward * (pixels + 12)                      # close-up frame had their labels overlap
+        elif spec.side == "above" and float(r[0]) in self.outer_x:  # beside the ball, outward: under
+            outward = -1 if float(r[0]) == self.outer_x[0] else 1      # them, the two labels of drag ran
+            xoffset = outward * (pixels + 6)                           # into each other at 1024 px
             align = "right" if outward < 0 else "left"
         elif view["support"] == "wall" and spec.side == "above":
             xoffset = pixels + 70      # beyond a mass on a horizontal spring, in the open
