@@ -32,6 +32,7 @@ from physics.state import State, velocity
 
 from .axes import AxisFit, nice_range, time_axis
 from .clock import Trace, window
+from .page_layout import NOTE_MARK
 
 SAMPLE_EVERY = 0.05       # s of simulation time between graph points
 LEGEND_MASSES = 6         # more masses than this: no legend entry per mass
@@ -78,15 +79,20 @@ class Graphs:
         self.show_exact = self.exact_curves
         if self.show_exact:
             self._add_exact_curves(model)
+        # VIEW["error"]: log₁₀ |x − x_exact| of each mass over that many seconds (integrators: each method's order)
+        self.error_span = float(view["error"]) if view.get("error") and self.exact_curves else None
+        self.error_fit = AxisFit(pixels=GRAPH_CANVAS_HEIGHT)
+        self.error_graph = self._build_error_graph(model) if self.error_span else None
         # What the energy graph shows, so that it tells the story (what would fill it otherwise):
         # one method per mass: each mass's own E = K + U (summed, euler's runaway would swamp it);
         # a system that starts at rest at equilibrium: energies measured from there (else a large
         # constant m g h would flatten every curve).
         self.per_mass_energy = bool(model.integrators)
         self.energy_offset = 0.0 if self.per_mass_energy else (rest_potential(model.state, model.forces) or 0.0)
-        self.energy_graph = self._build_energy_graph(model)
-        self.graphs = [graph for graph in (self.scene_graph, self.position_graph, self.energy_graph)
-                       if graph is not None]
+        self.energy_note = view.get("energy_note")  # VIEW["energy_note"]: a line under the energy graph
+        self.energy_graph = self._build_energy_graph(model, setup)
+        self.graphs = [graph for graph in (self.scene_graph, self.position_graph, self.error_graph,
+                                           self.energy_graph) if graph is not None]
 
     # ---- building ----
 
@@ -156,11 +162,35 @@ class Graphs:
                 self._curve(self.position_graph, name, self.vp.vector(*EXACT_COLOUR), ("exact", i, axis),
                             width=EXACT_WIDTH)
 
-    def _build_energy_graph(self, model):
+    def _build_error_graph(self, model):
+        """log₁₀ |x − x_exact| of each mass against t, one curve per mass (per method, in integrators).
+
+        On a logarithmic scale a first-order method's error sits (ωΔt)³ above a fourth-order one's,
+        and an error that grows like e^(γt) is a straight line of slope γ / ln 10: euler climbs,
+        euler-cromer and verlet grow slowly (their phase drifts), rk4 stays far below them all.
+        """
         vp = self.vp
         width, height = self.size
+        name = "xyz"[self.axes[0]]
+        graph = vp.graph(title="Error of each method, on a log scale", xtitle="t (s)",
+                         ytitle=f"log₁₀ |{name} − {name}_exact| (m)", width=width, height=height, align="left",
+                         fast=True, xmin=0, xmax=self.error_span)
+        for n, i in enumerate(self.graphed):
+            self._curve(graph, model.labels[i], vp.vector(*self.colours[i]), ("error", i, self.axes[0]),
+                        width=3, span=self.error_span)
+        return graph
+
+    def _energy_title(self, setup) -> str:
+        """The energy graph's title, and after NOTE_MARK the scene's line under it (the page's
+        script, browser/page_layout.py, puts that line under the graph)."""
         title = ("Energy of each mass, E = K + U" if self.per_mass_energy else
                  "Energy, measured from rest at equilibrium" if self.energy_offset else "Energy")
+        return title + (NOTE_MARK + self.energy_note(setup) if self.energy_note else "")
+
+    def _build_energy_graph(self, model, setup):
+        vp = self.vp
+        width, height = self.size
+        title = self._energy_title(setup)
         graph = vp.graph(title=title, xtitle="t (s)", ytitle="energy (J)",
                          width=width, height=height, align="left", fast=True, xmin=0, xmax=self.span)
         if self.per_mass_energy:
@@ -175,9 +205,9 @@ class Graphs:
                 self._curve(graph, label, vp.vector(*colour), ("energy", key), width=4 if key == "E" else 2)
         return graph
 
-    def _curve(self, graph, label, colour, what, *, width) -> None:
+    def _curve(self, graph, label, colour, what, *, width, span=None) -> None:
         curve = self.vp.gcurve(graph=graph, label=label, color=colour, width=width)
-        self.curves.append((curve, Trace(span=self.span), what))
+        self.curves.append((curve, Trace(span=span or self.span), what))
 
     # ---- a new run ----
 
@@ -186,6 +216,8 @@ class Graphs:
         for the new constants, and show the exact curves if the new model has a closed form."""
         if self.scene_graph is not None and changes:
             self._fill_scene_graph(setup.module.view_graph(setup))
+        if self.energy_note and changes and self.energy_graph.title != self._energy_title(setup):
+            self.energy_graph.title = self._energy_title(setup)
         self.show_exact = self.exact_curves and model.exact is not None
         self.spacing = max(model.dt, SAMPLE_EVERY)   # s between graph points
 
@@ -193,6 +225,7 @@ class Graphs:
         """Empty every curve and the recorded samples, and show t from 0 again."""
         self.position_fit.clear()
         self.energy_fit.clear()
+        self.error_fit.clear()
         if self.data_values:
             _fit(self.position_graph, self.position_fit, self.data_values)
         for _, trace, _ in self.curves:
@@ -200,6 +233,9 @@ class Graphs:
         self.recorded.clear()
         for graph in (self.position_graph, self.energy_graph):
             graph.xmin, graph.xmax = time_axis(0.0, span=self.span, dt=self.spacing, pixels=self.size[0])
+        if self.error_graph is not None:
+            self.error_graph.xmin, self.error_graph.xmax = time_axis(0.0, span=self.error_span, dt=self.spacing,
+                                                                     pixels=self.size[0])
         self.live_drawn = -math.inf
 
     def take_down(self) -> None:
@@ -242,20 +278,25 @@ class Graphs:
         # NaN where the closed form no longer describes a mass (past its anchor): no point there
         exact = live.model.exact_where_valid(t)[0] if (self.show_exact and len(t)) else None
         energies = self._energies(samples, live)
+        errors_shown = []
         for curve, trace, what in self.curves:
             if what[0] == "r":
                 values = r[:, what[1], what[2]]
-            elif what[0] == "exact":
+            elif what[0] in ("exact", "error"):
                 if exact is None:
                     values = np.zeros(0)
-                else:
+                elif what[0] == "exact":
                     values = exact[:, what[1], what[2]]
+                else:
+                    values = log_error(r[:, what[1], what[2]], exact[:, what[1], what[2]])
             else:
                 values = energies[what[1]]
             points = [[float(a), float(b)] for a, b in zip(t, values) if math.isfinite(b)]
-            if what[0] in ("r", "mass_energy") and what[1] in live.runaways:
+            if what[0] in ("r", "mass_energy", "error") and what[1] in live.runaways:
                 frozen = live.runaways[what[1]][0]  # the curve ends where the mass ran away
                 points = [point for point in points if point[0] <= frozen]
+            if what[0] == "error":
+                errors_shown += [value for _, value in points]  # (euler's too: its climb is the lesson)
             if trace.add(points) or redraw:
                 replace_points(curve, list(trace.points))
             elif points:
@@ -273,12 +314,17 @@ class Graphs:
             _fit(self.position_graph, self.position_fit, r[:, matter][..., self.axes].ravel())
         _fit(self.energy_graph, self.energy_fit,
              [value for key, values in energies.items() if key not in live.may_run_away for value in values])
+        if self.error_graph is not None:
+            _fit(self.error_graph, self.error_fit, errors_shown)
         if len(t):
             start, end = time_axis(float(t[-1]), span=self.span, dt=self.spacing,
                                    pixels=self.size[0])
             if (start, end) != (self.position_graph.xmin, self.position_graph.xmax):
                 for graph in (self.position_graph, self.energy_graph):
                     graph.xmin, graph.xmax = start, end
+            if self.error_graph is not None:
+                self.error_graph.xmin, self.error_graph.xmax = time_axis(
+                    float(t[-1]), span=self.error_span, dt=self.spacing, pixels=self.size[0])
         self._plot_live(live, redraw=redraw)
 
     def _energies(self, samples, live) -> dict:
@@ -361,6 +407,13 @@ def csv_text(samples, *, m, labels, dt) -> str:
                    *energy]
             writer.writerow(row + ([] if single else [label]))
     return out.getvalue()
+
+
+def log_error(x, x_exact) -> np.ndarray:
+    """log₁₀ |x − x_exact|, the error graph's values (−inf where they agree exactly, NaN where no
+    exact value is known: the graph leaves out both), log₁₀ m."""
+    with np.errstate(divide="ignore", invalid="ignore"):
+        return np.log10(np.abs(np.asarray(x, dtype=float) - np.asarray(x_exact, dtype=float)))
 
 
 def replace_points(series, points) -> None:

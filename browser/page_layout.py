@@ -12,7 +12,9 @@ browser, where the window's size is known, and again whenever the window is resi
 * text at least BODY_PX (18 px) — body, buttons, menus, axis ticks, legends, graph titles — and in
   projector mode (the page's Projector button, key P, or `--projector`) at least PROJECTOR_PX
   (22 px), with every graph line LINE_FACTOR times thicker and black on white;
-* each graph's legend in a line of its own above the graph, never over its data;
+* each graph's legend in a line of its own above the graph, never over its data, each colour box
+  kept on one line with its label (a legend that wraps breaks between entries);
+* the 3-D view's labels grow with projector mode as the page's text does;
 * keys: Space runs or pauses, → steps, R resets, + and − change the speed, P projector mode; every
   control is reached with Tab and shows a thick outline when it has the focus.
 
@@ -31,6 +33,7 @@ LINE_FACTOR = 1.6        # graph lines this much thicker in projector mode
 GRAPH_WIDTH = (420, 760)  # px: the graph column's narrowest and widest
 GRAPH_SHARE = 0.45       # of the window's width, for the graph column, within GRAPH_WIDTH
 GAP = 16                 # px: between the view's column and the graphs'
+NOTE_MARK = " ¶ "         # in a graph's title: what follows is a line to show under the graph
 
 STYLE = """
 body { font-size: %(body)dpx; }
@@ -41,11 +44,13 @@ button { padding: 2px 10px; }
 #sm-graphs { position: absolute; top: 8px; }
 #sm-graphs .glowscript-graph { float: none !important; display: block; margin: 0 0 6px 0 !important; }
 .glowscript-graph .tickLabels, .glowscript-graph .tickLabel { font-size: %(body)dpx !important; color: #000 !important; }
+.sm-note { font-size: %(body)dpx; margin: 0 0 10px 0; max-width: 760px; }
 .sm-legend { font-size: %(body)dpx; min-height: 4px; line-height: 1.25; }
 .sm-legend table { font-size: %(body)dpx !important; color: #000; border-collapse: collapse; }
 .sm-key { display: flex; flex-wrap: wrap; align-items: center; }
 .sm-key table, .sm-key tbody, .sm-key tr { display: contents; }
 .sm-key td { display: inline-block; }
+.sm-key .sm-entry { display: inline-flex; align-items: center; white-space: nowrap; }
 .sm-legend td.legendLabel { padding: 0 14px 0 4px; white-space: nowrap; }
 .sm-legend td.legendColorBox > div { border: none !important; }
 .sm-legend td.legendColorBox > div > div { border-width: 8px !important; }
@@ -53,7 +58,7 @@ button { padding: 2px 10px; }
 button:focus-visible, select:focus-visible, .ui-slider-handle:focus, #sm-projector:focus-visible
   { outline: 4px solid #0072b2 !important; outline-offset: 2px; }
 body.sm-projector, body.sm-projector button, body.sm-projector select,
-body.sm-projector .sm-legend, body.sm-projector .sm-legend table,
+body.sm-projector .sm-legend, body.sm-projector .sm-legend table, body.sm-projector .sm-note,
 body.sm-projector .glowscript-graph .tickLabels, body.sm-projector .glowscript-graph .tickLabel
   { font-size: %(projector)dpx !important; }
 body.sm-projector { background: #fff; color: #000; font-weight: 600; }
@@ -65,7 +70,7 @@ body.sm-projector button, body.sm-projector select { border: 2px solid #000; col
 SCRIPT = """
 (function () {
   var ASPECT = %(aspect)s, GRAPH_WIDTH = %(graph_width)s, SHARE = %(share)s, GAP = %(gap)s,
-      FACTOR = %(factor)s, TITLE_PX = [%(body)d, %(projector)d];
+      FACTOR = %(factor)s, TITLE_PX = [%(body)d, %(projector)d], NOTE_MARK = %(note_mark)s;
   if (window.smProjector === undefined) window.smProjector = %(projector_on)s;
   // In a Jupyter notebook the scene is one cell's output: the notebook lays out its page and owns
   // its keys (Space, R and arrows move between cells), so only the text sizes apply there.
@@ -81,6 +86,27 @@ SCRIPT = """
     if (!right) { right = document.createElement('div'); right.id = 'sm-graphs'; document.body.appendChild(right); }
     return right;
   }
+  // Each legend entry, colour box and label, in one span that never wraps, so that a long legend
+  // breaks between entries, never between a box and its label.
+  function pairUp(key) {
+    key.querySelectorAll('td.legendColorBox').forEach(function (box) {
+      if (box.parentNode.classList.contains('sm-entry')) return;
+      var label = box.nextElementSibling, entry = document.createElement('span');
+      entry.className = 'sm-entry';
+      box.parentNode.insertBefore(entry, box);
+      entry.appendChild(box);
+      if (label && label.classList.contains('legendLabel')) entry.appendChild(label);
+    });
+  }
+  function noteFor(el, text) {  // the line under a graph (a title's part after NOTE_MARK)
+    var note = el.nextElementSibling;
+    if (!note || !note.classList.contains('sm-note')) {
+      if (!text) return;
+      note = document.createElement('div'); note.className = 'sm-note';
+      el.parentNode.insertBefore(note, el.nextSibling);
+    }
+    if (note.textContent !== text) note.textContent = text;
+  }
   function headerFor(g) {
     var el = g.container && g.container[0];
     if (!el) return;
@@ -90,11 +116,18 @@ SCRIPT = """
       box.innerHTML = '<div class="sm-title"></div><div class="sm-key"></div>';
       el.parentNode.insertBefore(box, el);
     }
-    var title = '<b>' + (g.title || '') + '</b>' +
+    var parts = (g.title || '').split(NOTE_MARK);
+    noteFor(el, parts[1] || '');
+    var title = '<b>' + parts[0] + '</b>' +
         (g.ytitle ? ': ' + g.ytitle + (g.xtitle ? ' against ' + g.xtitle : '') : '');
     var heading = box.querySelector('.sm-title');
     if (heading.innerHTML !== title) heading.innerHTML = title;
     var key = box.querySelector('.sm-key');
+    if (!key.__smObserved) {  // flot writes the legend anew at each redraw: pair it up each time
+      key.__smObserved = true;
+      new MutationObserver(function () { pairUp(key); }).observe(key, {childList: true, subtree: true});
+    }
+    pairUp(key);
     var legend = g.graph_options.legend || (g.graph_options.legend = {});
     if (legend.container !== key) { legend.container = key; legend.noColumns = 99; g.__changed = true; }
   }
@@ -105,12 +138,40 @@ SCRIPT = """
       if (s.width !== want) s.width = want;
     });
   }
+  function grow(o) {  // a 3-D label's text, as the page's text, TITLE_PX[1]/TITLE_PX[0] larger in projector mode
+    if (o.__smHeight === undefined) o.__smHeight = o.height;
+    var want = window.smProjector ? Math.round(o.__smHeight * TITLE_PX[1] / TITLE_PX[0]) : o.__smHeight;
+    if (o.height !== want) o.height = want;
+  }
+  // The graphs in the order Python made them (vpython places a graph when its first point
+  // arrives, and a graph of errors gets none at t = 0, where every error is 0), each under its legend.
+  function inOrder(right, graphs) {
+    var want = graphs.map(function (g) { return g.container[0]; }).filter(function (el) {
+      return el && el.parentNode === right;
+    });
+    var have = Array.prototype.filter.call(right.children, function (el) {
+      return el.classList.contains('glowscript-graph');
+    });
+    if (want.every(function (el, i) { return have[i] === el; })) return;
+    want.forEach(function (el) {
+      var box = el.previousElementSibling;
+      var note = el.nextElementSibling;
+      if (box && box.classList.contains('sm-legend')) right.appendChild(box);
+      right.appendChild(el);
+      if (note && note.classList.contains('sm-note')) right.appendChild(note);
+    });
+  }
   function layout() {
     document.body.classList.toggle('sm-projector', !!window.smProjector);
     if (typeof fontsize !== 'undefined') fontsize = TITLE_PX[window.smProjector ? 1 : 0];
     var button = document.getElementById('sm-projector');
     if (button) button.textContent = window.smProjector ? 'Projector: on (P)' : 'Projector: off (P)';
-    if (inNotebook) return;
+    objects(function (o) { return o.constructor && o.constructor.name === 'label'; }).forEach(grow);
+    if (inNotebook) {  // vpython writes the titles in the graphs there: without the line meant under one
+      objects(function (o) { return o.graph_options && o.title && o.title.indexOf(NOTE_MARK) >= 0; })
+        .forEach(function (g) { g.title = g.title.split(NOTE_MARK)[0]; });
+      return;
+    }
     // Always a vertical scrollbar: one that came and went would change the width, the layout the
     // height, and the scrollbar again, so the controls would jump about.
     document.documentElement.style.overflowY = 'scroll';
@@ -134,12 +195,22 @@ SCRIPT = """
       var next = box.nextElementSibling;
       if (!next || !next.classList.contains('glowscript-graph')) box.remove();
     });
-    objects(function (o) { return o.graph_options && o.container; }).forEach(function (g) {
-      if (g.__deleted) return;
-      if (g.width !== gw) g.width = gw;
+    right.querySelectorAll('.sm-note').forEach(function (note) {
+      var before = note.previousElementSibling;
+      if (!before || !before.classList.contains('glowscript-graph')) note.remove();
+    });
+    var graphs = objects(function (o) { return o.graph_options && o.container && !o.__deleted; });
+    graphs.forEach(function (g) {
+      // vpython writes a graph's titles inside it when its first point arrives, until its width
+      // changes; the legend line above says them. A graph whose first point came after the layout
+      // had set its width (an error graph: every error is 0 at t = 0) is narrowed by a pixel once,
+      // and widened back at the next layout, so it looks as the others do.
+      if (g.__activated && !g.__smResized) { g.__smResized = true; g.width = gw - 1; }
+      else if (g.width !== gw) g.width = gw;
       headerFor(g);
       thicken(g);
     });
+    inOrder(right, graphs);
   }
   window.smLayout = layout;
   if (!window.smInstalled && !inNotebook) {
@@ -198,5 +269,5 @@ def page_head(*, projector: bool = False) -> str:
     script = SCRIPT % {**numbers, "aspect": json.dumps(CANVAS_SIZE[0] / CANVAS_SIZE[1]),
                        "graph_width": json.dumps(list(GRAPH_WIDTH)), "share": json.dumps(GRAPH_SHARE),
                        "gap": json.dumps(GAP), "factor": json.dumps(LINE_FACTOR),
-                       "projector_on": json.dumps(bool(projector))}
+                       "projector_on": json.dumps(bool(projector)), "note_mark": json.dumps(NOTE_MARK)}
     return f"<style>{STYLE % numbers}</style><script>{script}</script>"

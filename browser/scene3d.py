@@ -22,6 +22,8 @@ SPRING_COLOUR = (0.85, 0.85, 0.9)
 BACKGROUND = (0.12, 0.13, 0.16)
 LABEL_HEIGHT = 18         # px: the masses' labels, as the page's smallest text
 ROWS_PITCH = 0.45         # the camera looks down this much (forward's y to its z) on rows one behind another
+SMALLEST_MASS_PX = 4      # px: a motion framed whole would draw the spheres smaller than this (a fall
+                          # with no spring, 150 m and more): the camera follows the masses instead
 
 
 class Scene3D:
@@ -73,6 +75,8 @@ class Scene3D:
         self.support_box = (np.asarray(_array(support.pos) - 0.5 * _array(support.size)),
                             np.asarray(_array(support.pos) + 0.5 * _array(support.size)))
         self.centre, self.range, self.max_range = self._frame_camera(low - 0.3 * radius, high + 0.3 * radius)
+        self.follows_from_start = self._follow_if_tiny(model.state.r)
+        self.following = self.follows_from_start  # the camera follows the masses (they left the widest view)
         self.home, self.home_range = self.centre, self.range
         # A long row gets fewer turns per spring: each turn is many triangles for the browser.
         coils = max(4, min(view["coils"], round(4 * view["coils"] / len(anchors))))
@@ -89,25 +93,31 @@ class Scene3D:
         self.trails = [vp.curve(color=vp.vector(*colour), radius=0.06 * radius, retain=TRAIL_POINTS)
                        for colour in colours] if view["trail"] else []
         self.runaway_labels: dict = {}  # mass index -> its label, once it has run away
-        self.following = False          # the camera follows the masses (they left the widest view)
         self.last_open: dict = {}       # mass index -> its last position inside the picture, m
-        self.labels = [(spec, self._make_label(spec, model.state.r[spec.index], view))
-                       for spec in mass_labels(model, view)]
+        specs = mass_labels(model, view)
+        # the outermost labelled masses of a hanging row: their labels go outward, beside them
+        xs = [float(model.state.r[spec.index][0]) for spec in specs if spec.side == "above"]
+        self.outer_x = (min(xs), max(xs)) if len(xs) > 1 and view["support"] == "ceiling" else ()
+        self.labels = [(spec, self._make_label(spec, model.state.r[spec.index], view)) for spec in specs]
         self.shapes = [support, *self.springs, *self.masses, *self.trails, *(label for _, label in self.labels)]
 
     def _make_label(self, spec, r, view):
         """A mass's label (browser/mass_labels.py): white text beside it, out of its spring's way."""
         vp = self.vp
         pixels = 0.5 * CANVAS_SIZE[1] / self.range * self.radius  # the sphere's radius on the page, px
-        xoffset, yoffset = 0, 0
+        xoffset, yoffset, align = 0, 0, "center"
         if spec.side == "left":
             xoffset = -(pixels + 60)
+        elif spec.side == "above" and float(r[0]) in self.outer_x:  # beside the ball, outward: under
+            outward = -1 if float(r[0]) == self.outer_x[0] else 1      # them, the two labels of drag ran
+            xoffset = outward * (pixels + 6)                           # into each other at 1024 px
+            align = "right" if outward < 0 else "left"
         elif view["support"] == "wall" and spec.side == "above":
             xoffset = pixels + 70      # beyond a mass on a horizontal spring, in the open
         else:
             yoffset = -(pixels + 24)   # under a hanging mass: its spring is above it
-        return vp.label(pos=vec(vp, r), text=spec.text, xoffset=xoffset, yoffset=yoffset, height=LABEL_HEIGHT,
-                        color=vp.vector(1, 1, 1), box=False, line=False, opacity=0)
+        return vp.label(pos=vec(vp, r), text=spec.text, xoffset=xoffset, yoffset=yoffset, align=align,
+                        height=LABEL_HEIGHT, color=vp.vector(1, 1, 1), box=False, line=False, opacity=0)
 
     def reframe(self, model) -> None:
         """Frame the new motion and the support once, after a new constant: in or out, as it needs.
@@ -125,7 +135,19 @@ class Scene3D:
         low = np.minimum(low - 1.3 * radius, self.support_box[0])
         high = np.maximum(high + 1.3 * radius, self.support_box[1])
         self.centre, self.range, self.max_range = self._frame_camera(low, high)
+        self.follows_from_start = self._follow_if_tiny(model.state.r)
+        self.following = self.follows_from_start
         self.home, self.home_range = self.centre, self.range
+
+    def _follow_if_tiny(self, r) -> bool:
+        """Whether the framed motion is so large that the spheres would be dots (a fall with no
+        spring: 150 m and more in 20 s, from balls 1 m apart); if so, frame the masses themselves,
+        close up, and follow them from the start. Returns whether the camera follows."""
+        pixels = 0.5 * CANVAS_SIZE[1] / self.range * self.radius  # the sphere's radius on the page, px
+        if pixels >= SMALLEST_MASS_PX:
+            return False
+        self._follow(r[np.all(np.isfinite(r), axis=1)])
+        return True
 
     def _frame_camera(self, low, high) -> tuple[np.ndarray, float, float]:
         """Point the camera at the box from low to high; returns its centre, range and the range
@@ -151,7 +173,7 @@ class Scene3D:
             trail.clear()
         for _, label in self.labels:
             label.visible = True
-        self.following = False
+        self.following = self.follows_from_start
         if not np.array_equal(self.centre, self.home):  # the camera followed a fall: back to the start
             self.centre, self.range = self.home, self.home_range
             self.vp.scene.center, self.vp.scene.range = vec(self.vp, self.home), self.range
@@ -234,6 +256,16 @@ class Scene3D:
         self.runaway_labels[i] = label
         self.shapes.append(label)
 
+    def _follow(self, r) -> None:
+        """Centre the camera on the masses at r, close enough to see the balls and their labels."""
+        width, height = CANVAS_SIZE
+        low, high = r.min(axis=0), r.max(axis=0)
+        self.centre = 0.5 * (low + high)
+        span = high - low + 8 * self.radius
+        self.range = 0.55 * max(span[1], span[0] * height / width)
+        self.vp.scene.center = vec(self.vp, self.centre)
+        self.vp.scene.range = self.range
+
     def _keep_in_view(self, r) -> None:
         """Zoom out (never in) if a mass that matters leaves the framed region, up to max_range;
         once the masses leave even that (a fall with no spring), follow them from close by.
@@ -248,13 +280,8 @@ class Scene3D:
         reach = np.abs(finite - self.centre).max(axis=0)
         needed = max(reach[1], reach[0] * height / width) + self.radius
         self.following = self.following or needed > self.max_range
-        if self.following:  # out of even the widest view (falling, no spring): the camera follows them,
-            low, high = finite.min(axis=0), finite.max(axis=0)  # close enough to see the balls
-            self.centre = 0.5 * (low + high)
-            span = high - low + 8 * self.radius
-            self.range = 0.55 * max(span[1], span[0] * height / width)
-            self.vp.scene.center = vec(self.vp, self.centre)
-            self.vp.scene.range = self.range
+        if self.following:  # out of even the widest view (falling, no spring): the camera follows them
+            self._follow(finite)
         elif self.range < needed and self.range < self.max_range:
             self.range = min(1.5 * needed, self.max_range)
             self.vp.scene.range = self.range

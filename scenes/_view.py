@@ -17,6 +17,10 @@ A scene file ends with VIEW, a few lines naming what to draw; both front ends th
              chosen springs, not all 39); None: every mass
     arrows   the arrows drawn on each mass when the page opens (export/arrows.py): "p", "F_net",
              "forces", "split"; `--arrows` and the page's check boxes change them
+    error    seconds of a graph of log₁₀ |x − x_exact| of each mass (integrators: each method's order
+             and how its error grows); None: no such graph. Only where the model has an exact solution
+    energy_note  a function of the configured scene giving one line shown under the energy graph
+             (resonance: what the energy's spikes are); None: no line
     rows     a function of the model giving each mass's row (resonance: one row of springs per b);
              a row's masses share its colour (export/palette.py mass_colours)
 """
@@ -25,4 +29,5 @@ from __future__ import annotations
 MAX_DRAWN_MASSES = 2000     # a sphere and a helix each: more would stall the page on a school laptop
 
 DEFAULT_VIEW = {"support": "ceiling", "plot": "y", "trail": False, "exact": True, "coils": 12,
-                "window": 30.0, "hold": False, "graphed": None, "arrows": ()}
+                "window": 30.0, "hold": False, "graphed": None, "arrows": (),
+                "error": None, "energy_note": None}

@@ -354,7 +354,30 @@ def view_graph(setup) -> dict:
 
 
 
+def beat_period(values) -> float:
+    """π/Δω, s: how often the total energy of the batch repeats once the transient has gone.
+
+    In the steady state each spring swings as x = A cos(ωt − δ), so its energy
+    E = ½ A² (k cos²(ωt − δ) + m ω² sin²(ωt − δ)) rises and falls twice a swing, at 2ω (unless
+    k = mω²). The drives are Δω = (ω_max − ω_min)/(count − 1) apart, so two springs' rises and
+    falls differ in phase by 2(ω_i − ω_j)t, a whole multiple of 2π every π/Δω: then they all come
+    back in step, and the sum spikes. The spikes of the energy graph are this beat, not energy
+    gained. (With ω_min a whole multiple of Δω, as by default, 2 = 4 × 0.5 rad/s, the steady
+    total energy repeats exactly with this period.)
+    """
+    step = (values["omega_max"] - values["omega_min"]) / (values["count"] - 1)
+    return float(np.pi / step)
+
+
+def energy_note(setup) -> str:
+    """The line under the page's energy graph: what its spikes are (beat_period)."""
+    v = setup.values
+    step = (v["omega_max"] - v["omega_min"]) / (v["count"] - 1)
+    return (f"Spikes every π/Δω = {beat_period(v):.3g} s: each spring's energy rises and falls twice a "
+            f"swing, and the springs, driven Δω = {step:.3g} rad/s apart, do so in step again then.")
+
+
 # The resonance graph shows the amplitudes; each spring's exact curve would only crowd the position graph.
 # Each row of springs in the colour of its b's line (rows).
 VIEW = {"support": "ceiling", "plot": "y", "trail": False, "exact": False, "sliders": ["b", "F0", "m", "k"],
-        "rows": rows, "graphed": graphed}
+        "rows": rows, "graphed": graphed, "energy_note": energy_note}

@@ -105,6 +105,13 @@ class Program:
         self.process.wait(timeout=10)
 
 
+def graph_count(scene: str) -> int:
+    """The graphs a scene's page shows: its own (view_graph), position, its error graph (VIEW["error"],
+    integrators), energy."""
+    module = catalog.load(scene)
+    return 2 + hasattr(module, "view_graph") + bool(getattr(module, "VIEW", {}).get("error"))
+
+
 def shown_time(page) -> float:
     """The t the caption shows, read from the page's text (`t = 12.34 s`)."""
     text = page.locator("b").filter(has_text=TIME).first.inner_text()
@@ -173,7 +180,7 @@ def test_scene_in_the_browser(browser, scene):
         canvas = page.locator(".glowscript-canvas-wrapper canvas").first.bounding_box()
         own_graph = hasattr(catalog.load(scene), "view_graph")
         boxes = graph_boxes(page)
-        assert len(boxes) == 2 + own_graph
+        assert len(boxes) == graph_count(scene)
         assert_not_blank(crop(picture, canvas), "3-D canvas")
         assert curve_pixels(crop(picture, boxes[own_graph])) > 50, "the position graph shows no curve"
         if scene == "resonance":

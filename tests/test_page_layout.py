@@ -19,7 +19,7 @@ import pytest
 
 from browser.page_layout import BODY_PX, LINE_FACTOR, PROJECTOR_PX
 from scenes import catalog
-from test_browser import ROOT, Program, browser, drawable_scenes, shown_time  # noqa: F401 (a fixture)
+from test_browser import ROOT, Program, browser, drawable_scenes, graph_count, shown_time  # noqa: F401 (a fixture)
 from browser_support import wait_for
 
 pytestmark = pytest.mark.browser
@@ -66,7 +66,7 @@ def test_the_view_and_the_position_graph_fit_a_laptop_window_in_large_text(brows
         page.goto(program.url(), timeout=30_000)
         wait_for(lambda: shown_time(page) >= 2.0, timeout=90.0, what="t to reach 2 s")
         own_graph = hasattr(catalog.load(scene), "view_graph")
-        m = laid_out(page, graphs=2 + own_graph)
+        m = laid_out(page, graphs=graph_count(scene))
         assert m["scrollWidth"] <= m["width"], f"the page scrolls sideways ({m['scrollWidth']} px)"
         assert inside(m["canvas"], 1280, 800), f"3-D view at {m['canvas']}"
         assert m["canvas"]["width"] >= 600, f"3-D view only {m['canvas']['width']} px wide"
