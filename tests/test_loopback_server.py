@@ -21,7 +21,7 @@ from pathlib import Path
 
 import pytest
 
-from browser_support import CHROMIUM, CHROMIUM_ARGS
+from browser_support import CHROMIUM, CHROMIUM_ARGS, ENDS_WITHIN
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -360,7 +360,7 @@ def test_own_origin_connects_and_closing_it_ends_the_program(run_driver):
     finally:
         closed_at = time.monotonic()
         sock.close()
-    assert assert_clean_exit(driver, timeout=5, since=closed_at) < 2
+    assert assert_clean_exit(driver, timeout=60, since=closed_at) < ENDS_WITHIN
 
 
 def test_ctrl_c_while_running_exits_cleanly(run_driver):
@@ -445,8 +445,8 @@ def test_real_browser_connects_and_closing_the_page_ends_the_program(run_driver)
             assert failed == []
             closed_at = time.monotonic()
             page.close()
-            elapsed = assert_clean_exit(driver, timeout=5, since=closed_at)
-            assert elapsed < 2, f"took {elapsed:.2f} s to exit after the page closed"
+            elapsed = assert_clean_exit(driver, timeout=60, since=closed_at)
+            assert elapsed < ENDS_WITHIN, f"took {elapsed:.2f} s to exit after the page closed"
         finally:
             browser.close()
 
@@ -554,7 +554,7 @@ def test_a_second_tab_is_refused_and_closing_it_does_not_end_the_program(run_dri
     finally:
         closed_at = time.monotonic()
         page.close()
-    assert assert_clean_exit(driver, timeout=5, since=closed_at) < 2
+    assert assert_clean_exit(driver, timeout=60, since=closed_at) < ENDS_WITHIN
 
 
 def test_a_reload_reconnects_and_the_program_keeps_running(run_driver):
@@ -584,7 +584,7 @@ def test_a_reload_reconnects_and_the_program_keeps_running(run_driver):
     assert raw_get(http_port, "/status") == (200, b"busy")
     closed_at = time.monotonic()
     page.close()
-    assert assert_clean_exit(driver, timeout=5, since=closed_at) < 2
+    assert assert_clean_exit(driver, timeout=60, since=closed_at) < ENDS_WITHIN
 
 
 @pytest.mark.parametrize("headers", ["", "Sec-Fetch-Mode: navigate\r\nSec-Purpose: prefetch\r\n"],
@@ -602,7 +602,7 @@ def test_a_fetch_of_the_page_that_no_page_follows_does_not_delay_the_end(run_dri
     closed_at = time.monotonic()
     page.close()
     elapsed = assert_clean_exit(driver, timeout=40, since=closed_at)  # generous: it was 20 s
-    assert elapsed < 2, f"took {elapsed:.1f} s to end after the page closed"
+    assert elapsed < ENDS_WITHIN, f"took {elapsed:.1f} s to end after the page closed"
 
 
 def test_every_patch_is_undone_once_vpython_has_started_or_failed_to():

@@ -28,7 +28,7 @@ from pathlib import Path
 
 import pytest
 
-from browser_support import TIME, colours, free_port, launched, require_browser, wait_for
+from browser_support import ENDS_WITHIN, TIME, colours, free_port, launched, require_browser, wait_for
 
 ROOT = Path(__file__).resolve().parent.parent
 
@@ -63,7 +63,7 @@ def program():
     finally:
         if process.poll() is None:
             process.kill()
-        process.wait(timeout=10)
+        process.wait(timeout=60)
 
 
 def _listening(port: int) -> bool:
@@ -111,7 +111,7 @@ def canvas_not_blank(page, name: str) -> None:
 def exit_seconds_after(close, process) -> float:
     closed_at = time.monotonic()
     close()
-    process.wait(timeout=10)
+    process.wait(timeout=60)
     return time.monotonic() - closed_at
 
 
@@ -128,7 +128,7 @@ def test_a_reload_shows_the_scene_again_and_the_program_keeps_running(browser, p
     canvas_not_blank(page, "after-reload")
     assert page.locator("canvas").count() >= 3  # the 3-D view and the two graphs
     assert "Traceback" not in "".join(program.errors)
-    assert exit_seconds_after(page.close, program) < 2
+    assert exit_seconds_after(page.close, program) < ENDS_WITHIN
     assert program.returncode == 0
 
 
@@ -148,7 +148,7 @@ def test_a_second_tab_says_so_and_closing_it_leaves_the_first_running(browser, p
     now = shown_time(first)
     running_past(first, now + 0.5)  # the first tab still runs
     assert "Traceback" not in "".join(program.errors)
-    assert exit_seconds_after(first.close, program) < 2
+    assert exit_seconds_after(first.close, program) < ENDS_WITHIN
 
 
 def test_a_page_reached_through_another_host_name_is_refused(browser, program):
@@ -185,7 +185,7 @@ def fetch_page(url: str) -> None:
         assert reply.status == 200 and b"glowscript" in reply.read()
 
 
-def test_closing_the_tab_soon_after_another_fetch_of_the_page_still_ends_within_2_s(browser, program):
+def test_closing_the_tab_soon_after_another_fetch_of_the_page_still_ends_on_its_own(browser, program):
     """A fetch of "/" that no page follows (curl, a prefetch) is not a reload to wait 20 s for."""
     page = browser.new_page()
     page.goto(program.url)
@@ -195,6 +195,6 @@ def test_closing_the_tab_soon_after_another_fetch_of_the_page_still_ends_within_
     page.close()
     program.wait(timeout=40)  # generous: the bug made it 20 s
     elapsed = time.monotonic() - closed_at
-    assert elapsed < 2, f"took {elapsed:.1f} s to end after the tab closed"
+    assert elapsed < ENDS_WITHIN, f"took {elapsed:.1f} s to end after the tab closed"
     assert program.returncode == 0
     assert "Traceback" not in "".join(program.errors)
