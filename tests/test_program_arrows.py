@@ -84,13 +84,16 @@ def test_the_programs_forces_and_split_arrows_are_the_pages(args, stand_in, tmp_
 
     path = tmp_path / "program.py"
     web = tmp_path / "web.py"
-    done = main_py(*args, "--arrows", "p,F_net,forces,split", "--vpython", str(path), "--webvpython", str(web))
-    assert done.returncode == 0, done.stderr
-    drawn = []
-    answers = run_program(path, stand_in, drawn)
     rest = args[1:]
     setup = catalog.configure(args[0], assignments=[rest[n + 1] for n in range(len(rest)) if rest[n] == "--set"],
                               scenario=int(rest[rest.index("--scenario") + 1]) if "--scenario" in rest else None)
+    done = main_py(*args, "--arrows", "p,F_net,forces,split", "--vpython", str(path), "--webvpython", str(web),
+                   "--until", repr(setup.values["until"]))   # ending at the question time, as the engine's run below
+    assert done.returncode == 0, done.stderr
+    drawn = []
+    run_program(path, stand_in, drawn)
+    t_end, r_end, p_end = final_state(drawn)   # the program's own, to every digit
+    answers = [(t_end, r, p) for r, p in zip(r_end, p_end)]
     integrator = rest[rest.index("--integrator") + 1] if "--integrator" in rest else None
     model = setup.build()
     scales = choose_scales(model, integrator=integrator)
