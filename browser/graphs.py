@@ -46,7 +46,7 @@ class Graphs:
     """The graphs of one scene, empty at t = 0, and the samples they show (for Download CSV).
 
     vp      the vpython module
-    setup   the scene as configured (its module may have view_graph)
+    setup   the scene as configured (setup.hooks.view_graph, if the scene has one)
     model   the Model built from it
     view    the scene's VIEW merged with the defaults (plot, exact, window)
     """
@@ -65,14 +65,14 @@ class Graphs:
         self.graphed = list(view["graphed"](model)) if view.get("graphed") else list(range(model.state.count))
         # VIEW["hold"]: the graphs stop at the end of their window instead of scrolling
         self.hold = bool(view.get("hold"))
-        has_own = hasattr(setup.module, "view_graph")
+        has_own = setup.hooks.view_graph is not None
         self.size = (NARROW_GRAPH_WIDTH if has_own else GRAPH_SIZE[0], GRAPH_SIZE[1])
         # The scene's own graph is made first and filled at once, so it comes first on the page
         # (vpython places a graph when its first points arrive).
         self.scene_graph, self.scene_series, self.live_dots, self.live_points = None, [], None, None
         self.live_drawn = -math.inf
         if has_own:
-            self._build_scene_graph(setup.module.view_graph(setup))
+            self._build_scene_graph(setup.hooks.view_graph(setup))
         self.position_graph = self._build_position_graph(model)
         self.data_dots, self.data_values = None, []   # measured points (show_data), on top of the curves
         self.exact_curves = bool(view["exact"]) and model.exact is not None
@@ -215,7 +215,7 @@ class Graphs:
         """The model was built again (new constants or integrator): redraw the scene's own graph
         for the new constants, and show the exact curves if the new model has a closed form."""
         if self.scene_graph is not None and changes:
-            self._fill_scene_graph(setup.module.view_graph(setup))
+            self._fill_scene_graph(setup.hooks.view_graph(setup))
         if self.energy_note and changes and self.energy_graph.title != self._energy_title(setup):
             self.energy_graph.title = self._energy_title(setup)
         self.show_exact = self.exact_curves and model.exact is not None

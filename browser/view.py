@@ -111,7 +111,7 @@ class SceneView:
     def _build_parts(self, *, preset: str | None):
         """The 3-D picture, the controls and the graphs of self.setup, in the order the page shows them."""
         setup, model = self.setup, self.live.model
-        view = {**DEFAULT_VIEW, **getattr(setup.module, "VIEW", {})}
+        view = {**DEFAULT_VIEW, **setup.hooks.view}
         title = (page_head(projector=self.projector) + f"<b style='font-size:130%'>{setup.name}</b>: "
                  f"{_summary(setup.module)}{PROJECTOR_BUTTON}\n")
         scene = Scene3D(self.vp, model=model, view=view, title=title)

@@ -133,7 +133,7 @@ class _Case:
     def __init__(self, setup, model, integrator, arrows=None, end=None):
         self.setup, self.model, self.integrator = setup, model, integrator
         self.methods = model.methods(integrator)
-        self.view = {**DEFAULT_VIEW, **getattr(setup.module, "VIEW", {})}
+        self.view = {**DEFAULT_VIEW, **setup.hooks.view}
         self.arrows = self.view["arrows"] if arrows is None else arrows
         self.single = model.state.count == 1
         self.index = "" if self.single else "[i]"
