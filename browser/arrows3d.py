@@ -157,7 +157,7 @@ class MomentumArrows:
                 self._draw_forces(i, live.state.r[i], [], False)
                 self._draw_split(i, live.state.r[i], None, None, False)
             return
-        vp, state, model = self.vp, live.state, live.model
+        state, model = live.state, live.model
         r, p, m = state.r, state.p, state.m
         v = velocity(p, m)
         F_net = net_force(model.forces, state.t, r, v, m)
