@@ -34,6 +34,9 @@ def final_report(result: Result) -> str:
     lines = [f"{result.setup.name}: {plural(result.steps, 'step')} of dt = {number(model.dt)} s "
              f"with {result.integrator}",
              f"t = {number(t)} s"]
+    extra_text = result.setup.hooks.extra_text  # a scene's own results first (resonance's amplitude
+    if extra_text is not None:                  # table), then each of its masses
+        lines.append(extra_text(result))
     lines += _masses(result)
     if len(m) == 1 and result.exact_note():
         lines.append(f"exact: none at t = {number(t)} s: {result.exact_note()}")
@@ -42,9 +45,6 @@ def final_report(result: Result) -> str:
         lines.append(f"energy: K = {number(e['K'])} J, U = {number(e['U'])} J, E = {number(e['E'])} J, "
                      f"W_nc = {number(e['W_nc'])} J, E − W_nc = {number(e['E_minus_W_nc'])} J "
                      f"({number(traj.energy['E_minus_W_nc'][0])} J at the start)")
-    extra_text = result.setup.hooks.extra_text  # a scene's own results: resonance's curves
-    if extra_text is not None:
-        lines.append(extra_text(result))
     return "\n".join(lines)
 
 

@@ -786,6 +786,9 @@ def test_the_resonance_report_has_the_amplitude_table(capsys):
     assert head.split() == ["ω", "(rad/s)", "b", "=", "0.5", "kg/s", "b", "=", "1", "kg/s", "b", "=", "2", "kg/s"]
     row = next(line for line in out.splitlines() if line.startswith("5 "))   # ω = ω0 = 5 rad/s: A = F0/(b ω0)
     assert row.split() == ["5", "0.4", "0.4", "0.2", "0.2", "0.1", "0.1"]
+    # the lesson first: the table comes before the 39 masses' states (it came after 276 lines of them)
+    lines = out.splitlines()
+    assert lines.index(head) < 20 and lines.index(head) < lines.index(next(l for l in lines if l.startswith("  r = ")))
 
 
 @pytest.mark.parametrize("args, options, message", [
