@@ -106,8 +106,8 @@ class Scene3D:
         vp = self.vp
         pixels = 0.5 * CANVAS_SIZE[1] / self.range * self.radius  # the sphere's radius on the page, px
         xoffset, yoffset, align = 0, 0, "center"
-        if spec.side == "left":
-            xoffset = -(pixels + 60)
+        if spec.side == "left":        # ending just left of the row's first mass: centred 60 px out,
+            xoffset, align = -(pixels + 8), "right"   # resonance's "b = 0.5 kg/s" ran off the canvas at 1024 px
         elif spec.side == "above" and float(r[0]) in self.outer_x:  # beside the ball, outward: under
             outward = -1 if float(r[0]) == self.outer_x[0] else 1      # them, the two labels of drag ran
             xoffset = outward * (pixels + 6)                           # into each other at 1024 px

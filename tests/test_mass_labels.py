@@ -61,3 +61,9 @@ def test_the_page_draws_the_labels_and_looks_down_on_resonance_rows():
         shown = Scene3D(vp, model=model, view=view, title=scene)
         assert len(shown.labels) == count
         assert (shown.pitch > 0) == pitched
+    # each row's label ends just left of the row's first mass (right-aligned, a few pixels out):
+    # centred 60 px out, resonance's "b = 0.5 kg/s" ran off the canvas's left edge at 1024 px
+    rows = [label for spec, label in shown.labels if spec.side == "left"]
+    assert len(rows) == 3
+    for label in rows:
+        assert label.align == "right" and -40 < label.xoffset < 0, (label.text, label.align, label.xoffset)
