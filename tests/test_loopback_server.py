@@ -373,7 +373,7 @@ def test_ctrl_c_while_running_exits_cleanly(run_driver):
         driver.expect(r"^CONNECTED ", timeout=5)
         time.sleep(0.3)  # into the rate() loop
         driver.proc.send_signal(signal.SIGINT)
-        assert assert_clean_exit(driver, timeout=5) < 3
+        assert assert_clean_exit(driver, timeout=60) < ENDS_WITHIN   # ends on Ctrl-C, not hangs
     finally:
         sock.close()
 
@@ -383,14 +383,14 @@ def test_ctrl_c_while_waiting_exits_cleanly(run_driver):
     driver.http_port()
     wait_for_listeners(driver.proc.pid, 2)
     driver.proc.send_signal(signal.SIGINT)
-    assert assert_clean_exit(driver, timeout=5) < 3
+    assert assert_clean_exit(driver, timeout=60) < ENDS_WITHIN   # ends on Ctrl-C, not hangs
 
 
 def test_ctrl_c_while_vpython_loads_exits_cleanly(run_driver):
     driver = run_driver()
     driver.http_port()  # printed just before vpython is imported
     driver.proc.send_signal(signal.SIGINT)
-    assert assert_clean_exit(driver, timeout=5) < 3
+    assert assert_clean_exit(driver, timeout=60) < ENDS_WITHIN   # ends on Ctrl-C, not hangs
 
 
 BUSY_PORT_CHECK = """
