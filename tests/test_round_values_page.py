@@ -71,7 +71,15 @@ def test_resonance_tick_labels_stay_plain_after_critical_damping(browser):
                  what="the critical damping preset")
         wait_for(lambda: shown_time(page) >= 2.0, timeout=90.0, what="t to reach 2 s")
         graphs = page.locator(".glowscript-graph")
-        labels = [graphs.nth(i).locator(".yAxis .tickLabel").all_inner_texts() for i in range(graphs.count())]
+
+        def tick_labels():
+            return [graphs.nth(i).locator(".yAxis .tickLabel").all_inner_texts() for i in range(graphs.count())]
+
+        # the preset rebuilds the graphs, and flot draws a graph's axis when its first points come (a
+        # CI run read the amplitude graph before it had any): wait for every axis, then read them
+        wait_for(lambda: len(tick_labels()) >= 2 and all(len(axis) >= 3 for axis in tick_labels()),
+                 timeout=120.0, what="every graph's y-axis tick labels after the preset")
+        labels = tick_labels()
         assert len(labels) >= 2 and all(len(axis) >= 3 for axis in labels), labels
         for axis in labels:
             for label in axis:
