@@ -69,15 +69,21 @@ def _digits(x: np.ndarray, power: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     the error decide. Elements whose y falls outside [10^14, 10^15) give an n out of that range.
     """
     y = x * power
-    x_high, x_low = _split(x)
-    p_high, p_low = _split(power)
-    error = ((x_high * p_high - y) + x_high * p_low + x_low * p_high) + x_low * p_low
+    error = product_error(x, power)
     n = np.rint(y)
     below = np.floor(y)
     half = (y - below) == 0.5
     n = np.where(half & (error > 0), below + 1, np.where(half & (error < 0), below, n))
     n = np.where((np.abs(y) >= _LOW) & (np.abs(y) < _HIGH), n, 0.0)   # 0: left to clean()
     return n, power
+
+
+def product_error(a, b):
+    """error, such that a·b = fl(a·b) + error exactly (Dekker's two-product, no FMA; also used
+    by export/number_text.py)."""
+    a_high, a_low = _split(a)
+    b_high, b_low = _split(b)
+    return ((a_high * b_high - a * b) + a_high * b_low + a_low * b_high) + a_low * b_low
 
 
 def _split(a: np.ndarray) -> tuple[np.ndarray, np.ndarray]:

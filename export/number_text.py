@@ -27,25 +27,15 @@ import functools
 import numpy as np
 from numpy.lib.stride_tricks import sliding_window_view
 
+from .number_blocks import product_error
 from .numbers import clean
 
 _FOUR_DIGITS = np.frombuffer("".join(f"{i:04d}" for i in range(10_000)).encode(), dtype=np.uint32)
 _TRAILING_ZEROS = np.array([len(f"{i:04d}") - len(f"{i:04d}".rstrip("0")) for i in range(10_000)])
 DROPPED = 0xFF               # marks a character that is not part of a text (never in UTF-8)
 _E_LOW = 4                   # the smallest exponent written in fixed notation is -4
-_SPLIT = 134217729.0         # 2^27 + 1: Dekker's split of a double into two halves of 26 bits
 _POWERS = 10.0 ** np.arange(20)     # 10^0 … 10^19, each an exact double
 _ZERO, _POINT, _MINUS, _COMMA = ord("0"), ord("."), ord("-"), ord(",")
-
-
-def _product_error(a, scale):
-    """error, such that a·scale = fl(a·scale) + error exactly (Dekker's two-product, no FMA)."""
-    def halves(v):
-        c = _SPLIT * v
-        high = c - (c - v)
-        return high, v - high
-    (a1, a2), (s1, s2) = halves(a), halves(scale)
-    return ((a1 * s1 - a * scale) + a1 * s2 + a2 * s1) + a2 * s2
 
 
 def _rounded_digits(a):
@@ -62,7 +52,7 @@ def _rounded_digits(a):
     # Where y is exactly a half or on the edge of [1e14, 1e15), the exact product decides.
     close = np.flatnonzero((np.abs(half) == 0.5) | ((y == 1e14) | (y == 1e15)))
     if close.size:
-        error = _product_error(a[close], scale[close])
+        error = product_error(a[close], scale[close])
         y_close, half_close = y[close], half[close]
         D[close] += (half_close == 0.5) & (error > 0)    # just above a half: round up
         D[close] -= (half_close == -0.5) & (error < 0)
