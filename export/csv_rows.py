@@ -31,11 +31,16 @@ def format_numbers(values: np.ndarray, *, after: list[str]) -> str:
 
     The same text as csv.writer.writerow([*map(clean, row)] + ...) for each row.
     """
+    return number_rows(values, after=after).decode("utf-8")
+
+
+def number_rows(values: np.ndarray, *, after: list[str]) -> bytes:
+    """format_numbers' text as UTF-8 bytes, for a file opened in binary (no decoding and encoding again)."""
     rows, columns = values.shape
     ending = _endings(after, rows)
     line = np.concatenate([column_text(values[:, j]) for j in range(columns)] + [ending], axis=1)
     line[:, line.shape[1] - ending.shape[1] - 1] = DROPPED       # no comma after a row's last number
-    return line.tobytes().translate(None, bytes([DROPPED])).decode("utf-8")
+    return line.tobytes().translate(None, bytes([DROPPED]))
 
 
 def _endings(after: list[str], rows: int) -> np.ndarray:

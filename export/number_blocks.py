@@ -22,6 +22,7 @@ from .numbers import FILE_DIGITS, clean
 _POWERS = 10.0 ** np.arange(23)     # 1 … 1e22, each exact as a double
 _SPLIT = 2.0 ** 27 + 1              # Veltkamp's splitter for doubles
 _LOW, _HIGH = 10.0 ** (FILE_DIGITS - 1), 10.0 ** FILE_DIGITS   # n has FILE_DIGITS digits
+_HALVES_EXACT = 2.0 ** 52           # below it, every half-integer is a double
 SHORTEST_BLOCK = 32     # numbers: a shorter list is quicker one number at a time
 
 
@@ -64,18 +65,55 @@ def clean_array(x) -> np.ndarray:
 def _digits(x: np.ndarray, power: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """n = x·power rounded to the nearest integer, half to even, from the exact product; and power.
 
-    y = fl(x·power) and the exact product is y + error (Dekker). y is rounded from the exact
-    value, so it lies on the same side of any half-integer; only where y is one exactly does
-    the error decide. Elements whose y falls outside [10^14, 10^15) give an n out of that range.
+    Elements whose x·power falls outside [10^14, 10^15) give an n out of that range.
     """
-    y = x * power
-    error = product_error(x, power)
-    n = np.rint(y)
-    below = np.floor(y)
-    half = (y - below) == 0.5
-    n = np.where(half & (error > 0), below + 1, np.where(half & (error < 0), below, n))
+    y, n, _, _ = rounded_product(x, power)
     n = np.where((np.abs(y) >= _LOW) & (np.abs(y) < _HIGH), n, 0.0)   # 0: left to clean()
     return n, power
+
+
+def rounded_product(x: np.ndarray, power, *, edges: tuple[float, ...] = ()):
+    """(y, n, close, error): n = x·power rounded to the nearest whole number, ties to even, as
+    the exact product decides (the one copy of this rounding: clean_array, rounded_times and
+    export/number_text.py's digits use it). Needs |x·power| < 2^52, where halves are doubles.
+
+    y = fl(x·power), and the exact product is y + error (Dekker). y is rounded from the exact
+    value, so it lies on the same side of any half-integer; only where y is one exactly does the
+    error decide. `close` indexes those elements, and those where y equals one of `edges`
+    (numbers whose exact product may lie just beside y); `error` is the product's error there.
+    """
+    y = x * power
+    n = np.rint(y)
+    near = np.abs(y - n) == 0.5
+    for edge in edges:
+        near |= y == edge
+    close = np.flatnonzero(near)
+    error = product_error(x[close], power[close] if np.ndim(power) else power)
+    if close.size:
+        y_close, n_close = y[close], n[close]
+        tie = np.abs(y_close - n_close) == 0.5
+        n[close] = np.where(tie & (error > 0), np.ceil(y_close),
+                            np.where(tie & (error < 0), np.floor(y_close), n_close))
+    return y, n, close, error
+
+
+def rounded_times(t: np.ndarray, decimals: int) -> np.ndarray:
+    """round(t, decimals) of every element, bit for bit as Python's round (export/numbers.py's
+    clean_time rounds a step time so): the whole number n nearest to t·10^decimals, ties to even
+    on t's exact value, then n / 10^decimals, the double nearest to that decimal (IEEE division
+    rounds correctly; n and 10^decimals are exact). Elements this cannot do exactly (|n| ≥ 2^52,
+    more than 22 decimals, inf, nan) go through round() itself.
+    """
+    t = np.asarray(t, dtype=float)
+    if not 0 <= decimals < len(_POWERS):
+        return np.array([round(value, decimals) for value in t.tolist()], dtype=float)
+    power = _POWERS[decimals]
+    with np.errstate(invalid="ignore", over="ignore"):
+        _, n, _, _ = rounded_product(t, power)
+        out = n / power
+        rest = np.flatnonzero(~(np.abs(t * power) < _HALVES_EXACT))
+    out[rest] = [round(value, decimals) for value in t[rest].tolist()]
+    return out
 
 
 def product_error(a, b):

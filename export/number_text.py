@@ -27,7 +27,7 @@ import functools
 import numpy as np
 from numpy.lib.stride_tricks import sliding_window_view
 
-from .number_blocks import product_error
+from .number_blocks import rounded_product
 from .numbers import clean
 
 _FOUR_DIGITS = np.frombuffer("".join(f"{i:04d}" for i in range(10_000)).encode(), dtype=np.uint32)
@@ -45,19 +45,13 @@ def _rounded_digits(a):
     a = np.where(ok, a, 1.0)                         # the others get a dummy, finite text
     e = np.clip(np.floor(np.log10(a)), -5, 14).astype(np.int64)
     scale = _POWERS[14 - e]                          # exact: 14 − e is 0 … 19
-    y = a * scale                                    # a·10^(14−e), rounded: within half a unit of y's last bit
-    D = np.rint(y)
-    half = y - D                                     # exact: y and D are within 0.5
+    # D: a·10^(14−e) rounded, ties to even; where y = fl(a·10^(14−e)) is on the edge of
+    # [1e14, 1e15) the exact product's error says on which side a·10^(14−e) lies.
+    y, D, close, error = rounded_product(a, scale, edges=(1e14, 1e15))
     inside = (y > 1e14) & (y < 1e15)                 # then a·scale is inside too: e is right
-    # Where y is exactly a half or on the edge of [1e14, 1e15), the exact product decides.
-    close = np.flatnonzero((np.abs(half) == 0.5) | ((y == 1e14) | (y == 1e15)))
-    if close.size:
-        error = product_error(a[close], scale[close])
-        y_close, half_close = y[close], half[close]
-        D[close] += (half_close == 0.5) & (error > 0)    # just above a half: round up
-        D[close] -= (half_close == -0.5) & (error < 0)
-        inside[close] = (((y_close > 1e14) | ((y_close == 1e14) & (error >= 0))) &
-                         ((y_close < 1e15) | ((y_close == 1e15) & (error < 0))))
+    y_close = y[close]
+    inside[close] = (((y_close > 1e14) | ((y_close == 1e14) & (error >= 0))) &
+                     ((y_close < 1e15) | ((y_close == 1e15) & (error < 0))))
     ok &= inside
     carried = D == 1e15                              # 9.999…95 rounds up to 10.0000…
     D = np.where(carried, 1e14, D)

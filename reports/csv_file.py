@@ -7,13 +7,13 @@ Download CSV writes them (export/csv_rows.py).
 """
 from __future__ import annotations
 
-import csv
 import sys
-from typing import TextIO
+from typing import Callable
 
 import numpy as np
 
-from export.csv_rows import ROWS_PER_BLOCK, csv_field, format_numbers
+from export.csv_rows import ROWS_PER_BLOCK, csv_field, number_rows
+from export.number_blocks import rounded_times
 from export.files import STDOUT, atomic_file
 from export.numbers import CSV_HEADER, ENERGY_KEYS, time_decimals
 
@@ -28,18 +28,19 @@ def write_csv(result: Result, path: str) -> int:
     rows go to a temporary file that replaces `path` only when complete (see atomic_file).
     """
     if path == STDOUT:
-        return _write_rows(result, sys.stdout)
+        return _write_rows(result, lambda text: sys.stdout.write(text.decode("utf-8")))
     with atomic_file(path, what="CSV file") as temporary:
-        with open(temporary, "w", newline="", encoding="utf-8") as handle:
-            return _write_rows(result, handle)
+        with open(temporary, "wb") as handle:      # UTF-8 bytes, "\r\n" as csv.writer ends rows
+            return _write_rows(result, handle.write)
 
 
-def _write_rows(result: Result, handle: TextIO) -> int:
+def _write_rows(result: Result, write: Callable[[bytes], object]) -> int:
+    """Write the header and the rows, as UTF-8 bytes, with `write`; returns the rows written."""
     traj = result.trajectory
     v = traj.v
     single = len(traj.m) == 1
     header = CSV_HEADER + ([] if single else ["body"])
-    csv.writer(handle).writerow(header)
+    write((",".join(map(csv_field, header)) + "\r\n").encode("utf-8"))
     # The rows a block of steps at a time (export/csv_rows.py): the same text as csv.writer
     # writing clean_time(t, Δt), then clean() of r, v, p and the energies, for each row.
     decimals = time_decimals(result.model.dt)
@@ -50,11 +51,11 @@ def _write_rows(result: Result, handle: TextIO) -> int:
     block = max(1, ROWS_PER_BLOCK // count)
     for start in range(0, len(traj.t), block):
         steps = slice(start, start + block)
-        t = np.array([round(t, decimals) for t in traj.t[steps].tolist()])
+        t = rounded_times(traj.t[steps], decimals)
         values = np.empty((len(t), count, columns))
         values[:, :, 0] = t[:, None]
         values[:, :, 1:4], values[:, :, 4:7], values[:, :, 7:10] = traj.r[steps], v[steps], traj.p[steps]
         for j, key in enumerate(ENERGY_KEYS if traj.energy else ()):
             values[:, :, 10 + j] = traj.energy[key][steps][:, None]
-        handle.write(format_numbers(values.reshape(-1, columns), after=after))
+        write(number_rows(values.reshape(-1, columns), after=after))
     return len(traj.t) * count

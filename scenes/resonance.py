@@ -190,7 +190,7 @@ def amplitude_now(model, state) -> np.ndarray:
     For a steady swing x = A cos(ωt − δ) this equals A at every instant (cos² + sin² = 1), so the
     measurement does not depend on catching the sampled peak; a transient left makes it wobble.
     """
-    omega = model.forces[2].omega[:, 0]
+    omega = declared_per_mass(model, "omega")
     x = state.r[..., 1] - model.state.r[:, 1]
     v = velocity(state.p, model.state.m)[..., 1]
     return np.sqrt(x**2 + (v / omega) ** 2)
@@ -309,12 +309,17 @@ def graphed(model) -> list[int]:
     """The springs the position graph shows: in each row, the one driven nearest ω0 = √(k/m), at
     resonance, so the graph compares how far each b lets it swing (39 curves made a solid band)."""
     m = model.state.m.ravel()
-    spring, driving = (next(f for f in model.forces if isinstance(f, kind)) for kind in (Spring, Driving))
-    k = np.broadcast_to(np.asarray(spring.k, dtype=float).ravel(), m.shape)
-    omega = np.broadcast_to(np.asarray(driving.omega, dtype=float).ravel(), m.shape)
+    k, omega = declared_per_mass(model, "k"), declared_per_mass(model, "omega")
     row = rows(model)
     return [int(min(np.flatnonzero(row == j), key=lambda i: abs(omega[i] - np.sqrt(k[i] / m[i]))))
             for j in sorted(set(row.tolist()))]
+
+
+def declared_per_mass(model, name: str) -> np.ndarray:
+    """The constant `name` (k, ω) of the model's force that declares it in its CONSTANTS, one value
+    per mass, (N,): read from the force's declaration (Force.program_values), whatever its kind."""
+    value = next(force.program_values()[name] for force in model.forces if name in force.CONSTANTS)
+    return np.broadcast_to(np.asarray(value, dtype=float).ravel(), (model.state.count,))
 
 
 def view_graph(setup) -> dict:

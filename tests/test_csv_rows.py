@@ -11,6 +11,7 @@ import numpy as np
 import pytest
 
 from export.csv_rows import csv_field, format_numbers
+from export.number_blocks import rounded_times
 from export.numbers import CSV_HEADER, ENERGY_KEYS, clean, clean_time
 from reports import csv_file, headless
 from scenes import configure
@@ -35,9 +36,9 @@ def reference_rows(result) -> str:
 
 
 def block_rows(result) -> tuple[str, int]:
-    handle = io.StringIO(newline="")
-    rows = csv_file._write_rows(result, handle)
-    return handle.getvalue(), rows
+    handle = io.BytesIO()
+    rows = csv_file._write_rows(result, handle.write)
+    return handle.getvalue().decode("utf-8"), rows
 
 
 RUNS = [
@@ -111,3 +112,44 @@ def test_numpy_digits_are_the_row_writers_at_the_edges():
     for row in values:
         writer.writerow([clean(x) for x in row] + ["ω = 2 rad/s"])
     assert format_numbers(values, after=[",ω = 2 rad/s\r\n"]) == expected.getvalue()
+
+
+def _same_bits(a, b) -> bool:
+    return np.array_equal(np.asarray(a, dtype=float).view(np.int64), np.asarray(b, dtype=float).view(np.int64))
+
+
+def _awkward_times(rng, decimals: int) -> np.ndarray:
+    """Times where round(t, decimals) is easy to get wrong: halfway decimals (k + ½)·10^-decimals,
+    which as doubles lie a hair above or below the half (or on it, for k/2^j), their neighbours,
+    exact binary ties, n·Δt for Δt that is not a short decimal, negatives, ±0 and numbers too big
+    for the arithmetic (left to round())."""
+    k = np.concatenate([np.arange(-3000, 3000), rng.integers(-10**9, 10**9, 3000)]).astype(float)
+    halves = (k + 0.5) / 10.0 ** decimals
+    binary = rng.integers(-10**6, 10**6, 3000) / 2.0 ** rng.integers(1, 12, 3000)
+    steps = np.arange(0, 30000) * np.array([0.1, 0.003, 1e-4, 0.0123456789, 0.333333333, 1 / 3])[:, None]
+    named = [0.0, -0.0, 0.285, 2.675, 1.005, -0.125, 0.375, 1e15, 2.0 ** 52 / 10 ** decimals, 2.0 ** 60, -1e300, 5e-324]
+    return np.concatenate([halves, np.nextafter(halves, np.inf), np.nextafter(halves, -np.inf), binary,
+                           steps.ravel(), named, rng.normal(size=5000) * 10.0 ** rng.integers(-6, 16, 5000)])
+
+
+@pytest.mark.parametrize("decimals", [0, 1, 2, 3, 4, 9, 10, 15, 22, 23])
+def test_rounded_times_are_pythons_round_bit_for_bit(decimals):
+    """The CSV's t column is round(t, Δt's decimals) worked out in numpy (export/number_blocks.py):
+    each value has the bits of Python's round, ties and near-ties included."""
+    times = _awkward_times(np.random.default_rng(decimals), decimals)
+    expected = [round(t, decimals) for t in times.tolist()]
+    assert _same_bits(rounded_times(times, decimals), expected)
+    assert _same_bits(rounded_times(np.array([np.inf, -np.inf]), decimals), [np.inf, -np.inf])
+    assert np.isnan(rounded_times(np.array([np.nan]), decimals)).all()
+
+
+def test_rounded_times_need_the_exact_product_at_halfway_decimals():
+    """The case the exact product is there for: t·10^d, rounded to a double, is exactly a half
+    while t itself lies below or above it (0.285 is 0.28499999999999998…, 0.285·100 gives 28.5),
+    so rounding the product alone (np.rint) is wrong for some of these, and rounded_times is not."""
+    times = (np.arange(0, 10000) + 0.5) / 100
+    naive = np.rint(times * 100) / 100
+    expected = np.array([round(t, 2) for t in times.tolist()])
+    assert (naive != expected).sum() > 1000
+    assert _same_bits(rounded_times(times, 2), expected)
+    assert rounded_times(np.array([0.285, 2.675, 0.125, 0.375, -0.125]), 2).tolist() == [0.28, 2.67, 0.12, 0.38, -0.12]
