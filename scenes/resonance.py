@@ -192,7 +192,7 @@ def amplitude_now(model, state) -> np.ndarray:
     """
     omega = declared_per_mass(model, "omega")
     x = state.r[..., 1] - model.state.r[:, 1]
-    v = velocity(state.p, model.state.m)[..., 1]
+    v = velocity(state.p[..., 1:2], model.state.m)[..., 0]     # only v_y: the swing is along y
     return np.sqrt(x**2 + (v / omega) ** 2)
 
 

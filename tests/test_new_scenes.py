@@ -471,7 +471,7 @@ def test_resonance_measures_v_with_the_one_v_equals_p_over_m(monkeypatch):
     calls = []
     monkeypatch.setattr(resonance, "velocity", lambda p, m: calls.append(p.shape) or state_module.velocity(p, m))
     model = build("resonance", count=2)
-    assert resonance.amplitude_now(model, model.state).shape == (6,) and calls == [(6, 3)]
+    assert resonance.amplitude_now(model, model.state).shape == (6,) and calls == [(6, 1)]   # v_y only
 
 
 def test_the_resonance_graph_says_b_zero_has_no_steady_state_at_omega0():
