@@ -17,6 +17,8 @@ import numpy as np
 from .forces import row_dot
 from .state import State, velocity
 
+SERIES_BLOCK = 1 << 16       # numbers of r in one block of samples whose energies are worked out at once
+
 
 def kinetic(state: State) -> np.ndarray:
     """K = |p|² / 2m for each mass, J."""
@@ -55,8 +57,21 @@ def report(state: State, forces, work) -> dict:
 def series(state: State, forces, work) -> dict:
     """K, U, E, W_nc and E − W_nc summed over the masses, J, for one state or many samples.
 
-    For many samples, r and p are (n, N, 3) and work (n, N): each value is then an (n,) array.
+    For many samples, r and p are (n, N, 3) and work (n, N): each value is then an (n,) array,
+    worked out a block of samples at a time (each sample's sums are the same numbers, but no
+    temporary array is as big as the whole run: 475 samples of 10⁴ masses took five times longer).
     """
+    r = np.asarray(state.r)
+    if r.ndim < 3 or r.size <= SERIES_BLOCK:
+        return _series(state, forces, work)
+    rows = max(1, SERIES_BLOCK // r[0].size)
+    t = np.broadcast_to(state.t, (len(r),))
+    parts = [_series(State(t=t[i:i + rows], r=r[i:i + rows], p=state.p[i:i + rows], m=state.m), forces,
+                     work[i:i + rows]) for i in range(0, len(r), rows)]
+    return {key: np.concatenate([part[key] for part in parts]) for key in parts[0]}
+
+
+def _series(state: State, forces, work) -> dict:
     K = np.sum(kinetic(state), axis=-1)
     U = np.sum(potential(state, forces), axis=-1)
     W = np.sum(work, axis=-1)

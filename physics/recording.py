@@ -9,7 +9,7 @@ energy of every sample.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 
@@ -62,6 +62,9 @@ class Samples:
     p: np.ndarray
     work: np.ndarray
     m: np.ndarray
+    rows: np.ndarray | None = field(default=None, repr=False, compare=False)
+    # the recorded rows (step number, r, p, P_nc, W_nc) of which r, p and work are views, after
+    # a free first row: trajectory() puts the start there instead of copying every sample
 
     @property
     def v(self) -> np.ndarray:
@@ -122,12 +125,18 @@ class Recorder:
     def samples(self) -> Samples:
         self.flush()
         start = self.engine.start
-        size, count = start.r.size, start.count
-        flat = np.concatenate(self.blocks) if self.blocks else np.empty((0, self.width))
-        return Samples(t=self.engine.start.t + flat[:, 0] * self.engine.dt,
-                       r=flat[:, 1:1 + size].reshape((-1,) + start.r.shape),
-                       p=flat[:, 1 + size:1 + 2 * size].reshape((-1,) + start.r.shape),
-                       work=flat[:, 1 + 2 * size + count:], m=start.m)
+        rows = np.empty((1 + sum(map(len, self.blocks)), self.width))
+        if self.blocks:
+            np.concatenate(self.blocks, out=rows[1:])
+        r, p, work = _columns(rows[1:], start)
+        return Samples(t=start.t + rows[1:, 0] * self.engine.dt, r=r, p=p, work=work, m=start.m, rows=rows)
+
+
+def _columns(rows: np.ndarray, start: State):
+    """r, p (n, N, D) and W_nc (n, N) of recorded rows, as views."""
+    size, count = start.r.size, start.count
+    return (rows[:, 1:1 + size].reshape((-1,) + start.r.shape),
+            rows[:, 1 + size:1 + 2 * size].reshape((-1,) + start.r.shape), rows[:, 1 + 2 * size + count:])
 
 
 @dataclass
@@ -156,8 +165,16 @@ def trajectory(engine, samples: Samples, *, with_energy: bool = True) -> Traject
     """A Trajectory of the engine's start and these samples (energy of every sample, J)."""
     start = engine.start
     t = np.concatenate([[start.t], samples.t])
-    r = np.concatenate([start.r[None], samples.r])
-    p = np.concatenate([start.p[None], samples.p])
-    work = np.concatenate([np.zeros((1, start.count)), samples.work])
+    rows = samples.rows
+    if rows is not None and len(rows) == len(samples) + 1 and rows.shape[1] == 1 + 2 * start.r.size + 2 * start.count:
+        # the start goes in the recorded rows' free first row: no copy of a run's every sample
+        size = start.r.size
+        rows[0, :1 + 2 * size] = np.concatenate([[0.0], start.r.ravel(), start.p.ravel()])
+        rows[0, 1 + 2 * size:] = 0.0
+        r, p, work = _columns(rows, start)
+    else:
+        r = np.concatenate([start.r[None], samples.r])
+        p = np.concatenate([start.p[None], samples.p])
+        work = np.concatenate([np.zeros((1, start.count)), samples.work])
     energy = (series(State(t=t, r=r, p=p, m=start.m), engine.forces, work) if with_energy else None)
     return Trajectory(t=t, r=r, p=p, m=start.m, energy=energy, work=work)

@@ -53,3 +53,47 @@ def test_rk4_equals_the_textbook_expression_bit_for_bit():
         new = rk4(State(t=t, r=r, p=p, m=m), forces, dt)
         assert np.array_equal(new.r, expected_r) and np.array_equal(new.p, expected_p)
         t, r, p = new.t, new.r, new.p
+
+
+def _window_run(count=600, steps=60):
+    """A resonance batch of `count` springs, every step recorded: more numbers than one energy block."""
+    from physics.recording import every
+    from scenes import configure
+    model = configure("resonance", assignments=[f"count={count}", "curves=1"]).build()
+    engine = model.simulation(None)
+    return engine, engine.advance(steps, record=every(1))
+
+
+def test_energy_series_in_blocks_is_the_whole_arrays_bit_for_bit():
+    """physics.energy.series works out many samples a block at a time: the same bits as all at once."""
+    from physics import energy
+    from physics.recording import trajectory
+    engine, samples = _window_run()
+    traj = trajectory(engine, samples, with_energy=False)
+    assert traj.r.size > energy.SERIES_BLOCK
+    state = State(t=traj.t, r=np.ascontiguousarray(traj.r), p=np.ascontiguousarray(traj.p), m=traj.m)
+    blocked = energy.series(state, engine.forces, traj.work)
+    whole = energy._series(state, engine.forces, traj.work)
+    assert blocked.keys() == whole.keys()
+    for key in whole:
+        assert blocked[key].shape == (len(traj.t),)
+        assert np.array_equal(blocked[key].view(np.int64), whole[key].view(np.int64)), key
+
+
+def test_trajectory_puts_the_start_in_the_recorded_rows_with_the_same_numbers():
+    """trajectory() writes the start into the samples' free first row instead of copying every
+    sample: r, p, W_nc and the energies equal those of the copying path, and the samples are unchanged."""
+    import dataclasses
+    from physics.recording import trajectory
+    engine, samples = _window_run()
+    kept = {name: np.array(getattr(samples, name)) for name in ("t", "r", "p", "work")}
+    copied = trajectory(engine, dataclasses.replace(samples, rows=None))
+    in_place = trajectory(engine, samples)
+    assert np.shares_memory(in_place.r, samples.rows) and not np.shares_memory(copied.r, samples.rows)
+    for name in ("t", "r", "p", "work"):
+        assert np.array_equal(getattr(in_place, name), getattr(copied, name)), name
+        assert np.array_equal(getattr(samples, name), kept[name]), name
+    assert np.array_equal(in_place.r[0], engine.start.r) and np.array_equal(in_place.p[0], engine.start.p)
+    assert not in_place.work[0].any()
+    for key in copied.energy:
+        assert np.array_equal(in_place.energy[key], copied.energy[key]), key
