@@ -127,7 +127,7 @@ def column_text(x: np.ndarray):
     chars = _placed(groups, e, top=top, decimals=decimals)
     chars[zero, top + 1] = _ZERO                 # a zero got the dummy D = 1e14, e = 0: "1.0"
     chars |= _dropped(top, decimals)[(e + _E_LOW) * 15 + last]
-    chars[~np.signbit(x), 0] = DROPPED
+    chars[:, 0] = np.where(np.signbit(x), _MINUS, DROPPED)
     for i, text in zip(slow.tolist(), texts):
         chars[i, :-1] = DROPPED
         chars[i, :len(text)] = np.frombuffer(text, dtype=np.uint8)

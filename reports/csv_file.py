@@ -16,6 +16,7 @@ from export.csv_rows import ROWS_PER_BLOCK, csv_field, number_rows
 from export.number_blocks import rounded_times
 from export.files import STDOUT, atomic_file
 from export.numbers import CSV_HEADER, ENERGY_KEYS, time_decimals
+from physics.state import velocity
 
 from .headless import Result
 
@@ -37,7 +38,6 @@ def write_csv(result: Result, path: str) -> int:
 def _write_rows(result: Result, write: Callable[[bytes], object]) -> int:
     """Write the header and the rows, as UTF-8 bytes, with `write`; returns the rows written."""
     traj = result.trajectory
-    v = traj.v
     single = len(traj.m) == 1
     header = CSV_HEADER + ([] if single else ["body"])
     write((",".join(map(csv_field, header)) + "\r\n").encode("utf-8"))
@@ -54,7 +54,8 @@ def _write_rows(result: Result, write: Callable[[bytes], object]) -> int:
         t = rounded_times(traj.t[steps], decimals)
         values = np.empty((len(t), count, columns))
         values[:, :, 0] = t[:, None]
-        values[:, :, 1:4], values[:, :, 4:7], values[:, :, 7:10] = traj.r[steps], v[steps], traj.p[steps]
+        values[:, :, 1:4], values[:, :, 7:10] = traj.r[steps], traj.p[steps]
+        values[:, :, 4:7] = velocity(traj.p[steps], traj.m)      # a block at a time: no v of the whole run
         for j, key in enumerate(ENERGY_KEYS if traj.energy else ()):
             values[:, :, 10 + j] = traj.energy[key][steps][:, None]
         write(number_rows(values.reshape(-1, columns), after=after))
