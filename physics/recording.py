@@ -17,6 +17,7 @@ from .energy import series
 from .state import State, velocity
 
 BLOCK = 1024                 # recorded rows packed into one array at a time
+PREPARED_NUMBERS = 1 << 25   # the most numbers (256 MB) a recording of every(n) keeps in an array made beforehand
 
 
 def steps_to_reach(until: float, dt: float) -> int:
@@ -95,7 +96,19 @@ class Recorder:
         self.width = 1 + 2 * start.r.size + 2 * start.count
         self.rows: list[float] = []    # this block's rows, flat: the step number, every component of r, p, P_nc, W_nc
         self.blocks: list[np.ndarray] = []
+        # every(n) knows how many rows it will keep: they go straight into one array, after a free
+        # first row (Samples.rows), with no array per block to copy again at the end
+        self.filled = 0
+        self.buffer = np.empty((1 + self._expected(engine.steps), self.width))
         self.mark = self._next(engine.steps)
+
+    def _expected(self, done: int) -> int:
+        """How many rows every(n) keeps from step `done` to the target (0 if unknown or too many)."""
+        n, target = self.stride, self.target
+        if not n or not math.isfinite(target):
+            return 0
+        count = int(target) // n - done // n + (1 if self.final and int(target) % n else 0)
+        return count if 0 < count * self.width <= PREPARED_NUMBERS else 0
 
     def _next(self, done: int):
         mark = self.schedule(done)
@@ -110,7 +123,7 @@ class Recorder:
     def add(self, done, *, values=None, arrays=None):
         if values is None:             # the numpy tick's arrays, maybe of 10⁴ masses: a block of its own
             self.flush()
-            self.blocks.append(np.concatenate([[done], *(np.asarray(a, dtype=float).ravel() for a in arrays)])[None])
+            self._keep(np.concatenate([[done], *(np.asarray(a, dtype=float).ravel() for a in arrays)])[None])
             return
         self.rows.append(done)
         self.rows.extend(values)
@@ -119,15 +132,26 @@ class Recorder:
 
     def flush(self):
         if self.rows:
-            self.blocks.append(np.fromiter(self.rows, dtype=float, count=len(self.rows)).reshape(-1, self.width))
+            self._keep(np.fromiter(self.rows, dtype=float, count=len(self.rows)).reshape(-1, self.width))
             self.rows.clear()          # the same list: the traced loop may hold its extend
+
+    def _keep(self, block: np.ndarray) -> None:
+        end = 1 + self.filled + len(block)
+        if not self.blocks and end <= len(self.buffer):
+            self.buffer[end - len(block):end] = block
+            self.filled += len(block)
+        else:
+            self.blocks.append(block)
 
     def samples(self) -> Samples:
         self.flush()
         start = self.engine.start
-        rows = np.empty((1 + sum(map(len, self.blocks)), self.width))
         if self.blocks:
-            np.concatenate(self.blocks, out=rows[1:])
+            rows = np.empty((1 + self.filled + sum(map(len, self.blocks)), self.width))
+            rows[1:1 + self.filled] = self.buffer[1:1 + self.filled]
+            np.concatenate(self.blocks, out=rows[1 + self.filled:])
+        else:
+            rows = self.buffer[:1 + self.filled]
         r, p, work = _columns(rows[1:], start)
         return Samples(t=start.t + rows[1:, 0] * self.engine.dt, r=r, p=p, work=work, m=start.m, rows=rows)
 

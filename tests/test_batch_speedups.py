@@ -3,6 +3,7 @@ each is compared with the plain numpy expression it replaced."""
 from __future__ import annotations
 
 import numpy as np
+import pytest
 
 from physics.forces import Driving, LinearDamping, Spring, magnitude, net_force, row_dot
 from physics.integrators import rk4
@@ -97,3 +98,21 @@ def test_trajectory_puts_the_start_in_the_recorded_rows_with_the_same_numbers():
     assert not in_place.work[0].any()
     for key in copied.energy:
         assert np.array_equal(in_place.energy[key], copied.energy[key]), key
+
+
+@pytest.mark.parametrize("stride, steps", [(1, 3000), (7, 3000), (1000, 2500)])
+def test_every_n_is_kept_in_one_array_made_beforehand_with_the_same_rows(monkeypatch, stride, steps):
+    """every(n) knows how many rows it keeps: the recorder writes them into one array made before
+    the run (no block arrays copied at the end); the rows are those of the block-by-block path."""
+    from physics import recording
+    from scenes import configure
+
+    def record(prepared):
+        monkeypatch.setattr(recording, "PREPARED_NUMBERS", prepared)
+        engine = configure("damped", assignments=["dt=0.001"]).build().simulation(None)
+        return engine.advance(steps, record=recording.every(stride))
+    kept, blocks = record(1 << 25), record(0)
+    assert len(kept) == len(blocks) == len(range(stride, steps + 1, stride)) + (steps % stride != 0)
+    assert kept.rows.base is not None and blocks.rows.base is None     # a view of the prepared array
+    for name in ("t", "r", "p", "work"):
+        assert np.array_equal(getattr(kept, name), getattr(blocks, name)), name
