@@ -71,3 +71,32 @@ def test_ctrl_c_typed_during_the_progress_line_is_one_line_of_its_own():
     before = text[:text.index(message)]
     assert before.endswith("\n"), repr(text[-200:])                 # not glued to `... t = 4.3 s`
     assert text.rstrip().endswith(message)
+
+
+def test_ctrl_c_just_after_the_first_progress_line_is_written_still_ends_it(monkeypatch):
+    """Found by the test above (1 run in 5): Ctrl-C between writing the line and noting that a line
+    was open left `... t = 3.31776 s^Cstopped: ...` glued. Here the interrupt comes as the first
+    line is flushed, every time."""
+    import physics.simulate
+    from reports import headless
+    from scenes import configure
+
+    class FirstFlushInterrupted:
+        def __init__(self):
+            self.text = ""
+
+        def isatty(self):
+            return True
+
+        def write(self, text):
+            self.text += text
+
+        def flush(self):
+            if self.text.count("running: ") == 1 and not self.text.endswith("\n"):
+                raise KeyboardInterrupt
+
+    monkeypatch.setattr(physics.simulate, "PROGRESS_EVERY", 0.0)
+    stream = FirstFlushInterrupted()
+    with pytest.raises(KeyboardInterrupt):
+        headless.simulate(configure("damped"), until=300.0, every_step=False, progress=stream)
+    assert stream.text.startswith("\rrunning: ") and stream.text.endswith(" s\n"), repr(stream.text)
