@@ -21,7 +21,7 @@ import sys
 import time
 
 from . import accuracy, batches, fit, resonance_sweep, single_mass, startup, where_the_work_is
-from .common import Settings
+from .common import Settings, load_average
 
 BENCHMARKS = {
     "single-mass": (single_mass, "part 1: `main.py vertical` 10⁶ steps (--json, --csv) against the page's loop, "
@@ -81,7 +81,7 @@ def main(argv=None) -> int:
     chosen = arguments.only or list(BENCHMARKS)
     print(f"machine: {machine()}")
     print(f"command: python -m benchmarks {' '.join(argv if argv is not None else sys.argv[1:])}".rstrip())
-    print(f"load average at start: {os.getloadavg()[0]:.1f} (other work on the machine slows every figure; "
+    print(f"load average at start: {load_average()} (other work on the machine slows every figure; "
           "the ratios within one run are fairer)")
     start, cpu_start = time.perf_counter(), time.process_time()
     for name in chosen:
@@ -92,7 +92,7 @@ def main(argv=None) -> int:
         except ImportError as error:
             print(f"{name} skipped: {error} (pip install -r requirements-bench.txt)")
     print(f"\ntotal wall time {time.perf_counter() - start:.0f} s, CPU time of this process "
-          f"{time.process_time() - cpu_start:.0f} s; load average at the end: {os.getloadavg()[0]:.1f}")
+          f"{time.process_time() - cpu_start:.0f} s; load average at the end: {load_average()}")
     return 0
 
 

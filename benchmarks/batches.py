@@ -13,15 +13,13 @@ cannot broadcast (N, 1) against (N, 3), and we report that.
 """
 from __future__ import annotations
 
-import resource
-
 import numpy as np
 
 from physics.forces import Gravity, Spring
 from physics.simulate import Simulation, run
 from physics.state import make_state
 
-from .common import table, timed, verdict
+from .common import resource, table, timed, verdict
 from .single_mass import page_steps_per_second
 
 dt = 1e-4   # s, as in part 1 (the cost of a step does not depend on Δt)
@@ -72,8 +70,9 @@ def check_default_1d() -> str:
 
 
 def page_faults() -> int:
-    """Minor page faults of this process so far: each is a fresh page the OS had to hand over."""
-    return resource.getrusage(resource.RUSAGE_SELF).ru_minflt
+    """Minor page faults of this process so far: each is a fresh page the OS had to hand over
+    (0 where there is no resource module to count them: Windows, where the table says n/a)."""
+    return resource.getrusage(resource.RUSAGE_SELF).ru_minflt if resource is not None else 0
 
 
 def rate(N: int, dims: int, seconds_wanted: float):
@@ -108,7 +107,7 @@ def main(settings) -> dict:
             per_second, steps, seconds, faults = rate(N, dims, seconds_wanted)
             results[(dims, N)] = per_second
             rows.append([f"{dims}-D", f"{N:,}", f"{steps:,}", f"{seconds:.2f} s",
-                         f"{per_second / 1e6:.2f}", f"{per_second / page:.1f}×", f"{faults:,.0f}"])
+                         f"{per_second / 1e6:.2f}", f"{per_second / page:.1f}×", f"{faults:,.0f}" if resource is not None else "n/a"])
     print(table(["shape", "N", "steps", "CPU time", "M osc-steps/s", "vs page", "page faults/step"], rows))
     print("page faults: new memory the OS zeroes for numpy's temporary arrays when the C allocator has "
           "handed the last ones back (it depends on the allocator's history, not on the physics)")

@@ -2,11 +2,15 @@
 from __future__ import annotations
 
 import os
-import resource
 import subprocess
 import sys
 import time
 from dataclasses import dataclass
+
+try:
+    import resource           # POSIX: the CPU time of finished child processes, page faults
+except ImportError:           # Windows has no resource module: a child's CPU time is taken as its wall time
+    resource = None
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 
@@ -35,8 +39,21 @@ def timed(function, *args, clock=time.process_time, **kwargs):
 
 
 def _children_cpu() -> float:
+    """CPU s of the finished child processes so far (0 without the resource module: see process_time)."""
+    if resource is None:
+        return 0.0
     usage = resource.getrusage(resource.RUSAGE_CHILDREN)
     return usage.ru_utime + usage.ru_stime
+
+
+def load_average(every: bool = False) -> str:
+    """The machine's load average over 1 minute (every: 1, 5 and 15), or "n/a" where the system
+    keeps none (Windows)."""
+    try:
+        loads = os.getloadavg()
+    except (AttributeError, OSError):
+        return "n/a"
+    return " ".join(f"{x:.2f}" for x in loads) if every else f"{loads[0]:.1f}"
 
 
 def process_time(arguments, *, timeout: float = 300.0) -> tuple[float, float, str]:
@@ -44,7 +61,8 @@ def process_time(arguments, *, timeout: float = 300.0) -> tuple[float, float, st
     runs it: start-up, imports and output included. Raises RuntimeError if it fails.
 
     The CPU time (user + system of the child) hardly changes when other work shares the machine;
-    the wall time does. subprocess.run kills the child if it outlasts `timeout`.
+    the wall time does. subprocess.run kills the child if it outlasts `timeout`. Without the
+    resource module (Windows) the CPU time given is the wall time.
     """
     cpu_before = _children_cpu()
     start = time.perf_counter()
@@ -54,7 +72,7 @@ def process_time(arguments, *, timeout: float = 300.0) -> tuple[float, float, st
     if completed.returncode != 0:
         raise RuntimeError(f"python {' '.join(arguments)} exited with {completed.returncode}: "
                            f"{completed.stderr.strip().splitlines()[-1:]}")
-    return seconds, _children_cpu() - cpu_before, completed.stdout
+    return seconds, (_children_cpu() - cpu_before) if resource is not None else seconds, completed.stdout
 
 
 def table(headers, rows) -> str:

@@ -15,7 +15,7 @@ import tempfile
 
 import numpy as np
 
-from .common import process_time, table, verdict
+from .common import load_average, process_time, table, verdict
 
 POINTS, RATE = 1000, 50.0
 TARGET = 2.0   # s
@@ -69,5 +69,5 @@ def main(settings) -> dict:
     wall, cpu = (max(figure[n] for label, figure in figures.items() if label.startswith("**")) for n in (0, 1))
     print(f"target: two constants to {POINTS:,} points under {TARGET:g} s: CPU {cpu:.2f} s {verdict(cpu < TARGET)}; "
           f"wall {wall:.2f} s {verdict(wall < TARGET)} (wall time grows with the machine's load average, "
-          f"{os.getloadavg()[0]:.1f} now)")
+          f"{load_average()} now)")
     return figures

@@ -45,7 +45,7 @@ import time
 from dataclasses import dataclass
 from pathlib import Path
 
-from .common import table, verdict
+from .common import load_average, table, verdict
 
 ROOT = Path(__file__).resolve().parent.parent
 CHROMIUM = "/usr/bin/chromium"
@@ -355,14 +355,14 @@ def main(argv=None) -> int:
 
     print(f"machine: {machine()}")
     print(f"command: python -m benchmarks.long_run {' '.join(argv if argv is not None else sys.argv[1:])}".rstrip())
-    print(f"load average at start: {' '.join(f'{x:.2f}' for x in os.getloadavg())}")
+    print(f"load average at start: {load_average(every=True)}")
     print(f"program: {arguments.source / 'main.py'}")
     print(f"scene {arguments.scene} {' '.join('--set ' + s for s in arguments.set)}, speed 1×, "
           f"{arguments.minutes:g} min, a reading every {arguments.every:g} s\n")
     measure(scene=arguments.scene, settings=arguments.set, minutes=arguments.minutes,
             every=arguments.every, speed=1.0, warm_up=arguments.warm_up, freeze=arguments.freeze,
             source=arguments.source.resolve())
-    print(f"load average at the end: {' '.join(f'{x:.2f}' for x in os.getloadavg())}")
+    print(f"load average at the end: {load_average(every=True)}")
     return 0
 
 

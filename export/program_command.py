@@ -7,7 +7,8 @@ again from exactly these options.
 
 The description is the first line of the scene's docstring, written for the scene as shipped: "a
 10 kg mass hangs on a 40 N/m spring". Where this case changed a constant whose shipped value the
-line gives with its unit ("10 kg" for m), the line gives this case's value instead ("17.4 kg").
+line gives with its unit ("10 kg" for m), the line gives this case's value instead ("17.4 kg"). A scene may tell a case that changes what it
+is (drag with k = 0: no springs) by a line of its own (its SUMMARIES).
 """
 from __future__ import annotations
 
@@ -28,7 +29,7 @@ def description(setup) -> list[str]:
     the line names a changed constant's shipped value with its unit; and STALE_NOTE below it where
     a number of a changed constant's unit is left that no constant accounts for ("released at
     1.5 m" when r0 changed)."""
-    text = summary(setup.module)
+    text = case_summary(setup)
     shipped = catalog.configure(setup.name).values
     changed = {name for name, value in setup.values.items() if value != shipped.get(name)}
     stale = False
@@ -42,6 +43,15 @@ def description(setup) -> list[str]:
         elif len(named) != 1 and any(setup.constants[name].unit == unit for name in changed):
             stale = True   # a number no single constant accounts for, of a unit whose constants changed
     return [f"# {setup.name}: {text}", *([STALE_NOTE] if stale else [])]
+
+
+def case_summary(setup) -> str:
+    """The line that tells this case: the first of the scene's SUMMARIES (constants, line) whose
+    constants this case has ("on no spring" for drag with k = 0), else its docstring's first line."""
+    for values, text in getattr(setup.module, "SUMMARIES", []):
+        if all(setup.values.get(name) == value for name, value in values.items()):
+            return text
+    return summary(setup.module)
 
 
 def _quantities(text: str, setup):

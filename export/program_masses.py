@@ -18,7 +18,7 @@ from scenes import DECLARED
 
 from .lines import COMMENT, CONSTANT_COLUMN, commented, listed, number, vector
 from .numbers import clean
-from .step_update import SIGNIFICANT
+from .program_answer import labelled
 
 LABELLED = 6               # more masses than this: no labels on their curves (as the page's legend)
 
@@ -101,6 +101,6 @@ def which_mass(model, constants) -> str:
     for k, name in enumerate(shown):
         declared = DECLARED.get(name)
         unit = f" {declared.unit}" if declared and declared.unit != "1" else ""
-        parts.append(f'"{(declared.symbol if declared else "") or name} = {{:.{SIGNIFICANT}g}}{unit}'
-                     f'{":" if k == len(shown) - 1 else ","}".format({constants.name(name)})')
+        parts.append(labelled((declared.symbol if declared else "") or name, constants.name(name), unit,
+                              last=k == len(shown) - 1))
     return ", ".join(parts)

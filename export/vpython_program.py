@@ -63,7 +63,7 @@ from . import program_arrows
 from .exact_curve import exact_lines
 from .lines import ProgramError, align_comments, commented, vector
 from .palette import EXACT_COLOUR, EXACT_WIDTH
-from .step_update import SIGNIFICANT
+from .program_answer import HELPERS, answer_line
 from .program_command import command, description
 from .program_constants import ProgramConstants, constants_block
 from .program_forces import ProgramForces, update
@@ -98,7 +98,7 @@ def program(setup, *, integrator: str | None = None, web: bool = False, arrows=N
     lines = IMPORTS + case.header() + case.constants_lines()
     lines += ["", "# ---- the objects ----"] + objects(model, case.view, case.constants, case.single)
     lines += case.exact_objects() + scene_setup_lines(case)
-    lines += case.loop() + case.answer()
+    lines += HELPERS + case.loop() + case.answer()
     lines = align_comments(lines)
     if web:
         lines = [WEB_FIRST_LINE] + [line for line in lines if line not in IMPORTS]
@@ -229,16 +229,13 @@ class _Case:
         return [] if self.end is not None else ["", "# ---- the answer ----", *self.printed()]
 
     def printed(self) -> list[str]:
-        """print() of t, r and p, rounded as the command line writes them: `at t = 0.2 s: r = < 0,
-        -1.7301, 0 > m, p = < 0, -15.21, 0 > kg·m/s` (str.format, which Web VPython has too, though
-        its own 'g' truncates the sixth digit of some numbers below 0.1: tests/test_handout.py)."""
-        i, g = self.index, "{:.%dg}" % SIGNIFICANT
-        text = f'"at t = {g} s: r = < {g}, {g}, {g} > m, p = < {g}, {g}, {g} > kg·m/s"'
-        values = f"t, pos{i}.x, pos{i}.y, pos{i}.z, p{i}.x, p{i}.y, p{i}.z"
+        """print() of t, r and p as the command line writes them: `at t = 0.2 s: r = < 0, -1.7301,
+        0 > m, p = < 0, -15.21, 0 > kg·m/s`, by the program's number() (export/program_answer.py),
+        which gives the same digits in Web VPython."""
         if self.single:
-            return [f"print({text}.format(", f"    {values}))"]
+            return [f"print({answer_line('')})"]
         return ["for i in range(len(pos)):", f"    print({which_mass(self.model, self.constants)},",
-                f"          {text}.format(", f"              {values}))"]
+                f"          {answer_line('[i]')})"]
 
 
 def _start_velocity(setup, model):

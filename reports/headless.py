@@ -191,8 +191,8 @@ class _ProgressLine:
 
     def __call__(self, done: int, total: int, t: float) -> None:
         line = f"running: {done:,} of {total:,} steps ({100 * done // total} %), t = {number(t)} s"
+        self.open = self.tty   # before the line: a Ctrl-C just after it is written must still end it
         print(("\r" + line) if self.tty else line, end="" if self.tty else "\n", file=self.stream, flush=True)
-        self.open = self.tty
 
     def end(self) -> None:
         if self.open:

@@ -46,6 +46,11 @@ MENU_ORDER = 5               # where it stands in --list and the page's scene me
 PRESETS = {
     "falling, no spring": {"k": 0.0, "b": 0.153},
 }
+# The docstring's first line tells of springs; a case with these constants is told this way instead.
+SUMMARIES = [
+    ({"k": 0.0}, "Linear damping versus quadratic air drag: two identical balls, on no spring (k = 0), "
+                 "fall side by side, each toward its terminal speed."),
+]
 
 
 def matched_b(*, m, k, C, A, rho, x0) -> float:

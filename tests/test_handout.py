@@ -69,6 +69,14 @@ def test_a_b_that_is_not_critical_keeps_its_number():
     assert not any("sqrt(m*k)" in line for line in lines if line.startswith("b ="))
 
 
+@pytest.mark.parametrize("args", [("drag", "--preset", "falling"), ("drag", "--set", "k=0")])
+def test_a_case_without_springs_is_not_described_as_balls_on_springs(args):
+    """`drag --preset falling` (k = 0) said "two identical balls on springs, released together"."""
+    top = header(lines_of(*args))
+    assert "on springs" not in top[3] and "on no spring (k = 0)" in top[3] and "terminal speed" in top[3]
+    assert "balls on springs" in header(lines_of("drag"))[3]
+
+
 @pytest.mark.parametrize("m, k", [(17.4, 40.0), (0.1 + 0.2, 3.3), (1e-6, 1e6), (7.0, 13.0), (2.5e3, 0.37)])
 def test_the_written_rule_is_the_presets_float(m, k):
     """2*sqrt(m*k) in the program's arithmetic (a correctly rounded square root, doubled) is the very
@@ -157,31 +165,95 @@ def test_each_mass_is_answered_once_with_rounded_labels(stand_in, tmp_path):  # 
     assert not any(re.search(r"\d{10}", line) for line in printed), printed
 
 
-def test_web_vpythons_own_format_writes_the_homework_answers_alike(tmp_path):
-    """Web VPython runs str.format with its own code (String.prototype.format in glow.min.js, which
-    vpython ships): run under node, it writes vertical's and damped's answers digit for digit as
-    Python does. (It truncates rather than rounds the last digit of some numbers below 0.1, so a
-    Web VPython answer can differ from --headless there in the sixth digit.)"""
-    import importlib.util
+# ---- the answer's digits, the same in Python and in Web VPython (export/program_answer.py) ----
+
+RSRUN = Path(__file__).parent / "glowscript" / "RSrun.3.2.min.js"   # Web VPython 3.2's str.format
+
+
+def edge_values() -> list[float]:
+    """Thousands of floats: every exponent, random bit patterns, short decimals, and the exact ties
+    (100000.5, 2**-10 = 0.0009765625, 1000005, 12345.75) where rounding to even and away differ."""
+    import random
+    import struct
+    rng = random.Random(20)
+    values = [0.0, -0.0, 1e-7, -1e-7, 0.5, 2.5, 100000.5, 2 ** -10, -2 ** -10, 1000005.0, 12345.75,
+              999999.5, 9999995.0, 0.1, 1e-4, -1e-4, 9.999995e-5, 99999.95, 999999.4, 1e6, 123456789.0,
+              1e300, -1e-300, 5e-324, 1.7976931348623157e308, 0.30000000000000004, -1.7301000000000002,
+              1e16, 1e21, 1e100, 1e-100, 0.0123456789, -0.09999995]
+    for _ in range(3000):
+        kind = rng.random()
+        if kind < 0.4:
+            x = rng.uniform(-1, 1) * 10.0 ** rng.randint(-9, 9)
+        elif kind < 0.7:
+            x = struct.unpack("d", struct.pack("Q", rng.getrandbits(64)))[0]
+        else:
+            x = round(rng.uniform(-1000, 1000), rng.randint(0, 7))
+        if math.isfinite(x):
+            values.append(x)
+    return values
+
+
+def helpers(replace=None) -> dict:
+    """The program's number() and vector_text(), as its text defines them (with `replace` applied)."""
+    from export.program_answer import HELPERS
+    text = "\n".join(HELPERS)
+    for old, new in (replace or {}).items():
+        assert old in text
+        text = text.replace(old, new)
+    names = {}
+    exec(text, names)
+    return names
+
+
+def test_the_programs_number_writes_the_command_lines_digits():
+    """The handout printed '{:.6g}'.format(x): the command line writes 0 where that writes '-0' or
+    round-off (1e-17 beside 1.7), and Web VPython's own 'g' differs. Its number() and vector_text()
+    write what export/step_update.py's number() and vector() write, on thousands of values."""
+    from types import SimpleNamespace
+
+    from export.step_update import number, vector
+    program = helpers()
+    values = edge_values()
+    assert [program["number"](x) for x in values] == [number(x) for x in values]
+    assert program["number"](math.inf) == program["number"](math.nan) == number(math.inf) == "(no value)"
+    for v in ([0.0, -1.7301000000000002, 0.0], [1e-17, 1.7, -0.0], [2e-12, 1.0, 0.0], [-3.2e-5, 4e-21, 0.0],
+              [100000.5, -2 ** -10, 12345.75], [0.0, 0.0, 0.0]):
+        assert program["vector_text"](SimpleNamespace(x=v[0], y=v[1], z=v[2])) == vector(v), v
+
+
+def test_web_vpythons_format_gives_the_programs_number_the_same_digits(tmp_path):
+    """Under node, GlowScript 3.2's own str.format (RSrun.3.2.min.js) writes '{:.6g}' unlike Python
+    (1e-7 as '1.00000e-7', 100000.5 as '100001'), but the two formats number() uses, '{:.5e}' and
+    '{:.30e}', give it what it needs: with their Web VPython text in place of Python's, number()
+    writes Python's '{:.6g}' digit for digit on thousands of values, exact ties included."""
     import json
     import shutil
     import subprocess
 
+    from export.step_update import number
     node = shutil.which("node")
-    glow = Path(importlib.util.find_spec("vpython").submodule_search_locations[0]) / "vpython_libraries" / "glow.min.js"
-    if node is None or not glow.exists():
-        pytest.skip("needs node and vpython's glow.min.js")
-    source = glow.read_text(encoding="utf-8")
-    start = source.index("String.prototype.format=function")
-    end = source.index("function parse_html", start)
+    if node is None:
+        pytest.skip("needs node (https://nodejs.org) to run Web VPython's str.format")
+    values = edge_values()
     script = tmp_path / "format.js"
-    script.write_text("var pow = Math.pow;\n" + source[start:end] + "\nvar v = JSON.parse(process.argv[2]);\n"
-                      "console.log(JSON.stringify(v.map(function (x) { return '{:.6g}'.format(x); })));\n",
-                      encoding="utf-8")
-    values = []
-    for scene in ("vertical", "damped"):
-        answer = json.loads(main_py(scene, "--headless", "--json").stdout)
-        values += [answer["t"], *answer["r"], *answer["p"]]
-    done = subprocess.run([node, str(script), json.dumps(values)], capture_output=True, text=True, timeout=60)
+    script.write_text(
+        "global.window = global;\n"
+        "eval(require('fs').readFileSync(process.argv[2], 'utf8'));\n"
+        "var values = JSON.parse(require('fs').readFileSync(process.argv[3], 'utf8'));\n"
+        "var out = {};\n"
+        "['{:.6g}', '{:.5e}', '{:.30e}'].forEach(function (f) {\n"
+        "  out[f] = values.map(function (x) { return ρσ_str.format(f, Math.abs(x)); }); });\n"
+        "console.log(JSON.stringify(out));\n", encoding="utf-8")
+    numbers = tmp_path / "values.json"
+    numbers.write_text(json.dumps(values), encoding="utf-8")
+    done = subprocess.run([node, str(script), str(RSRUN), str(numbers)], capture_output=True, text=True,
+                          timeout=120, encoding="utf-8")
     assert done.returncode == 0, done.stderr
-    assert json.loads(done.stdout) == ["{:.6g}".format(x) for x in values]
+    web = json.loads(done.stdout)
+    assert web["{:.6g}"][values.index(1e-7)] == "1.00000e-7" and web["{:.6g}"][values.index(100000.5)] == "100001"
+    assert sum(text != f"{abs(x):.6g}" for x, text in zip(values, web["{:.6g}"])) > 100
+    seen, where = {}, {x: k for k, x in enumerate(values)}
+    program = helpers({'"{:.5e}".format(abs(x))': 'web("{:.5e}", x)', '"{:.30e}".format(abs(x))': 'web("{:.30e}", x)'})
+    program["web"] = lambda form, x: seen.setdefault((form, x), web[form][where[x]])
+    assert [program["number"](x) for x in values] == [number(x) for x in values]
+    assert len(seen) > 2 * len(set(values)) - 10    # the two formats were Web VPython's, for (nearly) every value
