@@ -7,7 +7,7 @@ The measured file has its own clock and its own zero, so every comparison fits t
 where t_offset is the data's clock reading at the model's t = 0 (the release) and position_offset
 the data's reading where the model's coordinate is 0. Before its release the model's mass is
 held still at its start position. `--fit k,b` fits named constants too, by least squares
-(scipy.optimize.least_squares).
+(Levenberg-Marquardt, numpy only: _least_squares says why not scipy).
 
 The model is the engine's own run (physics.simulate.Simulation) with the chosen integrator and Δt:
 at the engine's step times it is exactly the engine's positions, and between two steps a cubic
@@ -235,6 +235,7 @@ class _Problem:
         self.setup, self.t, self.y = setup, t, y
         self.names, self.integrator, self.axis = names, integrator, axis
         self._runs: dict = {}
+        self._jacobian = None
         gaps = np.diff(t)
         self.spacing = float(np.min(gaps)) / 4 if len(gaps) else 0.0   # s: see ModelRun
 
@@ -265,6 +266,15 @@ class _Problem:
         return r + theta[-1] - self.y
 
     def jacobian(self, theta):
+        """d residual / d theta: the constants' columns by forward differences (one engine run each),
+        the offsets' from the model's slope (d/dt_offset = −model'(τ), d/dposition_offset = 1).
+        The last one is kept: the fit's final step and the uncertainties ask for the same theta."""
+        key = tuple(float(x) for x in theta)
+        if self._jacobian is None or self._jacobian[0] != key:
+            self._jacobian = (key, self._columns(theta))
+        return self._jacobian[1]
+
+    def _columns(self, theta):
         p = len(self.names)
         J = np.empty((len(self.t), p + 2))
         base, slope = self.model(theta)
@@ -306,7 +316,7 @@ def compare(setup, t, y, *, integrator=None, coordinate="y", fit=()) -> Comparis
     """The scene against the measured points t (s), y (m): offsets, RMS, and the fitted constants.
 
     fit   names of constants to fit (check_names); empty compares with the constants as set.
-    Raises FitError (one line) for a fit that cannot be made, MissingScipy without scipy.
+    Raises FitError (one line) for a fit that cannot be made.
     """
     t, y = np.asarray(t, dtype=float), np.asarray(y, dtype=float)
     names = check_names(setup, fit) if fit else []
@@ -416,30 +426,64 @@ def _offsets_only(problem, theta, iterations: int = 30):
     return theta
 
 
-class MissingScipy(FitError):
-    def __init__(self):
-        super().__init__("--fit needs scipy, which is not installed; install it with "
-                         "python -m pip install scipy (everything else runs without it)")
+MAX_ITERATIONS = 60               # Levenberg-Marquardt steps at most (a fit from the start takes 3 to 8)
 
 
 def _least_squares(problem, theta, reach):
-    """scipy's least_squares over every value, within each constant's declared range."""
-    try:
-        from scipy.optimize import least_squares
-    except ImportError:
-        raise MissingScipy() from None
+    """Least squares over every value, within each constant's declared range: Levenberg-Marquardt.
+
+    Each step solves (ĴᵀĴ + λ I) δ = −Ĵᵀ r for the columns of J scaled to unit length (Ĵ), so a
+    constant in N/m and an offset in s take comparable steps; a step that lowers Σ r² is taken and
+    λ shrinks tenfold (towards Gauss-Newton), one that does not is refused and λ grows tenfold
+    (towards a short step downhill). A step is clipped to the bounds. It stops when Σ r² falls by
+    less than a part in 10¹⁰ or no step lowers it any more.
+
+    Why not scipy.optimize.least_squares (used until this change): the problem has two to five
+    values and starts near the answer, which plain Levenberg-Marquardt handles in a few steps,
+    and importing scipy.optimize took 0.33 s, a third of the whole `--fit` command (docs/performance.md).
+    """
     p = len(problem.names)
     low = np.array([DECLARED[name].low for name in problem.names] + [-np.inf, -np.inf])
     high = np.array([DECLARED[name].high for name in problem.names] + [np.inf, np.inf])
     for j, (lo, hi) in reach.items():
         low[j], high[j] = max(low[j], lo), min(high[j], hi)
-    inside = 1e-9 * np.maximum(np.abs(theta[:p]), 1.0)        # strictly inside, as trf starts
-    theta = theta.copy()
-    theta[:p] = np.clip(theta[:p], low[:p] + inside, high[:p] - inside)
+    theta = np.clip(np.array(theta, dtype=float), low, high)
+    residual = problem.residuals(theta)
+    cost, damping = float(residual @ residual), 1e-3
     with np.errstate(all="ignore"):
-        solution = least_squares(problem.residuals, theta, jac=problem.jacobian, bounds=(low, high),
-                                 method="trf", x_scale="jac", ftol=1e-10, xtol=1e-10, gtol=1e-10,
-                                 max_nfev=200)
-    if not np.all(np.isfinite(solution.x)):
+        for _ in range(MAX_ITERATIONS):
+            theta, residual, fallen = _step(problem, theta, residual, cost, damping, low, high)
+            if fallen is None:
+                break
+            damping, before, cost = fallen[0], cost, float(residual @ residual)
+            if before - cost <= 1e-10 * before:
+                break
+    if not np.all(np.isfinite(theta)):
         raise FitError("the fit did not converge to finite values; check the constants set with --set")
-    return solution.x
+    return theta
+
+
+def _step(problem, theta, residual, cost, damping, low, high):
+    """One Levenberg-Marquardt step from theta: (theta, residual, (λ,)) after a step that lowers
+    the cost, or (theta, residual, None) where none does (λ grown past 10¹⁰)."""
+    J = problem.jacobian(theta)
+    scale = np.linalg.norm(J, axis=0)
+    scale[~(scale > 0)] = 1.0
+    A, gradient = (J / scale).T @ (J / scale), (J / scale).T @ residual
+    try:     # what the Gauss-Newton step would take off the cost: converged when that is nothing
+        if float(gradient @ np.linalg.lstsq(A, gradient, rcond=None)[0]) <= 1e-10 * cost:
+            return theta, residual, None
+    except np.linalg.LinAlgError:
+        pass
+    while damping < 1e10:
+        try:
+            step = -np.linalg.solve(A + damping * np.eye(len(A)), gradient) / scale
+        except np.linalg.LinAlgError:
+            step = np.full(len(A), np.nan)
+        trial = np.clip(theta + step, low, high)
+        if np.all(np.isfinite(trial)) and np.any(trial != theta):
+            moved = problem.residuals(trial)
+            if float(moved @ moved) < cost:
+                return trial, moved, (max(damping / 10, 1e-9),)
+        damping *= 10
+    return theta, residual, None

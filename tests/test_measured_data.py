@@ -21,7 +21,6 @@ from lab import formats, readers  # noqa: E402
 from lab.compare import FitError, ModelRun, compare  # noqa: E402
 from scenes import catalog  # noqa: E402
 
-pytest.importorskip("scipy")
 
 
 def engine_run(assignments, *, span, rate, axis=1):
