@@ -189,3 +189,24 @@ def test_a_model_run_read_every_few_steps_follows_the_one_read_every_step(integr
     assert np.max(np.abs(r_few - r_all)) < within
     assert np.max(np.abs(v_few - v_all)) < 1e3 * within
     assert np.ptp(r_all) > 0.5      # a real swing, not a mass at rest
+
+
+@pytest.mark.parametrize("seed", [1, 2, 3])
+def test_mystery_data_read_mirrored_is_fitted_as_well_as_the_upright_run(seed):
+    """The same mystery run with its axis reversed (a detector above the mass): the fit keeps the
+    reversed sign, finds the same k, b and t_offset, and the position offset mirrored."""
+    from lab import mystery
+
+    setup = catalog.configure("damped", assignments=["dt=0.01"])
+    run = mystery.make(setup, seed=seed)
+    upright = compare(setup, run.t, run.position, fit=["k", "b"])
+    down = compare(setup, run.t, -run.position, fit=["k", "b"])
+    assert (upright.sign, down.sign) == (1, -1)
+    assert down.rms == pytest.approx(upright.rms, rel=1e-6) and down.rms < 2 * run.noise
+    for name in ("k", "b"):
+        assert down.fitted[name].value == pytest.approx(upright.fitted[name].value,
+                                                        abs=0.01 * upright.fitted[name].uncertainty)
+    assert down.position_offset.value == pytest.approx(-upright.position_offset.value, abs=1e-6)
+    assert np.allclose(down.model, -upright.model, atol=1e-6)
+    forced = compare(setup, run.t, -run.position, fit=["k", "b"], sign=-1)
+    assert forced.fitted["k"].value == pytest.approx(down.fitted["k"].value, rel=1e-9)
