@@ -161,9 +161,10 @@ class MeasuredData:
         y = result.sign * (result.data[keep] - result.position_offset.value)
         return [[float(a), float(b)] for a, b in zip(t, y) if np.isfinite(a) and np.isfinite(b)]
 
-    def text(self) -> str:
+    def text(self, *, dt_slider: bool = False) -> str:
         """The caption's lines on the data (HTML): what was read, the offsets, the RMS residual,
-        the fitted values, and what is under way or went wrong."""
+        the fitted values, and what is under way or went wrong. dt_slider: the page has a Δt
+        slider (else a Δt longer than the data's interval is a matter of the integrator menu)."""
         lines = []
         if self.problem:
             lines.append(f"<b>Data:</b> {html.escape(self.problem, quote=False)}")
@@ -186,10 +187,20 @@ class MeasuredData:
             if result.fitted:
                 lines.append("<b>Fit:</b> <span class='sm-fit'>" + ", ".join(
                     f"{symbol(name)} = {estimate}" for name, estimate in result.fitted.items()) + "</span>")
-            lines += [html.escape(note.removeprefix("note: "), quote=False) for note in result.notes]
+            if result.slow_dt:
+                lines.append(_slow_dt_note(*result.slow_dt, dt_slider=dt_slider))
         elif measured is None and not self.problem:
             return ""
         return "\n".join(line.replace(" ± ", "\u00a0±\u00a0") for line in lines)
+
+
+def _slow_dt_note(dt: float, interval: float, smaller: str, *, dt_slider: bool) -> str:
+    """What a page user can do about a Δt longer than the data's sample interval (the command
+    line's note says --set dt=...; the page may have no Δt slider)."""
+    what = (f"move the Δt slider to {smaller} s" if dt_slider else
+            "choose rk4 in the integrator menu (far closer to the real motion at the same Δt)")
+    return (f"The model's Δt = {dt:g} s is longer than the data's sample interval {interval:.3g} s, so the "
+            f"integrator's own error is in the comparison: {what}.")
 
 
 def _metres(value: float) -> str:

@@ -404,7 +404,7 @@ class SceneView:
         return True
 
     def _show_data(self) -> None:
-        self.controls.show_data(self.data.text())
+        self.controls.show_data(self.data.text(dt_slider="dt" in self.controls.sliders))
         self.graphs.show_data(self.data.points(), label="measured")
 
     # ---- downloads ----

@@ -87,6 +87,8 @@ class Comparison:
     setup: object = None                            # the scene with the fitted values set
     notes: list = field(default_factory=list)
     sign: int = 1                                   # −1: the data's axis points the other way
+    slow_dt: tuple = ()                             # (Δt, the data's sample interval, a smaller Δt), s,
+                                                    # where the model's Δt is longer than the interval
 
     @property
     def sign_said(self) -> str:
@@ -353,17 +355,18 @@ def compare(setup, t, y, *, integrator=None, coordinate="y", fit=(), sign=None) 
               for j, name in enumerate(names)}
     final = with_fitted(setup, {name: float(theta[j]) for j, name in enumerate(names)}, AXES[coordinate])
     model = sign * (problem.residuals(theta) + y)
-    notes = []
+    notes, slow_dt = [], ()
     interval = float(np.median(np.diff(t)))
     dt = float(final.values.get("dt", 0.0))
     if dt > interval:
+        slow_dt = (dt, interval, _smaller(interval))
         notes.append(f"note: the model's dt = {dt:g} s is longer than the data's sample interval "
                      f"{interval:.3g} s, so the integrator's own error is in the comparison; a smaller dt "
                      f"(--set dt={_smaller(interval)}) follows the real motion more closely")
     return Comparison(t=t, data=data, model=model, coordinate=coordinate, fitted=fitted,
                       t_offset=Estimate(float(theta[-2]), float(sigma[-2]), "s"),
                       position_offset=Estimate(sign * float(theta[-1]), float(sigma[-1]), "m"),
-                      setup=final, notes=notes, sign=sign)
+                      setup=final, notes=notes, sign=sign, slow_dt=slow_dt)
 
 
 def _fit_from(problem, setup, start, omega, t_offset, position_offset):

@@ -118,6 +118,20 @@ def test_data_read_mirrored_shows_its_dots_on_the_model_and_says_the_axis_points
     assert answer(forced).sign == 1 and "points down" not in forced.text()
 
 
+def test_a_dt_longer_than_the_data_interval_says_what_the_page_offers_not_a_command_line(spring):
+    """damped's page has no Δt slider: the note names the integrator menu, not --set dt=...; a page
+    with a Δt slider is told to move it."""
+    setup, raw = spring
+    data = MeasuredData()
+    data.load(raw, "spring.csv", setup, "euler-cromer")
+    result = answer(data)
+    assert result.slow_dt and result.slow_dt[0] == 0.1
+    text = data.text()
+    assert "--set" not in text and "choose rk4 in the integrator menu" in text
+    assert "Δt = 0.1 s is longer than the data's sample interval" in text
+    assert "move the Δt slider to 0.001 s" in data.text(dt_slider=True)
+
+
 def test_an_answer_overtaken_by_a_newer_request_is_dropped(spring):
     setup, _ = spring
     data = fitting(spring)
