@@ -279,8 +279,8 @@ def compare(setup, t, y, *, integrator=None, coordinate="y", fit=(), sign=None) 
     """The scene against the measured points t (s), y (m): offsets, RMS, and the fitted constants.
 
     fit   names of constants to fit (check_names); empty compares with the constants as set.
-    sign  +1 or −1: the data's axis points the model's way or the other (--data-sign); None tries
-          both and keeps the one whose best start matches the data better.
+    sign  +1 or −1: the data's axis points the model's way or the other (--data-sign); None fits
+          each way whose start is not clearly worse, and keeps −1 only where it halves the misfit.
     Raises FitError (one line) for a fit that cannot be made.
     """
     t, data = np.asarray(t, dtype=float), np.asarray(y, dtype=float)
