@@ -47,9 +47,9 @@ def run_data(args, setup) -> int:
 
 
 def text(result, measured) -> str:
-    """One line each: the file and what was read, every fitted value, the offsets, the RMS residual."""
-    lines = [f"data: {measured.path}: {measured.choice}",
-             f"data_sign = {result.sign:+d}  ({result.sign_said})"]
+    """One line each: the file and what was read, every fitted value, the offsets, the RMS residual,
+    and which way the data's axis was taken."""
+    lines = [f"data: {measured.path}: {measured.choice}"]
     for name, estimate in result.fitted.items():
         lines.append(f"{name} = {measured_value(estimate)}")
     lines.append(f"t_offset = {measured_value(result.t_offset)}  (the data's clock at the model's t = 0)")
@@ -57,6 +57,7 @@ def text(result, measured) -> str:
                  f"where the model's {result.coordinate} = 0)")
     lines.append(f"RMS residual = {result.rms:.3g} m ({result.rms * 1000:.3g} mm) over "
                  f"{result.points} points")
+    lines.append(f"data_sign = {result.sign:+d}  ({result.sign_said})")     # last: the lines above keep their places
     return "\n".join(lines)
 
 
