@@ -221,10 +221,11 @@ def page_data(args, setup):
     from browser.data_panel import MeasuredData
     from lab import compare, readers
 
-    coordinate = compare.coordinate_of(setup, args.coordinate)
-    measured = readers.read(args.data, column=args.data_column, run=args.run, coordinate=coordinate)
-    names = compare.check_names(setup, args.fit.split(",")) if args.fit else ()
-    return MeasuredData(measured=measured, fit_names=names, coordinate=args.coordinate)
+    data = MeasuredData(fit_names=compare.check_names(setup, args.fit.split(",")) if args.fit else (),
+                        coordinate=args.coordinate, sign=args.data_sign)
+    data.measured = readers.read(args.data, column=args.data_column, run=args.run,
+                                 coordinate=data.coordinate_for(setup))
+    return data
 
 
 class Terminated(BaseException):

@@ -54,6 +54,7 @@ def main(settings) -> dict:
         reference = None
         for label, arguments in commands:
             runs = [process_time(arguments) for _ in range(repeats)]
+            load = load_average()
             wall = statistics.median(r[0] for r in runs)
             cpu = statistics.median(r[1] for r in runs)
             reference = reference or (wall, cpu)
@@ -63,9 +64,9 @@ def main(settings) -> dict:
                 k, b = out["fit"]["k"], out["fit"]["b"]
                 found = (f"k = {k['value']:.4f} ± {k['uncertainty']:.4f}, b = {b['value']:.4f} ± "
                          f"{b['uncertainty']:.4f}")
-            rows.append([label, f"{wall:.2f} s", f"{cpu:.2f} s", f"{wall / reference[0]:.1f}×", f"{cpu / reference[1]:.1f}×", found])
+            rows.append([label, f"{wall:.2f} s", f"{cpu:.2f} s", f"{wall / reference[0]:.1f}×", f"{cpu / reference[1]:.1f}×", load, found])
             figures[label] = (wall, cpu)
-    print(table(["command", "wall", "CPU", "vs ref. (wall)", "vs ref. (CPU)", "fit (truth k = 55, b = 2.5)"], rows))
+    print(table(["command", "wall", "CPU", "vs ref. (wall)", "vs ref. (CPU)", "load", "fit (truth k = 55, b = 2.5)"], rows))
     wall, cpu = (max(figure[n] for label, figure in figures.items() if label.startswith("**")) for n in (0, 1))
     print(f"target: two constants to {POINTS:,} points under {TARGET:g} s: CPU {cpu:.2f} s {verdict(cpu < TARGET)}; "
           f"wall {wall:.2f} s {verdict(wall < TARGET)} (wall time grows with the machine's load average, "

@@ -140,3 +140,12 @@ def time_axis(t: float, *, span: float, dt: float, pixels: float) -> tuple[float
     if t >= span:
         return window(t, span=span)
     return 0.0, min(span, nice_range(0.0, max(1.05 * t, 2 * dt), pixels=pixels)[1])
+
+
+def data_window(points, *, dt: float, pixels: float) -> tuple[float, float] | None:
+    """The time axis, s, that holds measured points [[t, position], ...] in view while they are
+    shown: from the release (t = 0), or the first point if earlier, to the last point, at round
+    ticks (nice_range); None without points (then the axis scrolls: time_axis)."""
+    if not points:
+        return None
+    return nice_range(min(0.0, points[0][0]), max(points[-1][0], 2 * dt), pixels=pixels)

@@ -69,12 +69,13 @@ class MeasuredData:
     measured    the file read (lab/readers.py's Measured), or None before one is loaded
     fit_names   the constants the Fit button fits
     coordinate  --coordinate, or None for the scene's plotted one
+    sign        --data-sign (1 or −1), or None to try both (lab/compare.py)
     """
 
-    def __init__(self, *, measured=None, fit_names=(), coordinate: str | None = None):
+    def __init__(self, *, measured=None, fit_names=(), coordinate: str | None = None, sign: int | None = None):
         self.measured = measured
         self.fit_names = tuple(fit_names) or DEFAULT_FIT
-        self.coordinate = coordinate
+        self.coordinate, self.sign = coordinate, sign
         self.result = None        # the Comparison shown (lab/compare.py)
         self.shown_for = None     # the scene, values and integrator it was made for
         self.job = 0              # the newest request's number
@@ -107,14 +108,18 @@ class MeasuredData:
         threading.Thread(target=self._work, args=(self.job, setup, integrator, names, measured, upload),
                          name="measured-data-fit", daemon=True).start()
 
+    def coordinate_for(self, setup) -> str:
+        """The coordinate compared with `setup`: --coordinate, else the one the scene plots."""
+        return compare.coordinate_of(setup, self.coordinate)
+
     def _work(self, job: int, setup, integrator: str, names, measured, upload) -> None:
         loaded = None if upload is None else False      # False: a file sent but not read (yet)
-        coordinate = compare.coordinate_of(setup, self.coordinate)
+        coordinate = self.coordinate_for(setup)
         try:
             if upload is not None:
                 measured = loaded = readers.from_bytes(*upload, coordinate=coordinate)
             answer = compare.compare(setup, measured.t, measured.position, integrator=integrator,
-                                     coordinate=coordinate, fit=names)
+                                     coordinate=coordinate, fit=names, sign=self.sign)
         except LabError as problem:
             answer = str(problem)
         except Exception as problem:  # a bug of ours: one line on the page, never a traceback
@@ -153,12 +158,13 @@ class MeasuredData:
             return []
         keep = np.unique(np.linspace(0, result.points - 1, min(result.points, MAX_DOTS)).astype(int))
         t = result.t[keep] - result.t_offset.value
-        y = result.data[keep] - result.position_offset.value
+        y = result.sign * (result.data[keep] - result.position_offset.value)
         return [[float(a), float(b)] for a, b in zip(t, y) if np.isfinite(a) and np.isfinite(b)]
 
-    def text(self) -> str:
+    def text(self, *, dt_slider: bool = False) -> str:
         """The caption's lines on the data (HTML): what was read, the offsets, the RMS residual,
-        the fitted values, and what is under way or went wrong."""
+        the fitted values, and what is under way or went wrong. dt_slider: the page has a Δt
+        slider (else a Δt longer than the data's interval is a matter of the integrator menu)."""
         lines = []
         if self.problem:
             lines.append(f"<b>Data:</b> {html.escape(self.problem, quote=False)}")
@@ -173,15 +179,28 @@ class MeasuredData:
                           "reading": f"<i>reading {html.escape(self.reading, quote=False)}…</i>"}[self.working])
         elif result is not None:
             c = result.coordinate
-            lines.append(f"<b>RMS residual = {_metres(result.rms)}</b>; blue dots: the data at t − t₀, {c} − {c}₀ "
+            shown = f"{c} − {c}₀" if result.sign > 0 else f"−({c} − {c}₀)"
+            lines.append(f"<b>RMS residual = {_metres(result.rms)}</b>; blue dots: the data at t − t₀, {shown} "
                          f"with t₀ = {result.t_offset}, {c}₀ = {result.position_offset} (fitted offsets)")
+            if result.sign < 0:
+                lines.append(html.escape(result.sign_said, quote=False))
             if result.fitted:
                 lines.append("<b>Fit:</b> <span class='sm-fit'>" + ", ".join(
                     f"{symbol(name)} = {estimate}" for name, estimate in result.fitted.items()) + "</span>")
-            lines += [html.escape(note.removeprefix("note: "), quote=False) for note in result.notes]
+            if result.slow_dt:
+                lines.append(_slow_dt_note(*result.slow_dt, dt_slider=dt_slider))
         elif measured is None and not self.problem:
             return ""
         return "\n".join(line.replace(" ± ", "\u00a0±\u00a0") for line in lines)
+
+
+def _slow_dt_note(dt: float, interval: float, smaller: str, *, dt_slider: bool) -> str:
+    """What a page user can do about a Δt longer than the data's sample interval (the command
+    line's note says --set dt=...; the page may have no Δt slider)."""
+    what = (f"move the Δt slider to {smaller} s" if dt_slider else
+            "choose rk4 in the integrator menu (far closer to the real motion at the same Δt)")
+    return (f"The model's Δt = {dt:g} s is longer than the data's sample interval {interval:.3g} s, so the "
+            f"integrator's own error is in the comparison: {what}.")
 
 
 def _metres(value: float) -> str:

@@ -30,7 +30,7 @@ from export.palette import (ENERGY_COLOURS, EXACT_COLOUR, EXACT_WIDTH, LIVE_COLO
 from physics.energy import kinetic, potential, rest_potential
 from physics.state import State, velocity
 
-from .axes import AxisFit, nice_range, time_axis
+from .axes import AxisFit, data_window, nice_range, time_axis
 from .clock import Trace, window
 from .page_layout import NOTE_MARK
 
@@ -75,6 +75,7 @@ class Graphs:
             self._build_scene_graph(setup.hooks.view_graph(setup))
         self.position_graph = self._build_position_graph(model)
         self.data_dots, self.data_values = None, []   # measured points (show_data), on top of the curves
+        self.held = None    # (start, end), s: the position graph's time axis held over the measured points
         self.exact_curves = bool(view["exact"]) and model.exact is not None
         self.show_exact = self.exact_curves
         if self.show_exact:
@@ -233,6 +234,8 @@ class Graphs:
         self.recorded.clear()
         for graph in (self.position_graph, self.energy_graph):
             graph.xmin, graph.xmax = time_axis(0.0, span=self.span, dt=self.spacing, pixels=self.size[0])
+        if self.held:
+            self.position_graph.xmin, self.position_graph.xmax = self.held
         if self.error_graph is not None:
             self.error_graph.xmin, self.error_graph.xmax = time_axis(0.0, span=self.error_span, dt=self.spacing,
                                                                      pixels=self.size[0])
@@ -257,6 +260,10 @@ class Graphs:
                 self.data_dots.label = label
             replace_points(self.data_dots, points)
         self.data_values = [y for _, y in points]
+        self.held = data_window(points, dt=self.spacing, pixels=self.size[0])
+        for _, trace, what in self.curves:   # a held curve keeps every point in the window
+            if what[0] in ("r", "exact"):
+                trace.span = max(self.span, self.held[1] - self.held[0]) if self.held else self.span
         if points:
             _fit(self.position_graph, self.position_fit, self.data_values)
 
@@ -291,7 +298,8 @@ class Graphs:
                     values = log_error(r[:, what[1], what[2]], exact[:, what[1], what[2]])
             else:
                 values = energies[what[1]]
-            points = [[float(a), float(b)] for a, b in zip(t, values) if math.isfinite(b)]
+            points = [[float(a), float(b)] for a, b in zip(t, values) if math.isfinite(b)
+                      and not (self.held and what[0] in ("r", "exact") and a > self.held[1])]
             if what[0] in ("r", "mass_energy", "error") and what[1] in live.runaways:
                 frozen = live.runaways[what[1]][0]  # the curve ends where the mass ran away
                 points = [point for point in points if point[0] <= frozen]
@@ -319,9 +327,10 @@ class Graphs:
         if len(t):
             start, end = time_axis(float(t[-1]), span=self.span, dt=self.spacing,
                                    pixels=self.size[0])
-            if (start, end) != (self.position_graph.xmin, self.position_graph.xmax):
-                for graph in (self.position_graph, self.energy_graph):
-                    graph.xmin, graph.xmax = start, end
+            for graph, (low, high) in ((self.position_graph, self.held or (start, end)),
+                                       (self.energy_graph, (start, end))):
+                if (low, high) != (graph.xmin, graph.xmax):
+                    graph.xmin, graph.xmax = low, high
             if self.error_graph is not None:
                 self.error_graph.xmin, self.error_graph.xmax = time_axis(
                     float(t[-1]), span=self.error_span, dt=self.spacing, pixels=self.size[0])

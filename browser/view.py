@@ -393,7 +393,7 @@ class SceneView:
         if answer is False:
             return False
         if answer is not None and answer.fitted:
-            fitted = {name: estimate.value for name, estimate in answer.fitted.items()}
+            fitted = {name: answer.setup.values[name] for name in answer.fitted}   # r0: its vector
             if self.controls.move_sliders(fitted):
                 self._rebuild(changes=fitted, integrator=self.integrator)
             else:  # a slider's span does not reach its fitted value: new controls, spanning it
@@ -404,7 +404,7 @@ class SceneView:
         return True
 
     def _show_data(self) -> None:
-        self.controls.show_data(self.data.text())
+        self.controls.show_data(self.data.text(dt_slider="dt" in self.controls.sliders))
         self.graphs.show_data(self.data.points(), label="measured")
 
     # ---- downloads ----

@@ -106,6 +106,10 @@ def _add_lab_options(parser: argparse.ArgumentParser) -> None:
     data.add_argument("--run", type=int, metavar="N", help="with --data: read run N of several (default 1)")
     data.add_argument("--coordinate", choices=("x", "y", "z"),
                       help="with --data: the model's coordinate to compare (default: the scene's plotted one)")
+    data.add_argument("--data-sign", type=int, choices=(1, -1), metavar="1|-1",
+                      help="with --data: -1 where the data's axis points the other way from the model's (a "
+                           "detector above the mass, a video's y axis down), 1 where it points the same way "
+                           "(default: both are tried and the better match is kept)")
     data.add_argument("--page", action="store_true",
                       help="with --data: show the data on the browser page instead (dots on its position "
                            "graph, the RMS residual, a Fit button that fits --fit's names, or k,b)")
@@ -131,7 +135,7 @@ def headless_run(args) -> bool:
 
 
 LAB_OPTIONS = (("--fit", "fit"), ("--data-column", "data_column"), ("--run", "run"),
-               ("--coordinate", "coordinate"), ("--seed", "seed"), ("--page", "page"))
+               ("--coordinate", "coordinate"), ("--data-sign", "data_sign"), ("--seed", "seed"), ("--page", "page"))
 
 
 LAB_COMMANDS = (("--data", "data"), ("--mystery", "mystery"), ("--show-answer", "show_answer"))
@@ -157,7 +161,7 @@ def check_lab_options(args) -> None:
     for flag, attribute in (("--list", "list"), ("--constants", "constants")):
         if command and _given(args, attribute):
             raise UsageError(f"{flag} only lists, so {command} would do nothing; leave out one of them")
-    allowed = {"--data": {"fit", "data_column", "run", "coordinate", "page"},
+    allowed = {"--data": {"fit", "data_column", "run", "coordinate", "data_sign", "page"},
                "--mystery": {"seed", "coordinate"}, "--show-answer": {"seed", "coordinate"}}.get(command, set())
     for flag, attribute in LAB_OPTIONS:
         if _given(args, attribute) and attribute not in allowed:

@@ -2,12 +2,15 @@
 
 The measured file has its own clock and its own zero, so every comparison fits two offsets,
 
-    data(t) ≈ model(t − t_offset) + position_offset,
+    data(t) ≈ sign · model(t − t_offset) + position_offset,
 
 where t_offset is the data's clock reading at the model's t = 0 (the release) and position_offset
-the data's reading where the model's coordinate is 0. Before its release the model's mass is
+the data's reading where the model's coordinate is 0. The sign is −1 where the data's axis points
+the other way from the model's (a motion detector above the mass measures downward; a video's y
+axis points down): both signs are tried and the one that matches better is kept, or --data-sign
+says which. Before its release the model's mass is
 held still at its start position. `--fit k,b` fits named constants too, by least squares
-(scipy.optimize.least_squares).
+(Levenberg-Marquardt, numpy only: lab/least_squares.py says why not scipy).
 
 The model is the engine's own run (physics.simulate.Simulation) with the chosen integrator and Δt:
 at the engine's step times it is exactly the engine's positions, and between two steps a cubic
@@ -27,15 +30,16 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from . import LabError
+from . import LabError, start as start_search
+from .least_squares import least_squares, offsets_only
 from physics.simulate import BlowUpError, every, steps_to_reach, trajectory
 from scenes import ConstantError, check_value
 from scenes._constants import DECLARED
 
 AXES = {"x": 0, "y": 1, "z": 2}
+RELEASE = "r0"                    # --fit r0: the start position's component along the compared coordinate
 MAX_STEPS_PER_RUN = 2_000_000     # a fit runs the engine dozens of times: each run stays this short
-START_POINTS = 2000              # points and release times the start's grid search uses at most
-START_OFFSETS = 5000
+SIGN_MARGIN = 0.5                 # the data's axis is taken as reversed where that halves the misfit
 CONDITION_LIMIT = 1e8             # beyond this the fitted values cannot be told apart
 # Constants that enter the motion only in a combination: fitting two of a group is meaningless.
 TIED = [
@@ -82,6 +86,18 @@ class Comparison:
     position_offset: Estimate | None = None
     setup: object = None                            # the scene with the fitted values set
     notes: list = field(default_factory=list)
+    sign: int = 1                                   # −1: the data's axis points the other way
+    slow_dt: tuple = ()                             # (Δt, the data's sample interval, a smaller Δt), s,
+                                                    # where the model's Δt is longer than the interval
+
+    @property
+    def sign_said(self) -> str:
+        """Which way the data's axis was taken to point, in words."""
+        c = self.coordinate
+        if self.sign > 0:
+            return f"the data's axis points the model's way: the model's {c} is compared with the data"
+        way = "down" if c == "y" else "the other way"
+        return f"the data's axis points {way}: the model is compared with −{c}"
 
     @property
     def residual(self) -> np.ndarray:
@@ -167,7 +183,9 @@ def check_names(setup, names) -> list[str]:
         if name not in setup.constants:
             raise FitError(f"--fit {name}: scene {setup.name!r} has no constant {name!r} "
                            f"(python main.py {setup.name} --constants lists them)")
-        if name in ("dt", "until") or not isinstance(setup.values[name], (int, float)) \
+        if name == RELEASE and isinstance(setup.values[name], tuple):
+            pass          # its component along the compared coordinate: where the mass was let go
+        elif name in ("dt", "until") or not isinstance(setup.values[name], (int, float)) \
                 or DECLARED[name].vector or DECLARED[name].whole:
             raise FitError(f"--fit {name}: only a physical constant with one number (k, b, m, g, ...) "
                            f"can be fitted")
@@ -181,51 +199,21 @@ def check_names(setup, names) -> list[str]:
     return names
 
 
-def _frequencies(t, y) -> list[float]:
-    """Candidate angular frequencies of the data's swing, rad/s, strongest first: the two highest
-    peaks of its spectrum, and of its spectrum times the frequency (the step at a release from rest
-    leaks into the lowest frequencies, white noise into the highest, so neither alone is safe).
-    The data are resampled evenly and padded four times; each peak is refined by a parabola."""
-    interval = float(np.median(np.diff(t)))
-    if not interval > 0 or len(t) < 8:
-        return []
-    even = np.arange(t[0], t[-1], interval)
-    centred = np.interp(even, t, y)
-    centred = centred - np.mean(centred)
-    size = 4 * len(even)
-    plain = np.abs(np.fft.rfft(centred, n=size)) ** 2
-    lowest = 4                                      # bins below one cycle over the record
-    if len(plain) <= lowest + 2:
-        return []
-    found = []
-    for power in (plain, plain * np.arange(len(plain))):
-        inner = power[lowest:-1]
-        peaks = [i for i in range(1, len(inner) - 1) if inner[i - 1] < inner[i] >= inner[i + 1]]
-        for i in sorted(peaks, key=lambda i: -inner[i])[:2]:
-            peak = lowest + i
-            a, b, c = np.log(power[peak - 1:peak + 2] + 1e-300)
-            shift = 0.5 * (a - c) / (a - 2 * b + c) if a - 2 * b + c < 0 else 0.0
-            omega = 2 * math.pi * (peak + shift) / (size * interval)
-            if all(abs(omega - other) > 0.02 * other for other in found):
-                found.append(omega)
-    return found
+def with_fitted(setup, values: dict, axis: int):
+    """The scene with fitted values set: r0 (RELEASE, a vector) takes its component along the
+    compared coordinate from `values`, and keeps the others."""
+    changes = dict(values)
+    if RELEASE in changes:
+        r0 = [float(x) for x in setup.values[RELEASE]]
+        r0[axis] = float(changes[RELEASE])
+        changes[RELEASE] = tuple(r0)
+    return setup.with_values(**changes)
 
 
-def _frequency(t, y) -> float | None:
-    """The data's strongest angular frequency, rad/s (None if it has none)."""
-    found = _frequencies(t, y)
-    return found[0] if found else None
-
-
-def _decay(t, y, m) -> float | None:
-    """A damping constant from how the swing shrinks between the first and last quarter, kg/s."""
-    quarter = max(len(t) // 4, 2)
-    centred = y - np.median(y[len(y) // 2:])
-    first, last = np.std(centred[:quarter]), np.std(centred[-quarter:])
-    if first <= 0 or last <= 0 or first <= last:
-        return None
-    gap = np.mean(t[-quarter:]) - np.mean(t[:quarter])
-    return 2.0 * m * math.log(first / last) / gap
+def _value(setup, name: str, axis: int) -> float:
+    """A fitted constant's value as set: r0's component along the compared coordinate."""
+    value = setup.values[name]
+    return float(value[axis] if isinstance(value, tuple) else value)
 
 
 class _Problem:
@@ -235,6 +223,7 @@ class _Problem:
         self.setup, self.t, self.y = setup, t, y
         self.names, self.integrator, self.axis = names, integrator, axis
         self._runs: dict = {}
+        self._jacobian = None
         gaps = np.diff(t)
         self.spacing = float(np.min(gaps)) / 4 if len(gaps) else 0.0   # s: see ModelRun
 
@@ -242,15 +231,14 @@ class _Problem:
         key = tuple(float(c) for c in constants)
         cached = self._runs.get(key)
         if cached is None or cached.end < until:
-            changes = dict(zip(self.names, key))
-            for name, value in changes.items():
+            for name, value in zip(self.names, key):
                 try:
                     check_value(name, value, self.setup.constants[name].unit)
                 except ConstantError as problem:
                     raise FitError(f"the fit went out of range: {problem}") from None
             if len(self._runs) > 8:
                 self._runs.clear()
-            cached = ModelRun(self.setup.with_values(**changes), integrator=self.integrator, axis=self.axis,
+            cached = ModelRun(with_fitted(self.setup, dict(zip(self.names, key)), self.axis), integrator=self.integrator, axis=self.axis,
                               until=max(until, 0.0) + 2 * self.setup.values.get("dt", 0.01), spacing=self.spacing)
             self._runs[key] = cached
         return cached
@@ -265,6 +253,15 @@ class _Problem:
         return r + theta[-1] - self.y
 
     def jacobian(self, theta):
+        """d residual / d theta: the constants' columns by forward differences (one engine run each),
+        the offsets' from the model's slope (d/dt_offset = −model'(τ), d/dposition_offset = 1).
+        The last one is kept: the fit's final step and the uncertainties ask for the same theta."""
+        key = tuple(float(x) for x in theta)
+        if self._jacobian is None or self._jacobian[0] != key:
+            self._jacobian = (key, self._columns(theta))
+        return self._jacobian[1]
+
+    def _columns(self, theta):
         p = len(self.names)
         J = np.empty((len(self.t), p + 2))
         base, slope = self.model(theta)
@@ -278,37 +275,18 @@ class _Problem:
         return J
 
 
-def _start_offsets(problem, theta_constants, t, y):
-    """t_offset and position_offset to start from: the release time that matches the data best,
-    searched over a grid of 1/50 period (linear interpolation, the position offset from the mean).
-    A long record (200,000 rows) is searched on START_POINTS of its points and START_OFFSETS
-    release times at most: it is only a start, and the full search took minutes."""
-    span = t[-1] - t[0]
-    omega = _frequency(t, y) or 2 * math.pi / span
-    period = 2 * math.pi / omega
-    earliest, latest = t[0] - 0.5 * span - period, t[0] + 0.5 * span
-    run = problem.run(theta_constants, t[-1] - earliest)
-    grid = np.arange(0.0, run.end + run.dt / 2, run.dt)[: len(run.r)]
-    every = max(1, len(t) // START_POINTS)
-    t, y = t[::every], y[::every]
-    best = (math.inf, t[0], 0.0)
-    for t_offset in np.arange(earliest, latest, max(period / 50, (latest - earliest) / START_OFFSETS)):
-        tau = t - t_offset
-        model = np.where(tau < 0, run.r[0], np.interp(tau, grid, run.r))
-        offset = float(np.mean(y - model))
-        cost = float(np.sum((model + offset - y) ** 2))
-        if cost < best[0]:
-            best = (cost, float(t_offset), offset)
-    return best[1], best[2], best[0]
-
-
-def compare(setup, t, y, *, integrator=None, coordinate="y", fit=()) -> Comparison:
+def compare(setup, t, y, *, integrator=None, coordinate="y", fit=(), sign=None) -> Comparison:
     """The scene against the measured points t (s), y (m): offsets, RMS, and the fitted constants.
 
     fit   names of constants to fit (check_names); empty compares with the constants as set.
-    Raises FitError (one line) for a fit that cannot be made, MissingScipy without scipy.
+    sign  +1 or −1: the data's axis points the model's way or the other (--data-sign); None fits
+          each way whose start is not clearly worse, and keeps −1 only where it halves the misfit.
+    Raises FitError (one line) for a fit that cannot be made.
     """
-    t, y = np.asarray(t, dtype=float), np.asarray(y, dtype=float)
+    t, data = np.asarray(t, dtype=float), np.asarray(y, dtype=float)
+    if sign not in (None, 1, -1):
+        raise FitError(f"--data-sign {sign}: give 1 (the data's axis points the model's way) or -1 (the other way)")
+    y = data
     names = check_names(setup, fit) if fit else []
     if len(t) < len(names) + 4:
         raise FitError(f"{len(t)} points cannot fix {len(names) + 2} values (the constants and two offsets)")
@@ -317,41 +295,42 @@ def compare(setup, t, y, *, integrator=None, coordinate="y", fit=()) -> Comparis
 
     def start_from(omega):
         """A start near the data's own swing at angular frequency omega, so the fit finds it."""
-        start = [float(setup.values[name]) for name in names]
+        start = [_value(setup, name, AXES[coordinate]) for name in names]
         for j, name in enumerate(names):
             if name == "k" and omega:
                 start[j] = m * omega ** 2
             elif name == "m" and omega and setup.values.get("k"):
                 start[j] = setup.values["k"] / omega ** 2
             elif name == "b":
-                start[j] = _decay(t, y, m) or start[j]
+                start[j] = start_search.decay(t, y, m) or start[j]
         return start
 
-    candidates = _frequencies(t, y) if {"k", "m"} & set(names) else []
+    candidates = start_search.frequencies(t, y) if {"k", "m"} & set(names) else []
     starts = [(start_from(None), None)] + [(start_from(omega), omega) for omega in candidates]
     still = problem.run(starts[0][0], 1.0)
     if np.ptp(still.r) <= 1e-12 * (1.0 + np.max(np.abs(still.r))):
         raise FitError(f"the model's {coordinate} does not move in scene {setup.name!r}, so there is nothing "
                        f"to compare; choose the coordinate that moves with --coordinate")
-    best = None
-    for start, omega in starts:           # the constants as set, or a candidate frequency: the best match
-        t_offset, position_offset, cost = _start_offsets(problem, start, t, y)
-        if best is None or cost < best[0]:
-            best = (cost, start, omega, t_offset, position_offset)
-    _, start, omega, t_offset, position_offset = best
-    # k and m may move a factor of 10 from the data's own frequency: further is a swing the data
-    # does not show, and a stiff spring there would cost the fit minutes of tiny steps.
-    reach = {j: (start[j] / 10, start[j] * 10) for j, name in enumerate(names)
-             if name in ("k", "m") and omega and start[j] > 0}
-    theta = np.array([*start, t_offset, position_offset])
-    theta = _offsets_only(problem, theta)
-    if names:
-        theta = _least_squares(problem, theta, reach)
-        for j, (low, high) in reach.items():
-            if not low * 1.001 < theta[j] < high / 1.001:
-                raise FitError(f"the fit of {names[j]} ran to {theta[j]:.4g} {setup.constants[names[j]].unit}, "
-                               f"ten times from what the data's frequency suggests ({start[j]:.4g}): the data "
-                               f"show too little of the swing to fit it; check --set m, r0 and the column read")
+    best = {}
+    for way in (1, -1) if sign is None else (sign,):     # the data's axis up, then down
+        for start, omega in starts:       # the constants as set, or a candidate frequency: the best match
+            t_offset, position_offset, cost = start_search.start_offsets(problem, start, t, way * data)
+            if way not in best or cost < best[way][0]:
+                best[way] = (cost, start, omega, t_offset, position_offset)
+    lowest = min(found[0] for found in best.values())
+    fitted = {}
+    for way, (cost, *begin) in best.items():    # each way whose start is not clearly worse, fitted
+        if cost <= lowest / SIGN_MARGIN:
+            problem.y = way * data
+            try:
+                fitted[way] = _fit_from(problem, setup, *begin)
+            except FitError as problem_found:
+                fitted[way] = problem_found
+    sign = _better_way(fitted)
+    if isinstance(fitted[sign], FitError):
+        raise fitted[sign]
+    theta = fitted[sign][0]
+    y = problem.y = sign * data
     J = problem.jacobian(theta)
     residual = problem.residuals(theta)
     scale = np.linalg.norm(J, axis=0)
@@ -374,72 +353,58 @@ def compare(setup, t, y, *, integrator=None, coordinate="y", fit=()) -> Comparis
     sigma = np.sqrt(np.maximum(np.diag(covariance), 0.0))
     fitted = {name: Estimate(float(theta[j]), float(sigma[j]), setup.constants[name].unit)
               for j, name in enumerate(names)}
-    final = setup.with_values(**{name: float(theta[j]) for j, name in enumerate(names)})
-    model = problem.residuals(theta) + y
-    notes = []
+    final = with_fitted(setup, {name: float(theta[j]) for j, name in enumerate(names)}, AXES[coordinate])
+    model = sign * (problem.residuals(theta) + y)
+    notes, slow_dt = [], ()
     interval = float(np.median(np.diff(t)))
     dt = float(final.values.get("dt", 0.0))
     if dt > interval:
+        slow_dt = (dt, interval, _smaller(interval))
         notes.append(f"note: the model's dt = {dt:g} s is longer than the data's sample interval "
                      f"{interval:.3g} s, so the integrator's own error is in the comparison; a smaller dt "
                      f"(--set dt={_smaller(interval)}) follows the real motion more closely")
-    return Comparison(t=t, data=y, model=model, coordinate=coordinate, fitted=fitted,
+    return Comparison(t=t, data=data, model=model, coordinate=coordinate, fitted=fitted,
                       t_offset=Estimate(float(theta[-2]), float(sigma[-2]), "s"),
-                      position_offset=Estimate(float(theta[-1]), float(sigma[-1]), "m"),
-                      setup=final, notes=notes)
+                      position_offset=Estimate(sign * float(theta[-1]), float(sigma[-1]), "m"),
+                      setup=final, notes=notes, sign=sign, slow_dt=slow_dt)
+
+
+def _fit_from(problem, setup, start, omega, t_offset, position_offset):
+    """(theta, Σ residual²): the offsets, then the constants, fitted from a start (problem.y is the
+    data as compared)."""
+    names = problem.names
+    # k and m may move a factor of 10 from the data's own frequency: further is a swing the data
+    # does not show, and a stiff spring there would cost the fit minutes of tiny steps.
+    reach = {j: (start[j] / 10, start[j] * 10) for j, name in enumerate(names)
+             if name in ("k", "m") and omega and start[j] > 0}
+    theta = offsets_only(problem, np.array([*start, t_offset, position_offset]))
+    if names:
+        low = np.array([DECLARED[name].low for name in names] + [-np.inf, -np.inf])
+        high = np.array([DECLARED[name].high for name in names] + [np.inf, np.inf])
+        for j, (lo, hi) in reach.items():
+            low[j], high[j] = max(low[j], lo), min(high[j], hi)
+        theta, _ = least_squares(problem, theta, low, high)
+        if not np.all(np.isfinite(theta)):
+            raise FitError("the fit did not converge to finite values; check the constants set with --set")
+        for j, (lo, hi) in reach.items():
+            if not lo * 1.001 < theta[j] < hi / 1.001:
+                raise FitError(f"the fit of {names[j]} ran to {theta[j]:.4g} {setup.constants[names[j]].unit}, "
+                               f"ten times from what the data's frequency suggests ({start[j]:.4g}): the data "
+                               f"show too little of the swing to fit it; check --set m, r0 and the column read")
+    residual = problem.residuals(theta)
+    return theta, float(residual @ residual)
+
+
+def _better_way(fitted: dict) -> int:
+    """+1 or −1: the data's axis the model's way unless reversed fits clearly better (SIGN_MARGIN),
+    or the only way tried or that could be fitted."""
+    cost = {way: (math.inf if isinstance(found, FitError) else found[1]) for way, found in fitted.items()}
+    if 1 not in cost:
+        return -1
+    return -1 if -1 in cost and cost[-1] < SIGN_MARGIN * cost[1] else 1
 
 
 def _smaller(interval: float) -> str:
     return f"{10 ** math.floor(math.log10(interval / 10)):g}"
 
 
-def _offsets_only(problem, theta, iterations: int = 30):
-    """Gauss-Newton on the two offsets alone (numpy only), from the grid search's start."""
-    theta = np.array(theta, dtype=float)
-    p = len(problem.names)
-    for _ in range(iterations):
-        residual = problem.residuals(theta)
-        _, slope = problem.model(theta)
-        J = np.column_stack([-slope, np.ones_like(slope)])
-        step, *_ = np.linalg.lstsq(J, -residual, rcond=None)
-        trial = theta.copy()
-        trial[p:] += step
-        if np.sum(problem.residuals(trial) ** 2) > np.sum(residual ** 2):
-            step = step / 4
-            trial = theta.copy()
-            trial[p:] += step
-            if np.sum(problem.residuals(trial) ** 2) > np.sum(residual ** 2):
-                break
-        theta = trial
-        if np.all(np.abs(step) <= 1e-12 * (1 + np.abs(theta[p:]))):
-            break
-    return theta
-
-
-class MissingScipy(FitError):
-    def __init__(self):
-        super().__init__("--fit needs scipy, which is not installed; install it with "
-                         "python -m pip install scipy (everything else runs without it)")
-
-
-def _least_squares(problem, theta, reach):
-    """scipy's least_squares over every value, within each constant's declared range."""
-    try:
-        from scipy.optimize import least_squares
-    except ImportError:
-        raise MissingScipy() from None
-    p = len(problem.names)
-    low = np.array([DECLARED[name].low for name in problem.names] + [-np.inf, -np.inf])
-    high = np.array([DECLARED[name].high for name in problem.names] + [np.inf, np.inf])
-    for j, (lo, hi) in reach.items():
-        low[j], high[j] = max(low[j], lo), min(high[j], hi)
-    inside = 1e-9 * np.maximum(np.abs(theta[:p]), 1.0)        # strictly inside, as trf starts
-    theta = theta.copy()
-    theta[:p] = np.clip(theta[:p], low[:p] + inside, high[:p] - inside)
-    with np.errstate(all="ignore"):
-        solution = least_squares(problem.residuals, theta, jac=problem.jacobian, bounds=(low, high),
-                                 method="trf", x_scale="jac", ftol=1e-10, xtol=1e-10, gtol=1e-10,
-                                 max_nfev=200)
-    if not np.all(np.isfinite(solution.x)):
-        raise FitError("the fit did not converge to finite values; check the constants set with --set")
-    return solution.x

@@ -18,11 +18,6 @@ from reports import plotting
 from reports.json_report import to_json
 
 
-def coordinate_of(args, setup) -> str:
-    """The coordinate compared: --coordinate, else the one the scene plots (lab/compare.py)."""
-    return compare.coordinate_of(setup, getattr(args, "coordinate", None))
-
-
 def measured_value(estimate) -> str:
     """`54.997 ± 0.003 N/m` (lab/compare.py's Estimate says itself so, on the page too)."""
     return str(estimate)
@@ -30,7 +25,7 @@ def measured_value(estimate) -> str:
 
 def run_data(args, setup) -> int:
     """--data FILE: read it, compare (and fit), then print text or JSON and draw --plot."""
-    coordinate = coordinate_of(args, setup)
+    coordinate = compare.coordinate_of(setup, args.coordinate)
     measured = readers.read(args.data, column=args.data_column, run=args.run, coordinate=coordinate)
     if args.plot is not None:
         check_writable(args.plot, what="figure")
@@ -39,7 +34,7 @@ def run_data(args, setup) -> int:
         plotting.check_format(args.plot)
     names = args.fit.split(",") if args.fit else ()
     result = compare.compare(setup, measured.t, measured.position, integrator=args.integrator,
-                             coordinate=coordinate, fit=names)
+                             coordinate=coordinate, fit=names, sign=args.data_sign)
     for note in result.notes:
         print(note, file=sys.stderr)
     if args.plot is not None:
@@ -52,7 +47,8 @@ def run_data(args, setup) -> int:
 
 
 def text(result, measured) -> str:
-    """One line each: the file and what was read, every fitted value, the offsets, the RMS residual."""
+    """One line each: the file and what was read, every fitted value, the offsets, the RMS residual,
+    and which way the data's axis was taken."""
     lines = [f"data: {measured.path}: {measured.choice}"]
     for name, estimate in result.fitted.items():
         lines.append(f"{name} = {measured_value(estimate)}")
@@ -61,6 +57,7 @@ def text(result, measured) -> str:
                  f"where the model's {result.coordinate} = 0)")
     lines.append(f"RMS residual = {result.rms:.3g} m ({result.rms * 1000:.3g} mm) over "
                  f"{result.points} points")
+    lines.append(f"data_sign = {result.sign:+d}  ({result.sign_said})")     # last: the lines above keep their places
     return "\n".join(lines)
 
 
@@ -74,7 +71,7 @@ def as_json(result, measured, *, integrator=None) -> dict:
     fit["position_offset"] = _entry(result.position_offset)
     model = result.setup
     return {"scene": model.name, "data": measured.path, "data_read": measured.choice,
-            "coordinate": result.coordinate, "dt": model.values.get("dt"),
+            "coordinate": result.coordinate, "data_sign": result.sign, "dt": model.values.get("dt"),
             "integrator": model.build().methods(integrator)[0], "fit": fit,
             "rms_residual": clean(result.rms), "rms_residual_unit": "m", "data_points": result.points}
 
@@ -88,7 +85,7 @@ def plot(result, measured, path: str, *, integrator=None) -> None:
     smooth = np.linspace(result.t[0], result.t[-1], max(2000, 4 * result.points))
     run = compare.ModelRun(result.setup, integrator=integrator, axis=compare.AXES[result.coordinate],
                            until=float(smooth[-1] - t_offset) + 1.0)
-    curve = run.at(smooth - t_offset)[0] + offset
+    curve = result.sign * run.at(smooth - t_offset)[0] + offset
     fig, (ax, ax_res) = plt.subplots(2, 1, figsize=(8, 7), sharex=True, height_ratios=(3, 1))
     ax.plot(result.t, result.data, "o", ms=3, color=DATA_COLOUR, label=f"measured ({os.path.basename(measured.path)})")
     ax.plot(smooth, curve, "-", lw=1.5, color=MODEL_COLOUR, label="model")
@@ -126,7 +123,8 @@ def run_mystery(args, setup) -> int:
                           f"never overwrites a file it did not make)")
     check_writable(path, what="mystery file")
     seed = args.seed if args.seed is not None else secrets.randbelow(9000) + 1000
-    run = mystery.make(setup, seed=seed, given=_given(args), coordinate=coordinate_of(args, setup))
+    run = mystery.make(setup, seed=seed, given=_given(args),
+                       coordinate=compare.coordinate_of(setup, args.coordinate))
     write_text(path, mystery.text(run), what="mystery file")
     r0 = run.known.get("r0", (None, ""))[0]
     start = f", released from rest at r0 = {tuple(r0)} m" if r0 is not None else ""
@@ -139,6 +137,7 @@ def run_mystery(args, setup) -> int:
 
 def show_answer(args, setup) -> int:
     """--show-answer --seed N: the constants the mystery file with that seed was made with."""
-    run = mystery.make(setup, seed=args.seed, given=_given(args), coordinate=coordinate_of(args, setup))
+    run = mystery.make(setup, seed=args.seed, given=_given(args),
+                       coordinate=compare.coordinate_of(setup, args.coordinate))
     print(mystery.answer_line(run, args.seed))
     return 0

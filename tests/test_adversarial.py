@@ -190,6 +190,8 @@ BAD = [
     ("damped --data missing.csv", 2, "missing.csv: cannot read it"),
     ("damped --data missing.csv --data-column 2 --run 0", 2, "--run needs a whole number"),
     ("damped --data missing.csv --coordinate w", 2, "invalid choice"),
+    ("damped --data missing.csv --data-sign 2", 2, "invalid choice"),
+    ("damped --mystery spring.csv --data-sign -1", 2, "--data-sign needs --data"),
     ("damped --data missing.csv --until 3", 2, "--until does nothing with --data"),
     ("damped --page", 2, "--page needs --data"),
     ("damped --data missing.csv --page", 2, "missing.csv: cannot read it"),

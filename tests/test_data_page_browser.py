@@ -13,6 +13,8 @@ the k and b of `--data FILE --fit k,b`, with the page's integrator and Δt (the 
 2. `--data FILE --page` shows the same comparison from the start; at a small Δt, where the fit
    takes seconds, the page says "fitting k, b…" while its clock goes on, then shows the values
    `--fit k,b` prints.
+3. While data is loaded the position graph's time axis stays over the whole data: long after the
+   data's last point the dots are still on the graph (it used to scroll them off).
 
 Skipped, with the reason, where Chromium or Playwright is missing.
 """
@@ -29,7 +31,7 @@ import pytest
 
 from lab.compare import Estimate
 from browser_support import launched, pixels_like, require_browser, screenshot_folder, wait_for
-from test_browser import Program, crop, graph_boxes, shown_time
+from test_browser import Program, crop, graph_boxes, menu, shown_time
 
 ROOT = Path(__file__).resolve().parent.parent
 DATA_BLUE = (0, 114, 178)          # export/palette.py's BLUE, the measured points' colour
@@ -185,3 +187,36 @@ def test_data_on_the_command_line_shows_on_the_page_and_fitting_does_not_stop_th
         page.close()
     finally:
         program.stop()
+
+
+def test_the_position_graph_holds_the_data_in_view_long_after_its_last_point(browser, tmp_path):
+    """The position graph used to scroll its 30 s window on with the clock, so the data's dots left
+    it 30 to 45 s into the run. While data is loaded, its time axis stays over the whole data."""
+    from lab import readers
+
+    path = mystery(tmp_path)
+    compared = headless(path)
+    measured = readers.read(str(path))
+    t_offset = compared["fit"]["t_offset"]["value"]
+    first, last = measured.t[0] - t_offset, measured.t[-1] - t_offset      # the dots' model times, s
+    program = Program("damped", "--data", str(path), "--page")
+    try:
+        page = browser.new_page(viewport={"width": 1280, "height": 800})
+        page.goto(program.url())
+        wait_for(lambda: rms_shown(page), timeout=120, what="the comparison's RMS residual")
+        menu(page, "4×").select_option("4×")
+        wait_for(lambda: shown_time(page) > last + 40, timeout=600,
+                 what=f"the clock to pass the data's last point ({last:.1f} s) by 40 s")
+        axis = page.locator(".glowscript-graph").nth(0).locator(".xAxis .tickLabel")
+
+        def ticks():
+            return [float(label.replace("−", "-")) for label in axis.all_inner_texts() if label.strip()]
+        wait_for(lambda: len(ticks()) >= 3, timeout=120, what="the position graph's time labels")
+        shown = ticks()
+        assert min(shown) <= max(first, 0.0) and max(shown) >= last - (shown[1] - shown[0]), (shown, first, last)
+        assert max(shown) < shown_time(page) - 20, (shown, shown_time(page))   # not following the clock
+        assert position_graph_blue(page, tmp_path, "held") > 100
+        page.close()
+    finally:
+        program.stop()
+    assert not [line for line in program.errors if "Traceback" in line], program.errors

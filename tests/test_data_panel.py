@@ -69,12 +69,19 @@ def test_a_loaded_file_is_compared_off_the_calling_thread_and_shown(spring):
     assert answer(data).setup.values["k"] == 45.0
 
 
-def test_fit_gives_the_command_lines_values_and_says_fitting_meanwhile(spring):
+def fitting(spring) -> MeasuredData:
+    """The mystery file loaded and compared, and a fit of k and b started."""
     setup, raw = spring
     data = MeasuredData()
     data.load(raw, "spring.csv", setup, "euler-cromer")
     answer(data)
     data.compare(setup, "euler-cromer", fit=True)
+    return data
+
+
+def test_fit_gives_the_command_lines_values_and_says_fitting_meanwhile(spring):
+    setup, _ = spring
+    data = fitting(spring)
     assert "fitting k, b…" in data.text()
     result = answer(data)
     expected = compare.compare(setup, data.measured.t, data.measured.position, integrator="euler-cromer",
@@ -88,12 +95,46 @@ def test_fit_gives_the_command_lines_values_and_says_fitting_meanwhile(spring):
     assert data.working == "" and data.finished() is False
 
 
-def test_an_answer_overtaken_by_a_newer_request_is_dropped(spring):
+def test_data_read_mirrored_shows_its_dots_on_the_model_and_says_the_axis_points_down():
+    """A detector above the mass: the dots are −(y − y₀), on the model's own axes, and the page
+    says which way the data's axis was taken (the command line's --data-sign, or both tried)."""
+    setup = catalog.configure("damped")
+    run = mystery.make(setup, seed=5, given=set(), coordinate="y")
+    down = mystery.text(mystery.Mystery(t=run.t, position=-run.position, answer=run.answer, known=run.known,
+                                        rate=run.rate, noise=run.noise)).encode("utf-8")
+    truth = setup.with_values(**{name: value for name, (value, _) in run.answer.items()})
+    data = MeasuredData()
+    data.load(down, "down.csv", truth, "euler-cromer")
+    result = answer(data)
+    assert result.sign == -1
+    assert "the data's axis points down: the model is compared with −y" in data.text()
+    assert "−(y − y₀)" in data.text()
+    dots = np.array(data.points())
+    model_y = -(result.model - result.position_offset.value)      # the model's own y at the data's times
+    assert len(dots) == result.points and np.allclose(np.abs(dots[:, 1] - model_y), np.abs(result.residual))
+    assert result.rms < 0.1 * np.ptp(model_y)       # the dots lie along the model's swing, not mirrored
+    forced = MeasuredData(sign=1)
+    forced.load(down, "down.csv", truth, "euler-cromer")
+    assert answer(forced).sign == 1 and "points down" not in forced.text()
+
+
+def test_a_dt_longer_than_the_data_interval_says_what_the_page_offers_not_a_command_line(spring):
+    """damped's page has no Δt slider: the note names the integrator menu, not --set dt=...; a page
+    with a Δt slider is told to move it."""
     setup, raw = spring
     data = MeasuredData()
     data.load(raw, "spring.csv", setup, "euler-cromer")
-    answer(data)
-    data.compare(setup, "euler-cromer", fit=True)
+    result = answer(data)
+    assert result.slow_dt and result.slow_dt[0] == 0.1
+    text = data.text()
+    assert "--set" not in text and "choose rk4 in the integrator menu" in text
+    assert "Δt = 0.1 s is longer than the data's sample interval" in text
+    assert "move the Δt slider to 0.001 s" in data.text(dt_slider=True)
+
+
+def test_an_answer_overtaken_by_a_newer_request_is_dropped(spring):
+    setup, _ = spring
+    data = fitting(spring)
     moved = setup.with_values(k=50.0)
     data.compare(moved, "euler-cromer")          # a slider moved while the fit ran
     result = answer(data)
