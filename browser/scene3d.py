@@ -11,7 +11,7 @@ import math
 
 import numpy as np
 
-from export.framing import CANVAS_SIZE, camera_range, frame, mass_radius, motion_box
+from export.framing import CANVAS_SIZE, Camera, camera_range, frame, mass_radius, motion_box
 from export.palette import mass_colours
 
 from .mass_labels import mass_labels
@@ -48,11 +48,11 @@ class Scene3D:
                          color=vp.vector(*SUPPORT_COLOUR))
         self.wall = framed.wall
         # Rows one behind another (resonance) hid each other from the front: look down on them a little.
-        self.pitch = framed.pitch
+        self.pitch = framed.camera.pitch
         canvas.forward = vp.vector(0, -self.pitch, -1)
         self.support_box = (framed.support_pos - 0.5 * framed.support_size,
                             framed.support_pos + 0.5 * framed.support_size)
-        self.centre, self.range, self.max_range = self._frame_camera(framed.centre, framed.range)
+        self.centre, self.range, self.max_range = self._frame_camera(framed.camera.centre, framed.camera.range)
         self.follows_from_start = self._follow_if_tiny(model.state.r)
         self.following = self.follows_from_start  # the camera follows the masses (they left the widest view)
         self.home, self.home_range = self.centre, self.range
@@ -136,6 +136,10 @@ class Scene3D:
         canvas.center = vec(self.vp, centre)
         canvas.range = reach
         return np.asarray(centre, float), reach, 2 * reach
+
+    def camera(self) -> Camera:
+        """What the camera shows now: where it looks, its range (after any zoom out), its pitch."""
+        return Camera(centre=np.asarray(self.centre, float), range=float(self.range), pitch=self.pitch)
 
     def make_room(self, reach: float) -> None:
         """Widen the picture to this range, m (the arrows' tips at their scales), never narrow it."""

@@ -18,38 +18,48 @@ ROWS_PITCH = 0.45         # the camera looks down this much (forward's y to its 
 
 
 @dataclass(frozen=True)
-class Frame:
-    """What the camera shows: centre, m; range, m (centre to top edge); pitch (forward's y to its
-    z); the masses' radius, m; and the support's box (its centre and size, m), a wall or a ceiling."""
+class Camera:
+    """What the camera shows: it looks at centre, m, from range, m, away from the top edge (the
+    sides are range × width / height away), along forward = (0, −pitch, −1)."""
 
     centre: np.ndarray
     range: float
-    pitch: float
-    radius: float
-    support_pos: np.ndarray
-    support_size: np.ndarray
-    wall: bool
-
-    def forward(self) -> np.ndarray:
-        return np.array([0.0, -self.pitch, -1.0])
+    pitch: float = 0.0
 
     def on_screen(self, points) -> np.ndarray:
         """Points (…, 3), m, as (right, up) distances from the picture's centre, m."""
-        forward = self.forward() / np.linalg.norm(self.forward())
+        forward = np.array([0.0, -self.pitch, -1.0]) / np.hypot(1.0, self.pitch)
         up = np.array([0.0, 1.0, 0.0]) - forward[1] * forward
         up /= np.linalg.norm(up)
         right = np.cross(forward, up)
         d = np.asarray(points, float) - self.centre
         return np.stack([d @ right, d @ up], axis=-1)
 
+    def half(self) -> np.ndarray:
+        """The distances from the centre to the picture's side and top edges, m."""
+        width, height = CANVAS_SIZE
+        return np.array([self.range * width / height, self.range])
+
     def range_holding(self, points) -> float:
-        """The smallest range, m, at which the camera (same centre) shows every finite point."""
+        """The smallest range, m, at which this camera (same centre) shows every finite point."""
         screen = self.on_screen(points).reshape(-1, 2)
         screen = screen[np.all(np.isfinite(screen), axis=1)]
         if not len(screen):
             return 0.0
         width, height = CANVAS_SIZE
         return float(max(np.abs(screen[:, 1]).max(), np.abs(screen[:, 0]).max() * height / width))
+
+
+@dataclass(frozen=True)
+class Frame:
+    """The page's framing at t = 0: the camera, the masses' radius, m, and the support's box (its
+    centre and size, m), a wall or a ceiling."""
+
+    camera: Camera
+    radius: float
+    support_pos: np.ndarray
+    support_size: np.ndarray
+    wall: bool
 
 
 def frame(model, view: dict) -> Frame:
@@ -83,8 +93,8 @@ def frame(model, view: dict) -> Frame:
         high = np.maximum(high, [centre[0] + span_x / 2, ceiling_y + thickness, high[2]])
     pitch = ROWS_PITCH if rows else 0.0
     low, high = low - 0.3 * radius, high + 0.3 * radius
-    return Frame(centre=0.5 * (low + high), range=camera_range(low, high, pitch), pitch=pitch, radius=radius,
-                 support_pos=pos, support_size=size, wall=wall)
+    camera = Camera(centre=0.5 * (low + high), range=camera_range(low, high, pitch), pitch=pitch)
+    return Frame(camera=camera, radius=radius, support_pos=pos, support_size=size, wall=wall)
 
 
 def camera_range(low, high, pitch: float = 0.0) -> float:

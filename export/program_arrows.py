@@ -57,12 +57,13 @@ def _made_per_force(model, *, single: bool) -> list[str]:
                     f"        forcearrows[i].append({make})"]
 
 
-def setup_lines(model, *, shown, integrator: str | None, single: bool) -> list[str]:
-    """The scales and the arrows, made where each mass starts (after the program's objects)."""
+def setup_lines(model, *, shown, integrator: str | None, single: bool, view: dict) -> list[str]:
+    """The scales (the page's, for the scene's view) and the arrows, made where each mass starts
+    (after the program's objects)."""
     kinds = [kind for kind in WRITTEN if kind in shown]
     if not kinds:
         return []
-    scales = choose_scales(model, integrator=integrator)
+    scales = choose_scales(model, view=view, integrator=integrator)
     lines = ["", f"# ---- the arrows: {', '.join(kinds)} at fixed scales, as on the page ----"]
     if "p" in kinds:
         lines.append(commented(f"pscale = 1/{scales.p_unit:g}",

@@ -8,6 +8,7 @@ import numpy as np
 import pytest
 
 from export.arrows import choose_scales
+from scenes._view import DEFAULT_VIEW
 from export.palette import ARROW_COLOURS
 from physics.forces import net_force
 from physics.state import velocity
@@ -33,7 +34,7 @@ def test_the_programs_arrows_end_on_the_final_p_and_F_net(args, stand_in, tmp_pa
     t_end, r_end, p_end = final_state(drawn)   # the program's own, to every digit
     answers = [(t_end, r, p) for r, p in zip(r_end, p_end)]
     model = setup.build()
-    scales = choose_scales(model, integrator=integrator)
+    scales = choose_scales(model, view={**DEFAULT_VIEW, **setup.hooks.view}, integrator=integrator)
     result = headless.simulate(setup, model=model, integrator=integrator, every_step=True, progress=None)
     traj = result.trajectory
     p, r = traj.p[-1], traj.r[-1]
@@ -96,7 +97,7 @@ def test_the_programs_forces_and_split_arrows_are_the_pages(args, stand_in, tmp_
     answers = [(t_end, r, p) for r, p in zip(r_end, p_end)]
     integrator = rest[rest.index("--integrator") + 1] if "--integrator" in rest else None
     model = setup.build()
-    scales = choose_scales(model, integrator=integrator)
+    scales = choose_scales(model, view={**DEFAULT_VIEW, **setup.hooks.view}, integrator=integrator)
     traj = headless.simulate(setup, model=model, integrator=integrator, every_step=True, progress=None).trajectory
     m, count, kinds = traj.m, model.state.count, len(model.forces)
     each_last = forces_each(model.forces, traj.t[-2], traj.r[-2], velocity(traj.p[-2], m), m)
