@@ -354,3 +354,54 @@ def test_the_longest_arrow_of_a_run_uses_most_of_its_room(name, scenario, least)
         for kind, axes in (("p", arrows.scales.momentum_axis(p)), ("F_net", arrows.scales.force_axis(F))):
             longest[kind] = max(longest[kind], np.nanmax(room_used(camera, r, axes, ceiling=ceiling)))
     assert min(longest.values()) >= least, f"{name}: the longest arrows reach {longest} of the way to the edge"
+
+
+def test_reset_rescales_against_the_picture_the_camera_shows():
+    """An arrow tip that left the picture the page's camera showed makes the next Reset pick the
+    next round scale that keeps every tip of that run in it, and only then. The camera here is
+    moved closer, on the swing itself (pendulum: looking straight on, so the picture is x and y
+    within range × 900/440 and range of its centre); the old rule compared the largest |p| with
+    twice its own reach and kept the scale, though the tips were out of the picture."""
+    from browser.arrows3d import MomentumArrows
+    from browser.clock import LiveRun
+    from browser.scene3d import CANVAS_SIZE, Scene3D
+
+    setup = catalog.configure("pendulum")
+    model = setup.build()
+    vp = stand_in_with_arrows()
+    scene = Scene3D(vp, model=model, view=view_of(setup), title="pendulum")
+    arrows = MomentumArrows(vp, model=model, integrator=DEFAULT_INTEGRATOR, shown={"p"}, radius=scene.radius,
+                            view=view_of(setup), make_room=scene.make_room, camera=scene.camera)
+    live = LiveRun(model, integrator=DEFAULT_INTEGRATOR)
+
+    def run(seconds: float):
+        """Draw a frame every 0.05 s; the masses' r and p at each, and the p arrow's tip drawn."""
+        r, p, tips = [], [], []
+        for _ in range(round(seconds / 0.05)):
+            live.advance(round(0.05 / model.dt))
+            arrows.draw(live)
+            r.append(live.state.r[0].copy())
+            p.append(live.state.p[0].copy())
+            tips.append(np.array(arrows.p[0].pos) + np.array(arrows.p[0].axis))
+        return np.array(r), np.array(p), np.array(tips)
+
+    def inside(tips) -> bool:
+        width, height = CANVAS_SIZE
+        half = np.array([scene.range * width / height, scene.range]) - TIP_ROOM * scene.radius
+        return bool(np.all(np.abs(tips[:, :2] - scene.centre[:2]) <= half))
+
+    r, p, tips = run(10.0)
+    first = arrows.scales
+    assert inside(tips) and np.allclose(tips, r + p / first.p_unit)   # framed for them: Reset keeps the scales
+    live.restart()
+    arrows.reset()
+    assert arrows.scales == first
+
+    scene.centre, scene.range = np.array([0.0, -1.3, 0.0]), 0.3   # the picture the camera shows: closer
+    r, p, tips = run(10.0)
+    assert inside(r) and not inside(tips)
+    live.restart()
+    arrows.reset()
+    unit = arrows.scales.p_unit
+    assert is_round(unit) and unit > first.p_unit and arrows.scales.F_unit == first.F_unit
+    assert inside(r + p / unit) and not inside(r + p / next_smaller(unit))   # the next round scale that keeps them in
