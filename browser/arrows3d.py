@@ -28,7 +28,7 @@ import json
 
 import numpy as np
 
-from export.arrows import (ARROW_LABELS, ARROWS, TIP_ROOM, choose_scales, force_name, forces_each, split,
+from export.arrows import (ARROW_LABELS, ARROWS, LABEL_PX, TIP_ROOM, choose_scales, force_name, forces_each, split,
                            unit_keeping_in)
 from export.palette import ARROW_COLOURS
 from physics.forces import net_force
@@ -103,8 +103,9 @@ class MomentumArrows:
     def _label(self, colour: str, *, below: bool = False):
         """A label in the arrow's colour, 18 px (read from the back row), above its point or below it."""
         vp = self.vp
-        label = vp.label(pos=vp.vector(0, 0, 0), text="", height=18, color=vp.vector(*ARROW_COLOURS[colour]),
-                         box=False, line=False, xoffset=20, yoffset=-16 if below else 16, visible=False)
+        label = vp.label(pos=vp.vector(0, 0, 0), text="", height=LABEL_PX["height"],
+                         color=vp.vector(*ARROW_COLOURS[colour]), box=False, line=False, xoffset=LABEL_PX["xoffset"],
+                         yoffset=-LABEL_PX["yoffset"] if below else LABEL_PX["yoffset"], visible=False)
         self.shapes.append(label)
         return label
 

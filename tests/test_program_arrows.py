@@ -78,10 +78,10 @@ def test_no_arrows_writes_none(stand_in, tmp_path):  # noqa: F811
                                   ("driven", "--scenario", "3", "--integrator", "rk4", "--set", "until=4")])
 def test_the_programs_forces_and_split_arrows_are_the_pages(args, stand_in, tmp_path):  # noqa: F811
     """`--arrows forces,split`: the program draws each force on its own thin grey arrow, tip to tail,
-    ending at F_net's tip, and F∥ (sky blue) and F⊥ (white), in the page's colours and at the
-    page's force scale; at the end F⊥ is across the final p, F∥ + F⊥ = F_net, and each force is
+    ending at F_net's tip, named beside its middle, and F∥ (sky blue) and F⊥ (white), each
+    labelled at its tip with its size in N, in the page's colours and at the page's force scale; at the end F⊥ is across the final p, F∥ + F⊥ = F_net, and each force is
     the engine's force of the last update (euler-cromer) at that scale."""
-    from export.arrows import forces_each, split
+    from export.arrows import force_name, forces_each, split
 
     path = tmp_path / "program.py"
     web = tmp_path / "web.py"
@@ -108,6 +108,9 @@ def test_the_programs_forces_and_split_arrows_are_the_pages(args, stand_in, tmp_
                 if shown["kind"] == "arrow" and shown["color"] == pytest.approx(list(ARROW_COLOURS[kind]))]
     F_arrows, force_arrows = arrows("F_net"), arrows("forces")
     par, perp = arrows("F_par"), arrows("F_perp")
+    labels = {kind: [shown for shown in drawn if shown["kind"] == "label"
+                     and shown["color"] == pytest.approx(list(ARROW_COLOURS[kind]))] for kind in ("forces", "F_par", "F_perp")}
+    assert [len(labels[kind]) for kind in labels] == [count * kinds, count, count]
     assert len(F_arrows) == len(par) == len(perp) == count and len(force_arrows) == count * kinds
     for i in range(count):
         r, p = answers[i][1], answers[i][2]
@@ -117,6 +120,11 @@ def test_the_programs_forces_and_split_arrows_are_the_pages(args, stand_in, tmp_
         for a, b in zip(mine, mine[1:]):   # tip to tail
             assert np.allclose(np.array(a["pos"]) + a["axis"], b["pos"], atol=1e-9)
         assert np.allclose(np.array(mine[-1]["pos"]) + mine[-1]["axis"], r + F, atol=1e-9)   # ends at F_net's tip
+        names = labels["forces"][i * kinds:(i + 1) * kinds]   # each force named, as on the page, beside its middle
+        assert [label["text"] for label in names] == [force_name(force) for force in model.forces]
+        for label, a in zip(names, mine):
+            assert np.allclose(label["pos"], np.array(a["pos"]) + 0.5 * np.array(a["axis"]), atol=1e-9)
+            assert label["height"] >= 18 and label["box"] is False
         assert all(a["shaftwidth"] < F_arrows[i]["shaftwidth"] for a in mine)               # thin, as on the page
         if integrator is None:   # euler-cromer: each force of the last update, at the page's scale
             for n in range(kinds):
@@ -126,6 +134,10 @@ def test_the_programs_forces_and_split_arrows_are_the_pages(args, stand_in, tmp_
         assert np.allclose(F_par + F_perp, F, atol=1e-12)
         assert abs(F_perp @ p) <= 1e-9 * max(1.0, np.linalg.norm(F_perp) * np.linalg.norm(p))   # across p
         assert abs(F_par @ p) == pytest.approx(np.linalg.norm(F_par) * np.linalg.norm(p), rel=1e-9)  # along p
+        for label, part, symbol in ((labels["F_par"][i], F_par, "F∥"), (labels["F_perp"][i], F_perp, "F⊥")):
+            assert np.allclose(label["pos"], r + part, atol=1e-9) and label["height"] >= 18   # at its tip
+            assert label["text"] == f"{symbol} = {np.linalg.norm(part) * scales.F_unit:.3g} N"
+        assert labels["F_perp"][i]["yoffset"] < 0 < labels["F_par"][i]["yoffset"]   # short ones apart
         # parallel to the engine's own split of the final F_net along the final p
         for drawn_part, engine_part in ((F_par, along[i]), (F_perp, across[i])):
             size = np.linalg.norm(engine_part) / scales.F_unit
@@ -135,6 +147,7 @@ def test_the_programs_forces_and_split_arrows_are_the_pages(args, stand_in, tmp_
     # expression; no f-strings
     code = [line.split("#")[0] for line in web.read_text().splitlines()]
     assert code[0].startswith("Web VPython 3.2") and ".axis = Fscale*Fpar" in web.read_text()
+    assert '.text = "F∥ = {:.3g} N".format(mag(Fpar))' in web.read_text()   # str.format, as the answer's print
     assert "Fpar = dot(Fnet, phat)*phat" in [line.strip() for line in code]
     assert all(line.strip().startswith("if ") for line in code if " if " in f" {line.strip()} ")
     assert not any('f"' in line or "f'" in line for line in code)
