@@ -119,7 +119,8 @@ class MomentumArrows:
     def scales(self):
         """The run's scales (export/arrows.py), chosen the first time they are needed."""
         if self._scales is None:
-            self._scales = choose_scales(self.model, view=self.view, integrator=self.integrator)
+            self._scales = choose_scales(self.model, view=self.view, integrator=self.integrator,
+                                         forces="forces" in self.shown)
             self.make_room(self._scales.view_range)
         return self._scales
 

@@ -17,7 +17,8 @@ whose tips all stay in the picture when it widens by at most GROW. The picture t
 hold them, so the longest arrow of the run reaches (nearly) the picture's edge: the rounding
 costs room only when the next round step would need the picture to widen more than that. The
 force scale is chosen from F_net, the arrow the lesson is about; a single force (gravity on a
-hanging mass) may be drawn longer than F_net ever is. Nothing here imports vpython.
+hanging mass) may be drawn longer than F_net ever is, unless the run shows each force. Nothing
+here imports vpython.
 """
 from __future__ import annotations
 
@@ -138,9 +139,11 @@ def split(F_net, p) -> tuple[np.ndarray, np.ndarray]:
     return along, F_net - along
 
 
-def sampled(model, *, integrator: str | None = None) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+def sampled(model, *, integrator: str | None = None, chain: bool = False) -> tuple[np.ndarray, ...]:
     """r (m), p (kg·m/s) and F_net (N), each (samples, masses, 3), over a short run of the engine
-    from the model's start (SCALE_RUN s, at most SCALE_STEPS steps, about 200 samples).
+    from the model's start (SCALE_RUN s, at most SCALE_STEPS steps, about 200 samples). With
+    chain, the third is (forces + 1, samples, masses, 3): F_net, then where each force drawn tip
+    to tail ends (the first force, the first two added, ...), N.
 
     Masses the scene expects to run away are left out, and a run that blows up is judged on the
     steps before it did.
@@ -163,8 +166,11 @@ def sampled(model, *, integrator: str | None = None) -> tuple[np.ndarray, np.nda
             break
         rs.append(r[n][kept])
         ps.append(p[n][kept])
-        Fs.append(net_force(model.forces, t[n], r[n], velocity(p[n], m), m)[kept])
-    return np.array(rs), np.array(ps), np.array(Fs)
+        v = velocity(p[n], m)
+        ends = np.cumsum(forces_each(model.forces, t[n], r[n], v, m), axis=0)[:, kept] if chain else []
+        Fs.append([net_force(model.forces, t[n], r[n], v, m)[kept], *ends])
+    Fs = np.moveaxis(np.array(Fs), 1, 0)
+    return np.array(rs), np.array(ps), Fs if chain else Fs[0]
 
 
 def largest(model, *, integrator: str | None = None) -> tuple[float, float]:
@@ -192,14 +198,20 @@ def _longest_that_fit(camera: Camera, r, q, *, margin: float, ceiling: float) ->
     return unit, max(camera.range, needed(unit))
 
 
-def choose_scales(model, *, view: dict, integrator: str | None = None) -> ArrowScales:
+def choose_scales(model, *, view: dict, integrator: str | None = None, forces: bool = False) -> ArrowScales:
     """One scale for momentum and one for forces, for a run of this model shown in the page's
     picture of it (view: the scene's VIEW with the defaults): the longest arrows at a round scale
-    that the picture, widened by at most GROW, holds over the run (_longest_that_fit)."""
+    that the picture, widened by at most GROW, holds over the run (_longest_that_fit). The force
+    scale fits F_net; with forces (each force drawn, tip to tail) every force's tip too, so a
+    hanging mass's spring (176 N at the bottom of `vertical`, where F_net is 78 N) stays in."""
     framed = frame(model, view)
-    r, p, F = sampled(model, integrator=integrator)
+    r, p, F = sampled(model, integrator=integrator, chain=forces)
+    if forces:
+        r_each, F = np.concatenate([r] * len(F)), np.concatenate(F)
+    else:
+        r_each = r
     margin = TIP_ROOM * framed.radius
     ceiling = math.inf if framed.wall else float(framed.support_pos[1] - framed.support_size[1] / 2)
     p_unit, p_range = _longest_that_fit(framed.camera, r, p, margin=margin, ceiling=ceiling)
-    F_unit, F_range = _longest_that_fit(framed.camera, r, F, margin=margin, ceiling=ceiling)
-    return ArrowScales(p_unit=p_unit, F_unit=F_unit, view_range=max(p_range, F_range))
+    F_unit, F_range = _longest_that_fit(framed.camera, r_each, F, margin=margin, ceiling=ceiling)
+    return ArrowScales(p_unit=p_unit, F_unit=F_unit, view_range=float(max(p_range, F_range)))

@@ -16,8 +16,8 @@ added up (Fspring, Fgravity, ... in the order of Fnet's sum) on its own thin gre
 tail, so the last ends at F_net's tip, with its name (`spring`) beside its middle. "split" draws
 F∥ = (F_net·p̂) p̂ (sky blue, it changes the speed) and F⊥ = F_net − F∥ (white, it changes the
 direction), each labelled at its tip with its size (`F∥ = 3.95 N`); from rest (p = 0) F∥ is all of
-F_net, as on the page (export/arrows.py's split). Labels are 18 px, as on the page. The arrows only read the state, so the program's
-arithmetic stays the engine's. The lines keep to what GlowScript 3.2 (Web VPython) reads: no
+F_net, as on the page (export/arrows.py's split). Labels are 18 px, as on the page. The arrows
+only read the state, so the program's arithmetic stays the engine's. The lines keep to what GlowScript 3.2 (Web VPython) reads: no
 f-strings, no conditional expressions, lists made with append.
 """
 from __future__ import annotations
@@ -74,7 +74,7 @@ def setup_lines(model, *, shown, integrator: str | None, single: bool, view: dic
     kinds = [kind for kind in WRITTEN if kind in shown]
     if not kinds:
         return []
-    scales = choose_scales(model, view=view, integrator=integrator)
+    scales = choose_scales(model, view=view, integrator=integrator, forces="forces" in kinds)
     lines = ["", f"# ---- the arrows: {', '.join(kinds)} at fixed scales, as on the page ----"]
     if "p" in kinds:
         lines.append(commented(f"pscale = 1/{scales.p_unit:g}",

@@ -68,7 +68,8 @@ def test_the_scales_are_round_and_the_longest_arrows_that_fit(scene):
             tips, longer = r + q / unit, r + q / next_smaller(unit)
             assert camera.range_holding(tips) + margin <= scales.view_range * (1 + 1e-12)   # fits ...
             assert np.all(tips[..., 1] <= ceiling)
-            assert camera.range_holding(longer) + margin > GROW * base or np.any(longer[..., 1] > ceiling)  # ... as long as can
+            # ... as long as can be
+            assert camera.range_holding(longer) + margin > GROW * base or np.any(longer[..., 1] > ceiling)
 
 
 def test_vertical_scales_by_hand():
@@ -84,6 +85,11 @@ def test_vertical_scales_by_hand():
     scales = choose_scales(setup.build(), view=view_of(setup))
     assert (scales.p_unit, scales.F_unit) == (20, 20)
     assert scales.legend() == "an arrow of 1 m = 20 kg·m/s for p, 20 N for forces"
+    # With each force drawn tip to tail, the spring's arrow starts at the mass: at the bottom it
+    # pulls k (5.4 − L0) = 40 × 4.4 = 176 N up, 8.8 m at 20 N per m, through the ceiling; at 50 N
+    # per m 3.52 m, to −1.88 m. The page (and the program) with "forces" on choose 50.
+    with_forces = choose_scales(setup.build(), view=view_of(setup), forces=True)
+    assert (with_forces.p_unit, with_forces.F_unit) == (20, 50)
 
 
 def test_refitted_only_grows_to_the_next_round_scale_that_keeps_the_tips_in():
@@ -328,7 +334,7 @@ def test_the_arrows_stay_in_the_picture_the_page_frames(name, scenario):
     for t, r, p, F in run_30_s(scene_model(name, scenario)):
         for axes in (scales.momentum_axis(p), scales.force_axis(F)):
             used = room_used(camera, r, axes)
-            assert np.all(used <= 1), f"{name}: an arrow ends {np.nanmax(used):.2f} of the way to the edge at t = {t:.2f} s"
+            assert np.all(used <= 1), f"{name}: an arrow ends {np.nanmax(used):.2f} of the way to the edge, t = {t:.2f} s"
             if not scene.wall:
                 through = (r + axes)[:, 1] - scene.support_box[0][1]
                 assert np.all(through <= 0), f"{name}: an arrow ends {through.max():.2f} m above the ceiling"

@@ -97,7 +97,8 @@ def test_the_programs_forces_and_split_arrows_are_the_pages(args, stand_in, tmp_
     answers = [(t_end, r, p) for r, p in zip(r_end, p_end)]
     integrator = rest[rest.index("--integrator") + 1] if "--integrator" in rest else None
     model = setup.build()
-    scales = choose_scales(model, view={**DEFAULT_VIEW, **setup.hooks.view}, integrator=integrator)
+    scales = choose_scales(model, view={**DEFAULT_VIEW, **setup.hooks.view}, integrator=integrator,
+                           forces=True)   # each force drawn: the page's scale with them on
     traj = headless.simulate(setup, model=model, integrator=integrator, every_step=True, progress=None).trajectory
     m, count, kinds = traj.m, model.state.count, len(model.forces)
     each_last = forces_each(model.forces, traj.t[-2], traj.r[-2], velocity(traj.p[-2], m), m)
