@@ -406,6 +406,7 @@ def test_reset_rescales_against_the_picture_the_camera_shows():
     scene.centre, scene.range = np.array([0.0, -1.3, 0.0]), 0.3   # the picture the camera shows: closer
     r, p, tips = run(10.0)
     assert inside(r) and not inside(tips)
+    assert arrows.scales == first and np.allclose(tips, r + p / first.p_unit)   # fixed through the run
     live.restart()
     arrows.reset()
     unit = arrows.scales.p_unit
