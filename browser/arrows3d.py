@@ -100,11 +100,14 @@ class MomentumArrows:
         return vp.arrow(pos=vp.vector(0, 0, 0), axis=vp.vector(width, 0, 0), color=vp.vector(*ARROW_COLOURS[colour]),
                         shaftwidth=width, visible=False)
 
-    def _label(self, colour: str, *, below: bool = False):
-        """A label in the arrow's colour, 18 px (read from the back row), above its point or below it."""
+    def _label(self, colour: str, *, below: bool = False, left: bool = False):
+        """A label in the arrow's colour, 18 px (read from the back row), above its point or below
+        it, and right of it or (left) ending left of it."""
         vp = self.vp
         label = vp.label(pos=vp.vector(0, 0, 0), text="", height=LABEL_PX["height"],
-                         color=vp.vector(*ARROW_COLOURS[colour]), box=False, line=False, xoffset=LABEL_PX["xoffset"],
+                         color=vp.vector(*ARROW_COLOURS[colour]), box=False, line=False,
+                         xoffset=-LABEL_PX["xoffset"] if left else LABEL_PX["xoffset"],
+                         align="right" if left else "left",
                          yoffset=-LABEL_PX["yoffset"] if below else LABEL_PX["yoffset"], visible=False)
         self.shapes.append(label)
         return label
@@ -224,12 +227,14 @@ class MomentumArrows:
             arrow.visible = visible
 
     def _draw_forces(self, i: int, at, each, visible: bool) -> None:
-        """Each force on mass i on its own arrow, tip to tail, labelled with its name."""
+        """Each force on mass i on its own arrow, tip to tail, labelled with its name (every other
+        one on the left)."""
         arrows, labels = self.forces[i], self.force_labels[i]
         if visible:
             while len(arrows) < len(each):
                 arrows.append(self._arrow("forces", thin=True))
-                labels.append(self._label("forces"))
+                labels.append(self._label("forces", left=len(labels) % 2 == 1))   # tip to tail, two forces
+                # along one line (a hanging mass's spring and gravity) have their names on either side
                 self.shapes.append(arrows[-1])
                 self.publish()
         tail = np.asarray(at, float)

@@ -17,8 +17,9 @@ tail, so the last ends at F_net's tip, with its name (`spring`) beside its middl
 F∥ = (F_net·p̂) p̂ (sky blue, it changes the speed) and F⊥ = F_net − F∥ (white, it changes the
 direction), each labelled at its tip with its size (`F∥ = 3.95 N`); from rest (p = 0) F∥ is all of
 F_net, as on the page (export/arrows.py's split). Labels are 18 px, as on the page. The arrows
-only read the state, so the program's arithmetic stays the engine's. The lines keep to what GlowScript 3.2 (Web VPython) reads: no
-f-strings, no conditional expressions, lists made with append.
+only read the state, so the program's arithmetic stays the engine's. The lines keep to what
+GlowScript 3.2 (Web VPython) reads: no f-strings, no conditional expressions, lists made with
+append.
 """
 from __future__ import annotations
 
@@ -38,11 +39,13 @@ def _arrow(kind: str, *, at: str, axis: str = "vector(0, 0, 0)", shaft: str = SH
     return f"arrow(pos={at}, axis={axis}, color={_colour(kind)}, shaftwidth={shaft})"
 
 
-def _label(kind: str, *, at: str, text: str, below: bool = False) -> str:
-    """A label in the arrow's colour, as the page's: 18 px, beside its point (F⊥'s below it)."""
+def _label(kind: str, *, at: str, text: str, below: bool = False, side: tuple = ()) -> str:
+    """A label in the arrow's colour, as the page's: 18 px, right of its point (F⊥'s below it), or
+    on the side named by the expressions side = (xoffset, align)."""
     yoffset = -LABEL_PX["yoffset"] if below else LABEL_PX["yoffset"]
+    xoffset, align = side or (LABEL_PX["xoffset"], '"left"')
     return (f"label(pos={at}, text={text}, height={LABEL_PX['height']}, color={_colour(kind)}, box=False, "
-            f"line=False, xoffset={LABEL_PX['xoffset']}, yoffset={yoffset})")
+            f"line=False, xoffset={xoffset}, align={align}, yoffset={yoffset})")
 
 
 def _made(name: str, make: str, *, single: bool, comment: str) -> list[str]:
@@ -56,12 +59,17 @@ def _made(name: str, make: str, *, single: bool, comment: str) -> list[str]:
 def _made_per_force(model, *, single: bool) -> list[str]:
     """forcearrows: a thin grey arrow per force (per mass: forcearrows[i]), in the order of Fnet's sum."""
     at = "pos" if single else "pos[i]"
-    make, named = _arrow("forces", at=at, shaft=THIN), _label("forces", at=at, text="forcenames[j]")
+    make = _arrow("forces", at=at, shaft=THIN)
+    named = _label("forces", at=at, text="forcenames[j]", side=("forcexoffsets[j]", "forcealigns[j]"))
     names = ", ".join(force_name(force) for force in model.forces)
-    each = f"for j in range({len(model.forces)}):"
+    count = len(model.forces)
+    each = f"for j in range({count}):"
+    x = LABEL_PX["xoffset"]
     lines = [commented("forcearrows = []", f"grey, tip to tail, one per force: {names}"),
-             commented("forcelabels = []", "each force's name beside its arrow"),
-             "forcenames = [" + ", ".join(f'"{force_name(force)}"' for force in model.forces) + "]"]
+             commented("forcelabels = []", "each force's name beside its arrow, every other one on the left"),
+             "forcenames = [" + ", ".join(f'"{force_name(force)}"' for force in model.forces) + "]",
+             "forcexoffsets = [" + ", ".join(str(-x if j % 2 else x) for j in range(count)) + "]",
+             "forcealigns = [" + ", ".join('"right"' if j % 2 else '"left"' for j in range(count)) + "]"]
     if single:
         return lines + [each, f"    forcearrows.append({make})", f"    forcelabels.append({named})"]
     return lines + ["for i in range(len(pos)):", "    forcearrows.append([])", "    forcelabels.append([])",

@@ -237,6 +237,8 @@ def test_the_page_arrows_are_scale_times_the_engines_p_and_F_net_and_made_only_w
     assert np.allclose(along + across, F[0] / scales.F_unit) and abs(across @ s.p[0]) < 1e-9
     assert arrows.parts[0][2].text.startswith("F∥ = ") and arrows.parts[0][2].text.endswith(" N")
     assert [label.text for label in arrows.force_labels[0]] == ["spring", "gravity"]
+    spring, gravity = arrows.force_labels[0]     # along one line under a ceiling: names on either side
+    assert spring.xoffset > 0 > gravity.xoffset and (spring.align, gravity.align) == ("left", "right")
 
 
 @pytest.mark.parametrize("args, message", [

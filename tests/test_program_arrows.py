@@ -123,9 +123,11 @@ def test_the_programs_forces_and_split_arrows_are_the_pages(args, stand_in, tmp_
         assert np.allclose(np.array(mine[-1]["pos"]) + mine[-1]["axis"], r + F, atol=1e-9)   # ends at F_net's tip
         names = labels["forces"][i * kinds:(i + 1) * kinds]   # each force named, as on the page, beside its middle
         assert [label["text"] for label in names] == [force_name(force) for force in model.forces]
-        for label, a in zip(names, mine):
+        for n, (label, a) in enumerate(zip(names, mine)):
             assert np.allclose(label["pos"], np.array(a["pos"]) + 0.5 * np.array(a["axis"]), atol=1e-9)
             assert label["height"] >= 18 and label["box"] is False
+            # every other name on the left: a hanging mass's spring and gravity lie along one line
+            assert (label["xoffset"] < 0, label["align"]) == ((True, "right") if n % 2 else (False, "left"))
         assert all(a["shaftwidth"] < F_arrows[i]["shaftwidth"] for a in mine)               # thin, as on the page
         if integrator is None:   # euler-cromer: each force of the last update, at the page's scale
             for n in range(kinds):
