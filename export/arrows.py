@@ -82,20 +82,22 @@ class ArrowScales:
                            F_unit=max(self.F_unit, round_scale(F_needed)), view_range=self.view_range)
 
 
-def room_used(camera: Camera, r, axes, *, margin: float = 0.0, ceiling: float = math.inf) -> np.ndarray:
+def room_used(camera: Camera, r, axes, *, margin: float = 0.0, face=None) -> np.ndarray:
     """Each arrow (axes, m, from r, both (N, 3)) as a fraction of the distance from its mass to the
     edge of the camera's picture (margin m inside it) in the arrow's direction on the screen, or
-    up to the ceiling (its height, m) if it points up and that is nearer: 1 is a tip on that edge,
-    over 1 a tip out of the picture or through the ceiling. 0 for an arrow of no length on the
-    screen, nan for a mass that is itself out of the picture."""
+    to the support's face (face: (axis, where, towards), Frame.face) if it points at it and that
+    is nearer: 1 is a tip on that edge, over 1 a tip out of the picture or through the support.
+    0 for an arrow of no length on the screen, nan for a mass that is itself out of the picture."""
     r, axes = np.asarray(r, float), np.asarray(axes, float)
     at = camera.on_screen(r)
     along = camera.on_screen(r + axes) - at
     half = camera.half() - margin
     with np.errstate(divide="ignore", invalid="ignore"):
         used = np.where(along != 0, along / (np.copysign(half, along) - at), 0.0).max(axis=-1)
-        up = np.where(axes[..., 1] > 0, axes[..., 1] / (ceiling - r[..., 1]), 0.0)
-    used = np.maximum(used, up)
+        if face is not None:
+            axis, where, towards = face
+            ahead = axes[..., axis] * towards
+            used = np.maximum(used, np.where(ahead > 0, ahead / ((where - r[..., axis]) * towards), 0.0))
     inside = np.all(np.abs(at) < half, axis=-1)
     return np.where(inside, used, np.nan)
 
@@ -179,17 +181,20 @@ def largest(model, *, integrator: str | None = None) -> tuple[float, float]:
     return (float(np.linalg.norm(p, axis=-1).max(initial=0.0)), float(np.linalg.norm(F, axis=-1).max(initial=0.0)))
 
 
-def _longest_that_fit(camera: Camera, r, q, *, margin: float, ceiling: float) -> tuple[float, float]:
+def _longest_that_fit(camera: Camera, r, q, *, margin: float, face) -> tuple[float, float]:
     """The smallest round scale for q (the longest arrows) at which the picture, widened by at most
-    GROW, holds every tip r + q / scale (margin m inside its edge) and no tip goes up through the
-    ceiling (at that height, m); and the range that needs, m."""
+    GROW, holds every tip r + q / scale (margin m inside its edge) and no tip goes through the
+    support's face (Frame.face: up through the ceiling, back through the wall); and the range
+    that needs, m."""
+    axis, where, towards = face
     size = float(np.linalg.norm(q, axis=-1).max(initial=0.0))
     if size == 0:
         return 1.0, camera.range
 
     def needed(unit: float) -> float:
         tips = r + q / unit
-        return camera.range_holding(tips) + margin if np.all(tips[..., 1] <= ceiling - margin) else math.inf
+        through = np.any((tips[..., axis] - where) * towards > -margin)
+        return math.inf if through else camera.range_holding(tips) + margin
 
     limit = GROW * max(camera.range, needed(math.inf))
     unit = round_scale(size / (0.01 * camera.range))   # arrows a hundredth of the picture: they fit
@@ -211,7 +216,6 @@ def choose_scales(model, *, view: dict, integrator: str | None = None, forces: b
     else:
         r_each = r
     margin = TIP_ROOM * framed.radius
-    ceiling = math.inf if framed.wall else float(framed.support_pos[1] - framed.support_size[1] / 2)
-    p_unit, p_range = _longest_that_fit(framed.camera, r, p, margin=margin, ceiling=ceiling)
-    F_unit, F_range = _longest_that_fit(framed.camera, r_each, F, margin=margin, ceiling=ceiling)
+    p_unit, p_range = _longest_that_fit(framed.camera, r, p, margin=margin, face=framed.face())
+    F_unit, F_range = _longest_that_fit(framed.camera, r_each, F, margin=margin, face=framed.face())
     return ArrowScales(p_unit=p_unit, F_unit=F_unit, view_range=float(max(p_range, F_range)))

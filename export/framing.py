@@ -61,6 +61,13 @@ class Frame:
     support_size: np.ndarray
     wall: bool
 
+    def face(self) -> tuple[int, float, int]:
+        """The support's face the masses hang or push from, as (axis, where, towards): the
+        ceiling's underside, y = where, above the masses (towards +y), or the wall's face,
+        x = where, left of them (towards −x). An arrow that crosses it reads as going through."""
+        low, high = self.support_pos - self.support_size / 2, self.support_pos + self.support_size / 2
+        return (0, float(high[0]), -1) if self.wall else (1, float(low[1]), 1)
+
 
 def frame(model, view: dict) -> Frame:
     """The page's framing of a scene at t = 0: its motion over the first 20 s (motion_box), the

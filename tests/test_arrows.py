@@ -60,16 +60,17 @@ def test_the_scales_are_round_and_the_longest_arrows_that_fit(scene):
     camera, margin = framed.camera, TIP_ROOM * framed.radius
     r, p, F = sampled(model)
     base = max(camera.range, camera.range_holding(r) + margin)
-    ceiling = np.inf if framed.wall else framed.support_pos[1] - framed.support_size[1] / 2 - margin
+    axis, where, towards = framed.face()   # the ceiling's underside or the wall's face
     assert camera.range <= scales.view_range <= GROW * base * (1 + 1e-12)
     for q, unit in ((p, scales.p_unit), (F, scales.F_unit)):
         assert is_round(unit)
         if np.any(q):
             tips, longer = r + q / unit, r + q / next_smaller(unit)
             assert camera.range_holding(tips) + margin <= scales.view_range * (1 + 1e-12)   # fits ...
-            assert np.all(tips[..., 1] <= ceiling)
+            assert np.all((tips[..., axis] - where) * towards <= -margin)   # not through the support
             # ... as long as can be
-            assert camera.range_holding(longer) + margin > GROW * base or np.any(longer[..., 1] > ceiling)
+            assert (camera.range_holding(longer) + margin > GROW * base
+                    or np.any((longer[..., axis] - where) * towards > -margin))
 
 
 def test_vertical_scales_by_hand():
@@ -328,18 +329,18 @@ def test_the_arrows_stay_in_the_picture_the_page_frames(name, scenario):
     """Every p and F_net arrow, at the run's scales, ends inside the 3-D view the page frames
     (browser/scene3d.py, drawn on the stand-in vpython, its camera as the page leaves it after
     the arrows are first drawn, looking along `forward`) over the 30 s the scales are chosen for;
-    under a ceiling, no arrow goes up through it. `resonance --arrows p` had its scale chosen from
-    the whole row's width (4.8 m) while each spring moves 1.8 m: its p arrows ran 2 m up, through
-    the ceiling to the top of the view."""
+    no arrow goes up through the ceiling or back through the wall. `resonance --arrows p` had its
+    scale chosen from the whole row's width (4.8 m) while each spring moves 1.8 m: its p arrows
+    ran 2 m up, through the ceiling to the top of the view."""
     scene, arrows, camera = page_picture(name, scenario)
     scales = arrows.scales
     for t, r, p, F in run_30_s(scene_model(name, scenario)):
         for axes in (scales.momentum_axis(p), scales.force_axis(F)):
             used = room_used(camera, r, axes)
-            assert np.all(used <= 1), f"{name}: an arrow ends {np.nanmax(used):.2f} of the way to the edge, t = {t:.2f} s"
-            if not scene.wall:
-                through = (r + axes)[:, 1] - scene.support_box[0][1]
-                assert np.all(through <= 0), f"{name}: an arrow ends {through.max():.2f} m above the ceiling"
+            assert np.all(used <= 1), f"{name}: an arrow ends {np.nanmax(used):.2f} of the way to the edge, t = {t:.1f} s"
+            through = (r + axes)[:, 1] - scene.support_box[0][1] if not scene.wall else \
+                scene.support_box[1][0] - (r + axes)[:, 0]
+            assert np.all(through <= 0), f"{name}: an arrow ends {through.max():.2f} m through the support"
 
 
 def scene_model(name, scenario):
@@ -351,16 +352,16 @@ def scene_model(name, scenario):
                                                    ("pendulum", None, 0.75)])
 def test_the_longest_arrow_of_a_run_uses_most_of_its_room(name, scenario, least):
     """Over 30 s the longest p arrow and the longest F_net arrow each reach most of the way from
-    their mass to the picture's edge, or to the ceiling (pendulum, the 0.12 m ball in a 2 m tall picture, over three
-    quarters). The scales used to be rounded up from half the motion's size with no regard to
+    their mass to the picture's edge, or to the ceiling or wall (pendulum, the 0.12 m ball in a 2 m
+    tall picture, over three quarters). The scales used to be rounded up from half the motion's size with no regard to
     where the edge was: pendulum's longest p and F_net arrows reached 0.56 and 0.50 of the way,
     integrators' 0.14 and 0.13."""
     scene, arrows, camera = page_picture(name, scenario)
-    ceiling = np.inf if scene.wall else scene.support_box[0][1]
+    face = (0, scene.support_box[1][0], -1) if scene.wall else (1, scene.support_box[0][1], 1)
     longest = {"p": 0.0, "F_net": 0.0}
     for t, r, p, F in run_30_s(scene_model(name, scenario)):
         for kind, axes in (("p", arrows.scales.momentum_axis(p)), ("F_net", arrows.scales.force_axis(F))):
-            longest[kind] = max(longest[kind], np.nanmax(room_used(camera, r, axes, ceiling=ceiling)))
+            longest[kind] = max(longest[kind], np.nanmax(room_used(camera, r, axes, face=face)))
     assert min(longest.values()) >= least, f"{name}: the longest arrows reach {longest} of the way to the edge"
 
 
