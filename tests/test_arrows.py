@@ -337,7 +337,7 @@ def test_the_arrows_stay_in_the_picture_the_page_frames(name, scenario):
     for t, r, p, F in run_30_s(scene_model(name, scenario)):
         for axes in (scales.momentum_axis(p), scales.force_axis(F)):
             used = room_used(camera, r, axes)
-            assert np.all(used <= 1), f"{name}: an arrow ends {np.nanmax(used):.2f} of the way to the edge, t = {t:.1f} s"
+            assert np.all(used <= 1), f"{name}: an arrow ends {np.nanmax(used):.2f} of the way out, t = {t:.1f} s"
             through = (r + axes)[:, 1] - scene.support_box[0][1] if not scene.wall else \
                 scene.support_box[1][0] - (r + axes)[:, 0]
             assert np.all(through <= 0), f"{name}: an arrow ends {through.max():.2f} m through the support"
