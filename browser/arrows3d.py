@@ -28,7 +28,7 @@ import json
 
 import numpy as np
 
-from export.arrows import (ARROW_LABELS, ARROWS, LABEL_PX, TIP_ROOM, choose_scales, force_name, forces_each, split,
+from export.arrows import (ARROW_LABELS, ARROWS, LABEL_PX, PART_DIGITS, TIP_ROOM, choose_scales, force_name, forces_each, split,
                            unit_keeping_in)
 from export.palette import ARROW_COLOURS
 from physics.forces import net_force
@@ -264,7 +264,7 @@ class MomentumArrows:
             self._place(arrow, at, axis, visible)
             if visible:
                 label.pos = self.vp.vector(*map(float, np.asarray(at) + axis))
-                label.text = f"{name} = {np.linalg.norm(F[i]):.3g} N"
+                label.text = f"{name} = {PART_DIGITS.format(np.linalg.norm(F[i]))} N"
             if label.visible != bool(visible and np.linalg.norm(axis) > 0):
                 label.visible = bool(visible and np.linalg.norm(axis) > 0)
 

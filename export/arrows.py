@@ -38,6 +38,8 @@ ARROWS = ("p", "F_net", "forces", "split")   # what --arrows and the page's chec
 ARROW_LABELS = {"p": "p", "F_net": "F_net", "forces": "forces", "split": "F∥ and F⊥"}
 LABEL_PX = {"height": 18, "xoffset": 20, "yoffset": 16}   # px: an arrow's label (the back row reads 18 px),
                                                          # beside its point; F⊥'s below it (−yoffset)
+PART_DIGITS = "{:.2f}"  # N: how F∥'s and F⊥'s labels write their sizes, on the page and in the program
+                       # (Web VPython's own '{:.3g}' writes 0.3135 as 0.314: 7 of a pendulum run's 401)
 GROW = 1.2            # the picture may widen this much (its range) to hold the arrows at a round scale
 TIP_ROOM = 0.3        # × the masses' radius: how far inside the picture's edge an arrow's tip stays
 SCALE_RUN = 30.0      # s: how far the short run that chooses the scales looks ahead (the graphs show 30 s)

@@ -15,7 +15,7 @@ F_net's arrow shows Fnet, the net force the update just used. "forces" puts each
 added up (Fspring, Fgravity, ... in the order of Fnet's sum) on its own thin grey arrow, tip to
 tail, so the last ends at F_net's tip, with its name (`spring`) beside its middle. "split" draws
 F∥ = (F_net·p̂) p̂ (sky blue, it changes the speed) and F⊥ = F_net − F∥ (white, it changes the
-direction), each labelled at its tip with its size (`F∥ = 3.95 N`); from rest (p = 0) F∥ is all of
+direction), each labelled at its tip with its size (`F∥ = 3.95 N`, PART_DIGITS); from rest (p = 0) F∥ is all of
 F_net, as on the page (export/arrows.py's split). Labels are 18 px, as on the page. The arrows
 only read the state, so the program's arithmetic stays the engine's. The lines keep to what
 GlowScript 3.2 (Web VPython) reads: no f-strings, no conditional expressions, lists made with
@@ -23,7 +23,7 @@ append.
 """
 from __future__ import annotations
 
-from .arrows import ARROWS, LABEL_PX, choose_scales, force_name
+from .arrows import ARROWS, LABEL_PX, PART_DIGITS, choose_scales, force_name
 from .lines import commented
 from .palette import ARROW_COLOURS
 
@@ -131,5 +131,5 @@ def loop_lines(model, *, shown, single: bool) -> list[str]:
         for name, part, symbol in (("par", "Fpar", "F∥"), ("perp", "Fperp", "F⊥")):
             lines += [f"{name}arrow{each}.pos = pos{i}", f"{name}arrow{each}.axis = Fscale*{part}",
                       f"{name}label{each}.pos = pos{i} + Fscale*{part}",
-                      f'{name}label{each}.text = "{symbol} = {{:.3g}} N".format(mag({part}))']
+                      f'{name}label{each}.text = "{symbol} = {PART_DIGITS} N".format(mag({part}))']
     return lines

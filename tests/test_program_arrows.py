@@ -139,7 +139,7 @@ def test_the_programs_forces_and_split_arrows_are_the_pages(args, stand_in, tmp_
         assert abs(F_par @ p) == pytest.approx(np.linalg.norm(F_par) * np.linalg.norm(p), rel=1e-9)  # along p
         for label, part, symbol in ((labels["F_par"][i], F_par, "F∥"), (labels["F_perp"][i], F_perp, "F⊥")):
             assert np.allclose(label["pos"], r + part, atol=1e-9) and label["height"] >= 18   # at its tip
-            assert label["text"] == f"{symbol} = {np.linalg.norm(part) * scales.F_unit:.3g} N"
+            assert label["text"] == f"{symbol} = {np.linalg.norm(part) * scales.F_unit:.2f} N"
         assert labels["F_perp"][i]["yoffset"] < 0 < labels["F_par"][i]["yoffset"]   # short ones apart
         # parallel to the engine's own split of the final F_net along the final p
         for drawn_part, engine_part in ((F_par, along[i]), (F_perp, across[i])):
@@ -150,7 +150,42 @@ def test_the_programs_forces_and_split_arrows_are_the_pages(args, stand_in, tmp_
     # expression; no f-strings
     code = [line.split("#")[0] for line in web.read_text().splitlines()]
     assert code[0].startswith("Web VPython 3.2") and ".axis = Fscale*Fpar" in web.read_text()
-    assert '.text = "F∥ = {:.3g} N".format(mag(Fpar))' in web.read_text()   # str.format, as the answer's print
+    assert '.text = "F∥ = {:.2f} N".format(mag(Fpar))' in web.read_text()   # str.format, as the answer's print
     assert "Fpar = dot(Fnet, phat)*phat" in [line.strip() for line in code]
     assert all(line.strip().startswith("if ") for line in code if " if " in f" {line.strip()} ")
     assert not any('f"' in line or "f'" in line for line in code)
+
+
+def test_web_vpythons_own_format_writes_the_split_labels_alike(tmp_path):
+    """The F∥ and F⊥ labels are written with "F∥ = {:.2f} N".format(mag(Fpar)): Web VPython runs
+    str.format with its own code (String.prototype.format in glow.min.js, which vpython ships).
+    Run under node, it writes a pendulum run's |F∥| and |F⊥| (0.001 N to 20 N) as Python does,
+    and so as the page does. (With '{:.3g}' it wrote 7 of 401 otherwise: 0.3135 as 0.314.)"""
+    from export.arrows import PART_DIGITS
+    import importlib.util
+    import json
+    import shutil
+    import subprocess
+    from pathlib import Path
+
+    from export.arrows import sampled, split
+
+    node = shutil.which("node")
+    glow = Path(importlib.util.find_spec("vpython").submodule_search_locations[0]) / "vpython_libraries" / "glow.min.js"
+    if node is None or not glow.exists():
+        pytest.skip("needs node and vpython's glow.min.js")
+    source = glow.read_text(encoding="utf-8")
+    start = source.index("String.prototype.format=function")
+    end = source.index("function parse_html", start)
+    script = tmp_path / "format.js"
+    script.write_text("var pow = Math.pow;\n" + source[start:end] + "\nvar v = JSON.parse(process.argv[2]);\n"
+                      "console.log(JSON.stringify(v.map(function (x) { return 'F∥ = %s N'.format(x); })));\n" % PART_DIGITS,
+                      encoding="utf-8")
+    _, p, F = sampled(catalog.configure("pendulum").build())
+    along, across = split(F.reshape(-1, 3), p.reshape(-1, 3))
+    sizes = [float(x) for x in np.concatenate([np.linalg.norm(along, axis=1), np.linalg.norm(across, axis=1)])]
+    sizes = [x for x in sizes if x > 1e-3]
+    assert len(sizes) > 200 and max(sizes) > 5
+    done = subprocess.run([node, str(script), json.dumps(sizes)], capture_output=True, text=True, timeout=60)
+    assert done.returncode == 0, done.stderr
+    assert json.loads(done.stdout) == [f"F∥ = {PART_DIGITS} N".format(x) for x in sizes]
