@@ -79,8 +79,9 @@ def test_no_arrows_writes_none(stand_in, tmp_path):  # noqa: F811
 def test_the_programs_forces_and_split_arrows_are_the_pages(args, stand_in, tmp_path):  # noqa: F811
     """`--arrows forces,split`: the program draws each force on its own thin grey arrow, tip to tail,
     ending at F_net's tip, named beside its middle, and F∥ (sky blue) and F⊥ (white), each
-    labelled at its tip with its size in N, in the page's colours and at the page's force scale; at the end F⊥ is across the final p, F∥ + F⊥ = F_net, and each force is
-    the engine's force of the last update (euler-cromer) at that scale."""
+    labelled at its tip with its size in N, in the page's colours and at the page's force scale;
+    at the end F⊥ is across the final p, F∥ + F⊥ = F_net, and each force is the engine's force of
+    the last update (euler-cromer) at that scale."""
     from export.arrows import force_name, forces_each, split
 
     path = tmp_path / "program.py"
@@ -110,7 +111,8 @@ def test_the_programs_forces_and_split_arrows_are_the_pages(args, stand_in, tmp_
     F_arrows, force_arrows = arrows("F_net"), arrows("forces")
     par, perp = arrows("F_par"), arrows("F_perp")
     labels = {kind: [shown for shown in drawn if shown["kind"] == "label"
-                     and shown["color"] == pytest.approx(list(ARROW_COLOURS[kind]))] for kind in ("forces", "F_par", "F_perp")}
+                     and shown["color"] == pytest.approx(list(ARROW_COLOURS[kind]))]
+              for kind in ("forces", "F_par", "F_perp")}
     assert [len(labels[kind]) for kind in labels] == [count * kinds, count, count]
     assert len(F_arrows) == len(par) == len(perp) == count and len(force_arrows) == count * kinds
     for i in range(count):
@@ -178,8 +180,8 @@ def test_web_vpythons_own_format_writes_the_split_labels_alike(tmp_path):
     start = source.index("String.prototype.format=function")
     end = source.index("function parse_html", start)
     script = tmp_path / "format.js"
-    script.write_text("var pow = Math.pow;\n" + source[start:end] + "\nvar v = JSON.parse(process.argv[2]);\n"
-                      "console.log(JSON.stringify(v.map(function (x) { return 'F∥ = %s N'.format(x); })));\n" % PART_DIGITS,
+    written = "console.log(JSON.stringify(v.map(function (x) { return 'F∥ = %s N'.format(x); })));\n" % PART_DIGITS
+    script.write_text("var pow = Math.pow;\n" + source[start:end] + "\nvar v = JSON.parse(process.argv[2]);\n" + written,
                       encoding="utf-8")
     _, p, F = sampled(catalog.configure("pendulum").build())
     along, across = split(F.reshape(-1, 3), p.reshape(-1, 3))
