@@ -142,8 +142,10 @@ class Scene3D:
         return Camera(centre=np.asarray(self.centre, float), range=float(self.range), pitch=self.pitch)
 
     def make_room(self, reach: float) -> None:
-        """Widen the picture to this range, m (the arrows' tips at their scales), never narrow it."""
-        if reach > self.home_range:
+        """Widen the picture to this range, m (the arrows' tips at their scales), never narrow it;
+        not a camera that follows the masses from the start (a fall with no spring), whose framed
+        view would draw them as dots."""
+        if reach > self.home_range and not self.follows_from_start:
             self.home_range = reach
             self.max_range = max(self.max_range, 2 * reach)
             if not self.following:

@@ -415,3 +415,28 @@ def test_reset_rescales_against_the_picture_the_camera_shows():
     unit = arrows.scales.p_unit
     assert is_round(unit) and unit > first.p_unit and arrows.scales.F_unit == first.F_unit
     assert inside(r + p / unit) and not inside(r + p / next_smaller(unit))   # the next round scale that keeps them in
+
+
+def test_the_arrows_leave_a_camera_that_follows_the_masses_alone():
+    """drag "falling, no spring": the camera follows the balls from the start (the whole fall
+    framed would draw them as dots). Choosing the arrows' scales must not widen it, then or at
+    Reset, to the fall's framed range."""
+    from browser.arrows3d import MomentumArrows
+    from browser.clock import LiveRun
+    from browser.scene3d import Scene3D
+
+    setup = catalog.configure("drag", preset="falling, no spring")
+    model = setup.build()
+    vp = stand_in_with_arrows()
+    scene = Scene3D(vp, model=model, view=view_of(setup), title="drag")
+    assert scene.follows_from_start
+    close = scene.range
+    arrows = MomentumArrows(vp, model=model, integrator=DEFAULT_INTEGRATOR, shown={"p", "F_net"}, radius=scene.radius,
+                            view=view_of(setup), make_room=scene.make_room, camera=scene.camera)
+    live = LiveRun(model, integrator=DEFAULT_INTEGRATOR)
+    arrows.draw(live)
+    assert arrows.scales.view_range > 10 * close and vp.scene.range == close
+    live.restart()
+    arrows.reset()
+    scene.clear()
+    assert vp.scene.range == scene.range == close
