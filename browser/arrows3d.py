@@ -28,7 +28,8 @@ import json
 
 import numpy as np
 
-from export.arrows import ARROW_LABELS, ARROWS, choose_scales, force_name, forces_each, split
+from export.arrows import (ARROW_LABELS, ARROWS, LABEL_PX, PART_DIGITS, TIP_ROOM, choose_scales, force_name,
+                           forces_each, split, unit_keeping_in)
 from export.palette import ARROW_COLOURS
 from physics.forces import net_force
 from physics.state import velocity
@@ -56,14 +57,20 @@ class MomentumArrows:
     shown       the kinds of arrow switched on (a subset of export.arrows.ARROWS)
     radius      the masses' radius, m: the arrows' shafts are a fraction of it
     masses      the masses' spheres, drawn see-through while an arrow is shown
+    view        the scene's VIEW with the defaults: the picture the scales are chosen for
+    make_room   called with the camera range, m, that holds the run's arrows once scales are chosen
+    camera      gives the picture the page's camera shows now (export/framing.py's Camera), against
+                which Reset rescales; None: never rescale
     """
 
-    def __init__(self, vp, *, model, integrator: str, shown, radius: float, masses=()):
+    def __init__(self, vp, *, model, integrator: str, shown, radius: float, masses=(), view: dict,
+                 make_room=lambda reach: None, camera=None):
         self.vp, self.radius, self.masses = vp, radius, list(masses)
+        self.view, self.make_room, self.camera = view, make_room, camera
         self.shown = shown if isinstance(shown, set) else set(shown)   # the view's own set: kept across rebuilds
         self.model, self.integrator = model, integrator
         self._scales = None                 # chosen when an arrow is first shown (a short engine run)
-        self.seen = {"p": 0.0, "F": 0.0}   # the largest magnitudes drawn this run
+        self.needed = {"p": 0.0, "F": 0.0}   # the scales that would have kept this run's tips in the camera's view
         # every arrow is made the first time it is shown: a row of 2,000 springs with none shown has none
         self.count = count = model.state.count
         self.p, self.F_net, self.step = [], [], []              # per mass (step: p_i, F_net Δt, p_f)
@@ -93,11 +100,15 @@ class MomentumArrows:
         return vp.arrow(pos=vp.vector(0, 0, 0), axis=vp.vector(width, 0, 0), color=vp.vector(*ARROW_COLOURS[colour]),
                         shaftwidth=width, visible=False)
 
-    def _label(self, colour: str, *, below: bool = False):
-        """A label in the arrow's colour, 18 px (read from the back row), above its point or below it."""
+    def _label(self, colour: str, *, below: bool = False, left: bool = False):
+        """A label in the arrow's colour, 18 px (read from the back row), above its point or below
+        it, and right of it or (left) ending left of it."""
         vp = self.vp
-        label = vp.label(pos=vp.vector(0, 0, 0), text="", height=18, color=vp.vector(*ARROW_COLOURS[colour]),
-                         box=False, line=False, xoffset=20, yoffset=-16 if below else 16, visible=False)
+        label = vp.label(pos=vp.vector(0, 0, 0), text="", height=LABEL_PX["height"],
+                         color=vp.vector(*ARROW_COLOURS[colour]), box=False, line=False,
+                         xoffset=-LABEL_PX["xoffset"] if left else LABEL_PX["xoffset"],
+                         align="right" if left else "left",
+                         yoffset=-LABEL_PX["yoffset"] if below else LABEL_PX["yoffset"], visible=False)
         self.shapes.append(label)
         return label
 
@@ -111,21 +122,25 @@ class MomentumArrows:
     def scales(self):
         """The run's scales (export/arrows.py), chosen the first time they are needed."""
         if self._scales is None:
-            self._scales = choose_scales(self.model, integrator=self.integrator)
+            self._scales = choose_scales(self.model, view=self.view, integrator=self.integrator,
+                                         forces="forces" in self.shown)
+            self.make_room(self._scales.view_range)
         return self._scales
 
     def rescale(self, model, *, integrator: str) -> None:
         """A new run (new constants or integrator): scales chosen again for it."""
         self.model, self.integrator, self._scales = model, integrator, None
-        self.seen = {"p": 0.0, "F": 0.0}
+        self.needed = {"p": 0.0, "F": 0.0}
         self.publish()
 
     def reset(self) -> None:
-        """Reset: if an arrow of the run just ended left the picture, choose the scales again; no Step shown."""
-        if self._scales is not None and not self._scales.fits(p_max=self.seen["p"], F_max=self.seen["F"]):
-            self._scales = self._scales.refitted(p_max=self.seen["p"], F_max=self.seen["F"])
+        """Reset: if an arrow tip of the run just ended left the picture the camera showed, the next
+        round scale that keeps it in; no Step shown."""
+        scales = self._scales
+        if scales is not None and (self.needed["p"] > scales.p_unit or self.needed["F"] > scales.F_unit):
+            self._scales = scales.refitted(p_needed=self.needed["p"], F_needed=self.needed["F"])
             self.publish()
-        self.seen = {"p": 0.0, "F": 0.0}
+        self.needed = {"p": 0.0, "F": 0.0}
         self.stepping = False
 
     def objects(self) -> dict:
@@ -168,9 +183,8 @@ class MomentumArrows:
             self._made(self.F_net, lambda: self._arrow("F_net"))
         finite = np.all(np.isfinite(r), axis=1) & np.all(np.isfinite(p), axis=1)
         moving = [i for i in range(len(r)) if finite[i] and i not in live.runaways]
-        self.seen["p"] = max(self.seen["p"], *(float(np.linalg.norm(p[i])) for i in moving), 0.0)
-        self.seen["F"] = max(self.seen["F"], *(float(np.linalg.norm(F_net[i])) for i in moving), 0.0)
         each = forces_each(model.forces, state.t, r, v, m) if "forces" in self.shown else []
+        self._measure(r[moving], p[moving], [F_net[moving]] + [F[moving] for F in np.cumsum(each, axis=0)])
         along, across = split(F_net, p) if "split" in self.shown else (None, None)
         for i in range(len(r)):
             ok = i in moving
@@ -180,6 +194,20 @@ class MomentumArrows:
                 self._place(self.F_net[i], r[i], scales.force_axis(F_net[i]), ok and "F_net" in self.shown)
             self._draw_forces(i, r[i], each, ok and "forces" in self.shown)
             self._draw_split(i, r[i], along, across, ok and "split" in self.shown)
+
+    def _measure(self, r, p, forces) -> None:
+        """Note the scales that would have kept the tips shown (p; F_net and, tip to tail, each
+        force) in the picture the camera shows now (it may have zoomed out after a mass): Reset
+        picks them up."""
+        if self.camera is None:
+            return
+        camera, scales = self.camera(), self.scales
+        margin = TIP_ROOM * self.radius
+        shown = [("p", p, scales.p_unit)] if "p" in self.shown and not self.stepping else []
+        shown += [("F", F, scales.F_unit) for F in forces[:1 if "F_net" in self.shown else 0] + forces[1:]]
+        for key, q, unit in shown:
+            if len(q):
+                self.needed[key] = max(self.needed[key], unit_keeping_in(camera, r, q, unit=unit, margin=margin))
 
     def _see_through(self, on: bool) -> None:
         """The masses see-through while arrows start at their centres, solid otherwise."""
@@ -199,12 +227,14 @@ class MomentumArrows:
             arrow.visible = visible
 
     def _draw_forces(self, i: int, at, each, visible: bool) -> None:
-        """Each force on mass i on its own arrow, tip to tail, labelled with its name."""
+        """Each force on mass i on its own arrow, tip to tail, labelled with its name (every other
+        one on the left)."""
         arrows, labels = self.forces[i], self.force_labels[i]
         if visible:
             while len(arrows) < len(each):
                 arrows.append(self._arrow("forces", thin=True))
-                labels.append(self._label("forces"))
+                labels.append(self._label("forces", left=len(labels) % 2 == 1))   # tip to tail, two forces
+                # along one line (a hanging mass's spring and gravity) have their names on either side
                 self.shapes.append(arrows[-1])
                 self.publish()
         tail = np.asarray(at, float)
@@ -234,7 +264,7 @@ class MomentumArrows:
             self._place(arrow, at, axis, visible)
             if visible:
                 label.pos = self.vp.vector(*map(float, np.asarray(at) + axis))
-                label.text = f"{name} = {np.linalg.norm(F[i]):.3g} N"
+                label.text = f"{name} = {PART_DIGITS.format(np.linalg.norm(F[i]))} N"
             if label.visible != bool(visible and np.linalg.norm(axis) > 0):
                 label.visible = bool(visible and np.linalg.norm(axis) > 0)
 

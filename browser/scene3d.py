@@ -11,17 +11,16 @@ import math
 
 import numpy as np
 
+from export.framing import CANVAS_SIZE, Camera, camera_range, frame, mass_radius, motion_box
 from export.palette import mass_colours
 
 from .mass_labels import mass_labels
 
-CANVAS_SIZE = (900, 440)  # px
 TRAIL_POINTS = 300        # points kept in a trail: the last 15 s at one point per graph sample (0.05 s)
 SUPPORT_COLOUR = (0.6, 0.6, 0.65)
 SPRING_COLOUR = (0.85, 0.85, 0.9)
 BACKGROUND = (0.12, 0.13, 0.16)
 LABEL_HEIGHT = 18         # px: the masses' labels, as the page's smallest text
-ROWS_PITCH = 0.45         # the camera looks down this much (forward's y to its z) on rows one behind another
 SMALLEST_MASS_PX = 4      # px: a motion framed whole would draw the spheres smaller than this (a fall
                           # with no spring, 150 m and more): the camera follows the masses instead
 
@@ -42,39 +41,18 @@ class Scene3D:
         canvas.background = vp.vector(*BACKGROUND)
         canvas.fov = 0.2  # rad: a long lens, so the support and springs look flat, as in a drawing
         canvas.title = title
-        low, high = motion_box(model)
+        self.frame = framed = frame(model, view)   # export/framing.py: the arrows' scales use it too
         anchors = model.anchors
-        radius = mass_radius(low, high, anchors)
-        self.radius = radius
-        thickness = 0.4 * radius
-        pad = 2 * radius
-        low, high = low - radius, high + radius  # the spheres' own size
-        if np.ptp(anchors[:, 2]) > 0:             # rows: room on the left for each row's label,
-            size = high - low                      # and under the front row for its ω labels
-            low = low - [0.3 * float(size[0]), 0.35 * float(size[1]), 0]
-        centre = 0.5 * (low + high)
-        if view["support"] == "wall":
-            wall_x = float(anchors[:, 0].min())
-            span_y = float(high[1] - low[1]) + 2 * pad
-            support = vp.box(pos=vp.vector(wall_x - thickness / 2, centre[1], centre[2]),
-                             size=vp.vector(thickness, span_y, 2 * radius), color=vp.vector(*SUPPORT_COLOUR))
-            low = np.minimum(low, [wall_x - thickness, centre[1] - span_y / 2, low[2]])
-            high = np.maximum(high, [high[0], centre[1] + span_y / 2, high[2]])
-        else:
-            ceiling_y = float(anchors[:, 1].max())
-            span_x = float(high[0] - low[0]) + 2 * pad
-            depth = float(np.ptp(anchors[:, 2])) + 2 * radius  # rows one behind another hang from it too
-            support = vp.box(pos=vp.vector(centre[0], ceiling_y + thickness / 2, float(np.mean(anchors[:, 2]))),
-                             size=vp.vector(span_x, thickness, depth), color=vp.vector(*SUPPORT_COLOUR))
-            low = np.minimum(low, [centre[0] - span_x / 2, low[1], low[2]])
-            high = np.maximum(high, [centre[0] + span_x / 2, ceiling_y + thickness, high[2]])
-        self.wall = view["support"] == "wall"
+        self.radius = radius = framed.radius
+        support = vp.box(pos=vec(vp, framed.support_pos), size=vec(vp, framed.support_size),
+                         color=vp.vector(*SUPPORT_COLOUR))
+        self.wall = framed.wall
         # Rows one behind another (resonance) hid each other from the front: look down on them a little.
-        self.pitch = ROWS_PITCH if np.ptp(anchors[:, 2]) > 0 else 0.0
+        self.pitch = framed.camera.pitch
         canvas.forward = vp.vector(0, -self.pitch, -1)
-        self.support_box = (np.asarray(_array(support.pos) - 0.5 * _array(support.size)),
-                            np.asarray(_array(support.pos) + 0.5 * _array(support.size)))
-        self.centre, self.range, self.max_range = self._frame_camera(low - 0.3 * radius, high + 0.3 * radius)
+        self.support_box = (framed.support_pos - 0.5 * framed.support_size,
+                            framed.support_pos + 0.5 * framed.support_size)
+        self.centre, self.range, self.max_range = self._frame_camera(framed.camera.centre, framed.camera.range)
         self.follows_from_start = self._follow_if_tiny(model.state.r)
         self.following = self.follows_from_start  # the camera follows the masses (they left the widest view)
         self.home, self.home_range = self.centre, self.range
@@ -134,7 +112,8 @@ class Scene3D:
                 spring.radius, spring.thickness = 0.45 * radius, 0.12 * radius
         low = np.minimum(low - 1.3 * radius, self.support_box[0])
         high = np.maximum(high + 1.3 * radius, self.support_box[1])
-        self.centre, self.range, self.max_range = self._frame_camera(low, high)
+        self.centre, self.range, self.max_range = self._frame_camera(0.5 * (low + high),
+                                                                     camera_range(low, high, self.pitch))
         self.follows_from_start = self._follow_if_tiny(model.state.r)
         self.following = self.follows_from_start
         self.home, self.home_range = self.centre, self.range
@@ -149,19 +128,29 @@ class Scene3D:
         self._follow(r[np.all(np.isfinite(r), axis=1)])
         return True
 
-    def _frame_camera(self, low, high) -> tuple[np.ndarray, float, float]:
-        """Point the camera at the box from low to high; returns its centre, range and the range
-        the view may zoom out to (twice that)."""
+    def _frame_camera(self, centre, reach: float) -> tuple[np.ndarray, float, float]:
+        """Point the camera at centre with this range (export/framing.py); returns the centre, the
+        range and the range the view may zoom out to (twice that)."""
         canvas = self.vp.scene
-        width, height = CANVAS_SIZE
-        box = high - low
         canvas.autoscale = False
-        canvas.center = vec(self.vp, 0.5 * (low + high))
-        # range is the distance from the centre to the nearer (here: top and bottom) edge; looking
-        # down on rows adds their depth to the height the picture must show
-        reach = 0.55 * max(box[1] + getattr(self, "pitch", 0.0) * box[2], box[0] * height / width, 1e-3)
+        canvas.center = vec(self.vp, centre)
         canvas.range = reach
-        return 0.5 * (low + high), reach, 2 * reach
+        return np.asarray(centre, float), reach, 2 * reach
+
+    def camera(self) -> Camera:
+        """What the camera shows now: where it looks, its range (after any zoom out), its pitch."""
+        return Camera(centre=np.asarray(self.centre, float), range=float(self.range), pitch=self.pitch)
+
+    def make_room(self, reach: float) -> None:
+        """Widen the picture to this range, m (the arrows' tips at their scales), never narrow it;
+        not a camera that follows the masses from the start (a fall with no spring), whose framed
+        view would draw them as dots."""
+        if reach > self.home_range and not self.follows_from_start:
+            self.home_range = reach
+            self.max_range = max(self.max_range, 2 * reach)
+            if not self.following:
+                self.range = max(self.range, reach)
+                self.vp.scene.range = self.range
 
     def clear(self) -> None:
         """Back to t = 0: no trails, no runaway labels."""
@@ -287,33 +276,6 @@ class Scene3D:
             self.vp.scene.range = self.range
 
 
-def motion_box(model) -> tuple[np.ndarray, np.ndarray]:
-    """Corners (low, high) of the region the masses and anchors use over the first 20 s, m."""
-    if model.exact is not None:
-        r, _ = model.exact(np.linspace(0.0, 20.0, 801))
-    else:
-        from physics.simulate import BlowUpError, run
-        until = min(10.0, 4000 * model.dt)
-        try:
-            r = run(model.state, model.forces, dt=model.dt, until=until).r
-        except BlowUpError:
-            r = model.state.r[None]
-    points = np.concatenate([np.reshape(r, (-1, 3)), model.anchors, model.state.r])
-    points = points[np.all(np.isfinite(points), axis=1)]
-    return points.min(axis=0), points.max(axis=0)
-
-
-def mass_radius(low, high, anchors) -> float:
-    """The spheres' radius, m: 8 % of the motion's size, and less than a third of the gap between anchors."""
-    size = float(np.max(high - low)) or 1.0
-    gaps = [np.linalg.norm(a - b) for i, a in enumerate(anchors) for b in anchors[i + 1:]]
-    return min([0.08 * size] + [0.3 * gap for gap in gaps if gap > 0])
-
-
 def vec(vp, a):
     """A numpy 3-vector as a vpython vector."""
     return vp.vector(float(a[0]), float(a[1]), float(a[2]))
-
-
-def _array(v) -> np.ndarray:
-    return np.array([v.x, v.y, v.z])

@@ -118,8 +118,9 @@ class SceneView:
         if self.arrows_scene != setup.name:  # a new scene starts with its own arrows, or --arrows
             self.arrows_scene = setup.name
             self.arrows_shown = set(view["arrows"] if self.arrows_asked is None else self.arrows_asked)
-        self.arrows = MomentumArrows(self.vp, model=model, integrator=self.integrator,
-                                     shown=self.arrows_shown, radius=scene.radius, masses=scene.masses)
+        self.arrows = MomentumArrows(self.vp, model=model, integrator=self.integrator, view=view,
+                                     shown=self.arrows_shown, radius=scene.radius, masses=scene.masses,
+                                     make_room=scene.make_room, camera=scene.camera)
         controls = Controls(self.vp, setup=setup, view=view, integrators=model.integrators,
                             integrator=self.integrator, speed=self.speed, preset=preset,
                             arrows=self.arrows_shown,

@@ -10,28 +10,40 @@ each mass's centre,
             F⊥ = F_net − F∥ changes the direction
 
 An arrow's length is its quantity divided by a scale, "arrow of 1 m = 20 kg·m/s": one scale for
-momentum and one for every force, chosen once per run from the largest magnitudes a short headless
-run of the engine meets, rounded up to 1, 2 or 5 × 10ⁿ so the legend can be read and two arrows
-compared. The force scale is chosen from F_net, the arrow the lesson is about; a single force
-(gravity on a hanging mass) may be drawn longer than F_net ever is. Nothing here imports vpython.
+momentum and one for every force, a round 1, 2 or 5 × 10ⁿ so the legend can be read and two
+arrows compared, chosen once per run against the picture the page frames (export/framing.py):
+over a short headless run of the engine, the longest arrows it allows (the smallest round scale)
+whose tips all stay in the picture when it widens by at most GROW. The picture then widens to
+hold them, so the longest arrow of the run reaches (nearly) the picture's edge: the rounding
+costs room only when the next round step would need the picture to widen more than that. The
+force scale is chosen from F_net, the arrow the lesson is about; a single force (gravity on a
+hanging mass) may be drawn longer than F_net ever is, unless the run shows each force. Nothing
+here imports vpython.
 """
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
 
 from physics.forces import net_force
 from physics.rounding import round_up as round_scale  # 13 → 20 per metre of arrow
+
+from .framing import Camera, frame
 from physics.simulate import BlowUpError, every, trajectory
 from physics.state import velocity
 
 ARROWS = ("p", "F_net", "forces", "split")   # what --arrows and the page's check boxes may name
 ARROW_LABELS = {"p": "p", "F_net": "F_net", "forces": "forces", "split": "F∥ and F⊥"}
-REACH = 0.5           # the longest arrow, as a fraction of the size of the motion and its support
+LABEL_PX = {"height": 18, "xoffset": 20, "yoffset": 16}   # px: an arrow's label (the back row reads 18 px),
+                                                         # beside its point; F⊥'s below it (−yoffset)
+PART_DIGITS = "{:.2f}"  # N: how F∥'s and F⊥'s labels write their sizes, on the page and in the program
+                       # (Web VPython's own '{:.3g}' writes 0.3135 as 0.314: 7 of a pendulum run's 401)
+GROW = 1.2            # the picture may widen this much (its range) to hold the arrows at a round scale
+TIP_ROOM = 0.3        # × the masses' radius: how far inside the picture's edge an arrow's tip stays
 SCALE_RUN = 30.0      # s: how far the short run that chooses the scales looks ahead (the graphs show 30 s)
 SCALE_STEPS = 6000    # at most this many steps of it
-TOO_LONG = 2.0        # an arrow this many times REACH is out of the picture: the next Reset rescales
 
 
 def parse_arrows(text: str) -> tuple[str, ...]:
@@ -46,11 +58,11 @@ def parse_arrows(text: str) -> tuple[str, ...]:
 @dataclass(frozen=True)
 class ArrowScales:
     """How long an arrow is drawn: p_unit kg·m/s and F_unit N per metre of arrow (round numbers),
-    and reach, m, the length the longest arrow of the run was expected to have."""
+    and view_range, m, the camera's range that holds every arrow of the run at these scales."""
 
     p_unit: float
     F_unit: float
-    reach: float
+    view_range: float
 
     def momentum_axis(self, p) -> np.ndarray:
         """The arrow of momentum p, m: p / p_unit."""
@@ -65,14 +77,40 @@ class ArrowScales:
         return (f"an arrow of 1 m = {self.p_unit:g} kg·m/s for p, "
                 f"{self.F_unit:g} N for forces")
 
-    def fits(self, *, p_max: float, F_max: float) -> bool:
-        """Whether arrows of these magnitudes (kg·m/s, N) stay in the picture at these scales."""
-        return max(p_max / self.p_unit, F_max / self.F_unit) <= TOO_LONG * self.reach
+    def refitted(self, *, p_needed: float, F_needed: float) -> "ArrowScales":
+        """Scales chosen again (at Reset, never during a run) so that arrows that needed p_needed
+        kg·m/s and F_needed N per metre to stay in the picture do: the next round scale up."""
+        return ArrowScales(p_unit=max(self.p_unit, round_scale(p_needed)),
+                           F_unit=max(self.F_unit, round_scale(F_needed)), view_range=self.view_range)
 
-    def refitted(self, *, p_max: float, F_max: float) -> "ArrowScales":
-        """Scales chosen again so magnitudes up to these fit (at Reset, never during a run)."""
-        return ArrowScales(p_unit=max(self.p_unit, round_scale(p_max / self.reach)),
-                           F_unit=max(self.F_unit, round_scale(F_max / self.reach)), reach=self.reach)
+
+def room_used(camera: Camera, r, axes, *, margin: float = 0.0, face=None) -> np.ndarray:
+    """Each arrow (axes, m, from r, both (N, 3)) as a fraction of the distance from its mass to the
+    edge of the camera's picture (margin m inside it) in the arrow's direction on the screen, or
+    to the support's face (face: (axis, where, towards), Frame.face) if it points at it and that
+    is nearer: 1 is a tip on that edge, over 1 a tip out of the picture or through the support.
+    0 for an arrow of no length on the screen, nan for a mass that is itself out of the picture."""
+    r, axes = np.asarray(r, float), np.asarray(axes, float)
+    at = camera.on_screen(r)
+    along = camera.on_screen(r + axes) - at
+    half = camera.half() - margin
+    with np.errstate(divide="ignore", invalid="ignore"):
+        used = np.where(along != 0, along / (np.copysign(half, along) - at), 0.0).max(axis=-1)
+        if face is not None:
+            axis, where, towards = face
+            ahead = axes[..., axis] * towards
+            used = np.maximum(used, np.where(ahead > 0, ahead / ((where - r[..., axis]) * towards), 0.0))
+    inside = np.all(np.abs(at) < half, axis=-1)
+    return np.where(inside, used, np.nan)
+
+
+def unit_keeping_in(camera: Camera, r, q, *, unit: float, margin: float) -> float:
+    """The smallest scale (q's units per metre) at which every arrow q / scale from r (both (N, 3))
+    ends inside the camera's picture, margin m inside its edge: `unit` if they all do at it.
+    An arrow whose mass is itself out of the picture is not counted."""
+    used = room_used(camera, r, np.asarray(q, float) / unit, margin=margin)
+    worst = float(np.nanmax(used)) if np.any(np.isfinite(used)) else 0.0
+    return unit * max(1.0, worst)
 
 
 def forces_each(forces, t: float, r, v, m) -> list[np.ndarray]:
@@ -105,9 +143,11 @@ def split(F_net, p) -> tuple[np.ndarray, np.ndarray]:
     return along, F_net - along
 
 
-def largest(model, *, integrator: str | None = None) -> tuple[float, float, float]:
-    """The largest |p| (kg·m/s), |F_net| (N) and size of one mass's motion (m, motion_size)
-    over a short run of the engine from the model's start (SCALE_RUN s, at most SCALE_STEPS steps).
+def sampled(model, *, integrator: str | None = None, chain: bool = False) -> tuple[np.ndarray, ...]:
+    """r (m), p (kg·m/s) and F_net (N), each (samples, masses, 3), over a short run of the engine
+    from the model's start (SCALE_RUN s, at most SCALE_STEPS steps, about 200 samples). With
+    chain, the third is (forces + 1, samples, masses, 3): F_net, then where each force drawn tip
+    to tail ends (the first force, the first two added, ...), N.
 
     Masses the scene expects to run away are left out, and a run that blows up is judged on the
     steps before it did.
@@ -124,34 +164,60 @@ def largest(model, *, integrator: str | None = None) -> tuple[float, float, floa
     kept = [i for i in range(model.state.count) if i not in model.expected_runaways(engine.methods)]
     kept = kept or list(range(model.state.count))
     m = model.state.m
-    p_max = F_max = 0.0
+    rs, ps, Fs = [], [], []
     for n in range(len(t)):
-        if not np.all(np.isfinite(r[n][kept])):
+        if not (np.all(np.isfinite(r[n][kept])) and np.all(np.isfinite(p[n][kept]))):
             break
-        F_net = net_force(model.forces, t[n], r[n], velocity(p[n], m), m)
-        F_max = max(F_max, float(np.max(np.linalg.norm(F_net[kept], axis=-1))))
-        p_max = max(p_max, float(np.max(np.linalg.norm(p[n][kept], axis=-1))))
-    return p_max, F_max, motion_size(r, model.anchors, kept) or 1.0
+        rs.append(r[n][kept])
+        ps.append(p[n][kept])
+        v = velocity(p[n], m)
+        ends = np.cumsum(forces_each(model.forces, t[n], r[n], v, m), axis=0)[:, kept] if chain else []
+        Fs.append([net_force(model.forces, t[n], r[n], v, m)[kept], *ends])
+    Fs = np.moveaxis(np.array(Fs), 1, 0)
+    return np.array(rs), np.array(ps), Fs if chain else Fs[0]
 
 
-def motion_size(r, anchors, kept) -> float:
-    """The size of one mass's motion with its support, m: the largest extent of the box around a
-    mass's positions r[:, i] and its anchor, over the masses kept. Each arrow starts on its own
-    mass, so it is this, not the whole row's width (`resonance`: 13 springs 4.8 m wide, each
-    moving 1.8 m), that an arrow must stay within to stay in the picture."""
-    sizes = [0.0]
-    for i in kept:
-        points = np.concatenate([r[:, i], anchors[i][None]])
-        points = points[np.all(np.isfinite(points), axis=1)]
-        if len(points):
-            sizes.append(float(np.max(points.max(axis=0) - points.min(axis=0))))
-    return max(sizes)
+def largest(model, *, integrator: str | None = None) -> tuple[float, float]:
+    """The largest |p| (kg·m/s) and |F_net| (N) over the short run of `sampled`."""
+    _, p, F = sampled(model, integrator=integrator)
+    return (float(np.linalg.norm(p, axis=-1).max(initial=0.0)), float(np.linalg.norm(F, axis=-1).max(initial=0.0)))
 
 
-def choose_scales(model, *, integrator: str | None = None) -> ArrowScales:
-    """One scale for momentum and one for forces, for a run of this model: the largest magnitude
-    of each (largest) fits in an arrow REACH × the size of one mass's motion with its support
-    long, rounded up to 1, 2 or 5 × 10ⁿ, so the longest arrow is between 0.4 and 1 times that length."""
-    p_max, F_max, size = largest(model, integrator=integrator)
-    reach = REACH * size
-    return ArrowScales(p_unit=round_scale(p_max / reach), F_unit=round_scale(F_max / reach), reach=reach)
+def _longest_that_fit(camera: Camera, r, q, *, margin: float, face) -> tuple[float, float]:
+    """The smallest round scale for q (the longest arrows) at which the picture, widened by at most
+    GROW, holds every tip r + q / scale (margin m inside its edge) and no tip goes through the
+    support's face (Frame.face: up through the ceiling, back through the wall); and the range
+    that needs, m."""
+    axis, where, towards = face
+    size = float(np.linalg.norm(q, axis=-1).max(initial=0.0))
+    if size == 0:
+        return 1.0, camera.range
+
+    def needed(unit: float) -> float:
+        tips = r + q / unit
+        through = np.any((tips[..., axis] - where) * towards > -margin)
+        return math.inf if through else camera.range_holding(tips) + margin
+
+    limit = GROW * max(camera.range, needed(math.inf))
+    unit = round_scale(size / (0.01 * camera.range))   # arrows a hundredth of the picture: they fit
+    while needed(smaller := round_scale(unit / 2.5 * (1 - 1e-9))) <= limit:
+        unit = smaller
+    return unit, max(camera.range, needed(unit))
+
+
+def choose_scales(model, *, view: dict, integrator: str | None = None, forces: bool = False) -> ArrowScales:
+    """One scale for momentum and one for forces, for a run of this model shown in the page's
+    picture of it (view: the scene's VIEW with the defaults): the longest arrows at a round scale
+    that the picture, widened by at most GROW, holds over the run (_longest_that_fit). The force
+    scale fits F_net; with forces (each force drawn, tip to tail) every force's tip too, so a
+    hanging mass's spring (176 N at the bottom of `vertical`, where F_net is 78 N) stays in."""
+    framed = frame(model, view)
+    r, p, F = sampled(model, integrator=integrator, chain=forces)
+    if forces:
+        r_each, F = np.concatenate([r] * len(F)), np.concatenate(F)
+    else:
+        r_each = r
+    margin = TIP_ROOM * framed.radius
+    p_unit, p_range = _longest_that_fit(framed.camera, r, p, margin=margin, face=framed.face())
+    F_unit, F_range = _longest_that_fit(framed.camera, r_each, F, margin=margin, face=framed.face())
+    return ArrowScales(p_unit=p_unit, F_unit=F_unit, view_range=float(max(p_range, F_range)))

@@ -13,15 +13,17 @@ that move them:
 
 F_net's arrow shows Fnet, the net force the update just used. "forces" puts each force the update
 added up (Fspring, Fgravity, ... in the order of Fnet's sum) on its own thin grey arrow, tip to
-tail, so the last ends at F_net's tip. "split" draws F∥ = (F_net·p̂) p̂ (sky blue, it changes the
-speed) and F⊥ = F_net − F∥ (white, it changes the direction); from rest (p = 0) F∥ is all of F_net,
-as on the page (export/arrows.py's split). The arrows only read the state, so the program's
-arithmetic stays the engine's. The lines keep to what GlowScript 3.2 (Web VPython) reads: no
-f-strings, no conditional expressions, lists made with append.
+tail, so the last ends at F_net's tip, with its name (`spring`) beside its middle. "split" draws
+F∥ = (F_net·p̂) p̂ (sky blue, it changes the speed) and F⊥ = F_net − F∥ (white, it changes the
+direction), each labelled at its tip with its size (`F∥ = 3.95 N`, PART_DIGITS); from rest (p = 0) F∥ is all of
+F_net, as on the page (export/arrows.py's split). Labels are 18 px, as on the page. The arrows
+only read the state, so the program's arithmetic stays the engine's. The lines keep to what
+GlowScript 3.2 (Web VPython) reads: no f-strings, no conditional expressions, lists made with
+append.
 """
 from __future__ import annotations
 
-from .arrows import ARROWS, choose_scales, force_name
+from .arrows import ARROWS, LABEL_PX, PART_DIGITS, choose_scales, force_name
 from .lines import commented
 from .palette import ARROW_COLOURS
 
@@ -37,6 +39,15 @@ def _arrow(kind: str, *, at: str, axis: str = "vector(0, 0, 0)", shaft: str = SH
     return f"arrow(pos={at}, axis={axis}, color={_colour(kind)}, shaftwidth={shaft})"
 
 
+def _label(kind: str, *, at: str, text: str, below: bool = False, side: tuple = ()) -> str:
+    """A label in the arrow's colour, as the page's: 18 px, right of its point (F⊥'s below it), or
+    on the side named by the expressions side = (xoffset, align)."""
+    yoffset = -LABEL_PX["yoffset"] if below else LABEL_PX["yoffset"]
+    xoffset, align = side or (LABEL_PX["xoffset"], '"left"')
+    return (f"label(pos={at}, text={text}, height={LABEL_PX['height']}, color={_colour(kind)}, box=False, "
+            f"line=False, xoffset={xoffset}, align={align}, yoffset={yoffset})")
+
+
 def _made(name: str, make: str, *, single: bool, comment: str) -> list[str]:
     """`name = arrow(...)` for one mass, else the list `names` with one such arrow per mass."""
     if single:
@@ -47,22 +58,31 @@ def _made(name: str, make: str, *, single: bool, comment: str) -> list[str]:
 
 def _made_per_force(model, *, single: bool) -> list[str]:
     """forcearrows: a thin grey arrow per force (per mass: forcearrows[i]), in the order of Fnet's sum."""
-    make = _arrow("forces", at="pos" if single else "pos[i]", shaft=THIN)
+    at = "pos" if single else "pos[i]"
+    make = _arrow("forces", at=at, shaft=THIN)
+    named = _label("forces", at=at, text="forcenames[j]", side=("forcexoffsets[j]", "forcealigns[j]"))
     names = ", ".join(force_name(force) for force in model.forces)
-    each = f"for j in range({len(model.forces)}):"
-    lines = [commented("forcearrows = []", f"grey, tip to tail, one per force: {names}")]
+    count = len(model.forces)
+    each = f"for j in range({count}):"
+    x = LABEL_PX["xoffset"]
+    lines = [commented("forcearrows = []", f"grey, tip to tail, one per force: {names}"),
+             commented("forcelabels = []", "each force's name beside its arrow, every other one on the left"),
+             "forcenames = [" + ", ".join(f'"{force_name(force)}"' for force in model.forces) + "]",
+             "forcexoffsets = [" + ", ".join(str(-x if j % 2 else x) for j in range(count)) + "]",
+             "forcealigns = [" + ", ".join('"right"' if j % 2 else '"left"' for j in range(count)) + "]"]
     if single:
-        return lines + [each, f"    forcearrows.append({make})"]
-    return lines + ["for i in range(len(pos)):", "    forcearrows.append([])", f"    {each}",
-                    f"        forcearrows[i].append({make})"]
+        return lines + [each, f"    forcearrows.append({make})", f"    forcelabels.append({named})"]
+    return lines + ["for i in range(len(pos)):", "    forcearrows.append([])", "    forcelabels.append([])",
+                    f"    {each}", f"        forcearrows[i].append({make})", f"        forcelabels[i].append({named})"]
 
 
-def setup_lines(model, *, shown, integrator: str | None, single: bool) -> list[str]:
-    """The scales and the arrows, made where each mass starts (after the program's objects)."""
+def setup_lines(model, *, shown, integrator: str | None, single: bool, view: dict) -> list[str]:
+    """The scales (the page's, for the scene's view) and the arrows, made where each mass starts
+    (after the program's objects)."""
     kinds = [kind for kind in WRITTEN if kind in shown]
     if not kinds:
         return []
-    scales = choose_scales(model, integrator=integrator)
+    scales = choose_scales(model, view=view, integrator=integrator, forces="forces" in kinds)
     lines = ["", f"# ---- the arrows: {', '.join(kinds)} at fixed scales, as on the page ----"]
     if "p" in kinds:
         lines.append(commented(f"pscale = 1/{scales.p_unit:g}",
@@ -78,6 +98,10 @@ def setup_lines(model, *, shown, integrator: str | None, single: bool) -> list[s
     if "split" in kinds:
         lines += _made("pararrow", _arrow("F_par", at="pos"), single=single, comment="sky blue: F∥, along p")
         lines += _made("perparrow", _arrow("F_perp", at="pos"), single=single, comment="white: F⊥, across p")
+        lines += _made("parlabel", _label("F_par", at="pos", text='"F∥"'), single=single,
+                       comment="F∥ and its size, at its tip")
+        lines += _made("perplabel", _label("F_perp", at="pos", text='"F⊥"', below=True), single=single,
+                       comment="F⊥ and its size, below its tip")
     return lines
 
 
@@ -96,6 +120,7 @@ def loop_lines(model, *, shown, single: bool) -> list[str]:
         lines.append(commented(f"Ftail = pos{i}", "each force from the tip of the one before"))
         for n, force in enumerate(model.forces):
             lines += [f"forcearrows{i}[{n}].pos = Ftail", f"forcearrows{i}[{n}].axis = Fscale*{force.TERM}",
+                      f"forcelabels{i}[{n}].pos = Ftail + 0.5*Fscale*{force.TERM}",
                       f"Ftail = Ftail + Fscale*{force.TERM}"]
     if "split" in shown:
         lines += [commented(f"phat = norm(p{i})", "the direction of p"),
@@ -103,6 +128,8 @@ def loop_lines(model, *, shown, single: bool) -> list[str]:
                   commented("    phat = norm(Fnet)", "from rest: all of F_net starts the motion"),
                   commented("Fpar = dot(Fnet, phat)*phat", "F∥ = (F_net·p̂) p̂: changes the speed"),
                   commented("Fperp = Fnet - Fpar", "F⊥ = F_net − F∥: changes the direction")]
-        for name, part in (("pararrow", "Fpar"), ("perparrow", "Fperp")):
-            lines += [f"{name}{each}.pos = pos{i}", f"{name}{each}.axis = Fscale*{part}"]
+        for name, part, symbol in (("par", "Fpar", "F∥"), ("perp", "Fperp", "F⊥")):
+            lines += [f"{name}arrow{each}.pos = pos{i}", f"{name}arrow{each}.axis = Fscale*{part}",
+                      f"{name}label{each}.pos = pos{i} + Fscale*{part}",
+                      f'{name}label{each}.text = "{symbol} = {PART_DIGITS} N".format(mag({part}))']
     return lines

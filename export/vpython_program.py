@@ -109,7 +109,7 @@ def scene_setup_lines(case) -> list[str]:
     """Lines after the objects are made, before the loop: where another writer adds objects of its
     own, from case.model and case.constants (the arrows, export/program_arrows.py)."""
     return program_arrows.setup_lines(case.model, shown=case.arrows, integrator=case.integrator,
-                                      single=case.single)
+                                      single=case.single, view=case.view)
 
 
 def after_update_lines(case) -> list[str]:

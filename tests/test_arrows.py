@@ -13,11 +13,15 @@ import pytest
 from hypothesis import given, settings, strategies as st
 
 import main
-from export.arrows import REACH, choose_scales, forces_each, largest, parse_arrows, round_scale, split
+from export.arrows import (GROW, TIP_ROOM, choose_scales, forces_each, largest, parse_arrows, room_used, round_scale,
+                           sampled, split)
+from export.framing import frame
 from export.step_update import step_lines, update_force, vector
 from physics.forces import net_force
+from physics.integrators import DEFAULT_INTEGRATOR
 from physics.state import velocity
 from scenes import catalog
+from scenes._view import DEFAULT_VIEW
 
 
 def is_round(x: float) -> bool:
@@ -36,35 +40,65 @@ def test_round_scale_by_hand():
     assert [round_scale(x) for x in (13, 0.031, 50, 1, 7.2, 0)] == [20, 0.05, 50, 1, 10, 1]
 
 
+def view_of(setup) -> dict:
+    return {**DEFAULT_VIEW, **setup.hooks.view}
+
+
+def next_smaller(unit: float) -> float:
+    return round_scale(unit / 2.5 * (1 - 1e-9))
+
+
 @pytest.mark.parametrize("scene", catalog.SCENE_NAMES)
-def test_the_scales_are_round_and_the_largest_arrow_fits(scene):
-    model = catalog.configure(scene).build()
-    scales = choose_scales(model)
-    p_max, F_max, size = largest(model)
-    assert is_round(scales.p_unit) and is_round(scales.F_unit)
-    assert scales.reach == pytest.approx(REACH * size)
-    for biggest, unit in ((p_max, scales.p_unit), (F_max, scales.F_unit)):
-        assert biggest / unit <= scales.reach * (1 + 1e-12)       # fits ...
-        assert biggest == 0 or biggest / unit > 0.4 * scales.reach  # ... and is not lost in the picture
+def test_the_scales_are_round_and_the_longest_arrows_that_fit(scene):
+    """Each scale is round; at it every tip of the run is inside the picture the page frames,
+    widened by at most GROW (the range the scales ask for); at the next smaller round scale (arrows
+    2 or 2.5 times longer) some tip would need the picture widened by more."""
+    setup = catalog.configure(scene)
+    model = setup.build()
+    scales = choose_scales(model, view=view_of(setup))
+    framed = frame(model, view_of(setup))
+    camera, margin = framed.camera, TIP_ROOM * framed.radius
+    r, p, F = sampled(model)
+    base = max(camera.range, camera.range_holding(r) + margin)
+    axis, where, towards = framed.face()   # the ceiling's underside or the wall's face
+    assert camera.range <= scales.view_range <= GROW * base * (1 + 1e-12)
+    for q, unit in ((p, scales.p_unit), (F, scales.F_unit)):
+        assert is_round(unit)
+        if np.any(q):
+            tips, longer = r + q / unit, r + q / next_smaller(unit)
+            assert camera.range_holding(tips) + margin <= scales.view_range * (1 + 1e-12)   # fits ...
+            assert np.all((tips[..., axis] - where) * towards <= -margin)   # not through the support
+            # ... as long as can be
+            assert (camera.range_holding(longer) + margin > GROW * base
+                    or np.any((longer[..., axis] - where) * towards > -margin))
 
 
 def test_vertical_scales_by_hand():
     # Simple Example: y_eq = −(L0 + mg/k) = −3.45 m, released at −1.5 m: A = 1.95 m, ω = 2 rad/s, so
-    # |p| ≤ m A ω = 39 kg·m/s and |F_net| ≤ k A = 78 N; the motion and the anchor span 0 to −5.4 m.
-    p_max, F_max, size = largest(catalog.configure("vertical").build())
+    # |p| ≤ m A ω = 39 kg·m/s and |F_net| ≤ k A = 78 N. The page frames the ceiling (0 m) to the
+    # lowest point (−5.4 m) and the ball: range 3.59 m about y = −2.7 m. At 20 kg·m/s and 20 N per m
+    # the p arrow at y_eq and the F_net arrows at the turning points reach 1.95 m and 3.9 m, from
+    # −1.5 to −5.4 m, the motion's own length; at 10 per m they would reach −7.35 m, 4.65 m below the
+    # centre: more than GROW × 3.59 = 4.3 m.
+    setup = catalog.configure("vertical")
+    p_max, F_max = largest(setup.build())
     assert p_max == pytest.approx(39, rel=0.03) and F_max == pytest.approx(78, rel=0.03)
-    assert size == pytest.approx(5.4, rel=0.03)
-    scales = choose_scales(catalog.configure("vertical").build())
-    assert (scales.p_unit, scales.F_unit) == (20, 50)   # 39/2.7 = 14.4 → 20, 78/2.7 = 28.9 → 50
-    assert scales.legend() == "an arrow of 1 m = 20 kg·m/s for p, 50 N for forces"
+    scales = choose_scales(setup.build(), view=view_of(setup))
+    assert (scales.p_unit, scales.F_unit) == (20, 20)
+    assert scales.legend() == "an arrow of 1 m = 20 kg·m/s for p, 20 N for forces"
+    # With each force drawn tip to tail, the spring's arrow starts at the mass: at the bottom it
+    # pulls k (5.4 − L0) = 40 × 4.4 = 176 N up, 8.8 m at 20 N per m, through the ceiling; at 50 N
+    # per m 3.52 m, to −1.88 m. The page (and the program) with "forces" on choose 50.
+    with_forces = choose_scales(setup.build(), view=view_of(setup), forces=True)
+    assert (with_forces.p_unit, with_forces.F_unit) == (20, 50)
 
 
-def test_refitted_only_grows_and_fits_what_was_seen():
-    scales = choose_scales(catalog.configure("vertical").build())
-    assert scales.fits(p_max=39, F_max=78)
-    bigger = scales.refitted(p_max=1000, F_max=78)
-    assert not scales.fits(p_max=1000, F_max=78) and bigger.fits(p_max=1000, F_max=78)
-    assert bigger.F_unit == scales.F_unit and is_round(bigger.p_unit) and bigger.p_unit > scales.p_unit
+def test_refitted_only_grows_to_the_next_round_scale_that_keeps_the_tips_in():
+    setup = catalog.configure("vertical")
+    scales = choose_scales(setup.build(), view=view_of(setup))
+    bigger = scales.refitted(p_needed=31, F_needed=3)
+    assert (bigger.p_unit, bigger.F_unit) == (50, scales.F_unit)
+    assert scales.refitted(p_needed=20, F_needed=20) == scales
 
 
 @pytest.mark.parametrize("scene", ["vertical", "damped", "driven", "pendulum", "drag"])
@@ -186,7 +220,8 @@ def test_the_page_arrows_are_scale_times_the_engines_p_and_F_net_and_made_only_w
 
     model = catalog.configure("pendulum").build()
     live = LiveRun(model, integrator="euler-cromer")
-    arrows = MomentumArrows(stand_in_with_arrows(), model=model, integrator="euler-cromer", shown=(), radius=0.1)
+    arrows = MomentumArrows(stand_in_with_arrows(), model=model, integrator="euler-cromer", shown=(), radius=0.1,
+                            view=view_of(catalog.configure("pendulum")))
     arrows.draw(live)
     assert arrows.shapes == [] and arrows._scales is None     # nothing shown: nothing made, no run
     for kind in ("p", "F_net", "split", "forces"):
@@ -203,6 +238,8 @@ def test_the_page_arrows_are_scale_times_the_engines_p_and_F_net_and_made_only_w
     assert np.allclose(along + across, F[0] / scales.F_unit) and abs(across @ s.p[0]) < 1e-9
     assert arrows.parts[0][2].text.startswith("F∥ = ") and arrows.parts[0][2].text.endswith(" N")
     assert [label.text for label in arrows.force_labels[0]] == ["spring", "gravity"]
+    spring, gravity = arrows.force_labels[0]     # along one line under a ceiling: names on either side
+    assert spring.xoffset > 0 > gravity.xoffset and (spring.align, gravity.align) == ("left", "right")
 
 
 @pytest.mark.parametrize("args, message", [
@@ -236,7 +273,7 @@ def test_the_masses_are_see_through_while_an_arrow_starts_inside_them():
     live = LiveRun(model, integrator="euler-cromer")
     ball = Shape(opacity=1.0)
     arrows = MomentumArrows(stand_in_with_arrows(), model=model, integrator="euler-cromer", shown={"p"},
-                            radius=0.32, masses=[ball])
+                            radius=0.32, masses=[ball], view=view_of(catalog.configure("driven", scenario=3)))
     live.advance(round(20.0 / model.dt))   # the steady motion: p is far shorter than the ball
     arrows.draw(live)
     length = np.linalg.norm(np.array(arrows.p[0].axis))
@@ -250,43 +287,159 @@ def test_the_masses_are_see_through_while_an_arrow_starts_inside_them():
     assert ball.opacity == SEE_THROUGH
 
 
-@pytest.mark.parametrize("name, scenario", [("vertical", None), ("damped", None), ("driven", 3), ("pendulum", None),
-                                            ("resonance", None), ("regimes", None)])
-def test_the_arrows_stay_in_the_picture_the_page_frames(name, scenario):
-    """Every p and F_net arrow, at the run's scales, ends inside the 3-D view the page frames
-    (browser/scene3d.py, drawn on the stand-in vpython, its camera looking along `forward`) over
-    the 30 s the scales are chosen for; at most its head (3 shaft widths, 0.6 radius) may reach
-    past the edge; under a ceiling, no arrow goes up through it. `resonance --arrows p` had its
-    scale chosen from the whole row's width (4.8 m) while each spring moves 1.8 m: its p arrows
-    ran 2 m up, through the ceiling to the top of the view."""
-    from browser.scene3d import CANVAS_SIZE, Scene3D
-    from browser.view import DEFAULT_VIEW
-    from physics.simulate import every, trajectory
-    from test_trail import stand_in_vpython
+def page_picture(name, scenario, shown=("p", "F_net")):
+    """The page's 3-D picture of a scene on the stand-in vpython, with its arrows drawn once (their
+    scales chosen and the camera widened for them): the scene, the arrows and the camera."""
+    from browser.arrows3d import MomentumArrows
+    from browser.clock import LiveRun
+    from browser.scene3d import Scene3D
+    from export.framing import Camera
 
     setup = catalog.configure(name, scenario=scenario)
     model = setup.build()
-    vp = stand_in_vpython()
-    scene = Scene3D(vp, model=model, view={**DEFAULT_VIEW, **setup.module.VIEW}, title=name)
-    forward = np.array([vp.scene.forward.x, vp.scene.forward.y, vp.scene.forward.z])
-    forward /= np.linalg.norm(forward)
-    up = np.array([0.0, 1.0, 0.0]) - forward[1] * forward          # the screen's up, m per m
-    up /= np.linalg.norm(up)
-    right = np.cross(forward, up)
-    width, height = CANVAS_SIZE
-    half = np.array([scene.range * width / height, scene.range]) + 0.6 * scene.radius
-    scales = choose_scales(model)
+    vp = stand_in_with_arrows()
+    scene = Scene3D(vp, model=model, view=view_of(setup), title=name)
+    arrows = MomentumArrows(vp, model=model, integrator=DEFAULT_INTEGRATOR, shown=set(shown), radius=scene.radius,
+                            view=view_of(setup), make_room=scene.make_room,
+                            camera=scene.camera)
+    arrows.draw(LiveRun(model, integrator=DEFAULT_INTEGRATOR))
+    forward = vp.scene.forward
+    camera = Camera(centre=np.array(vp.scene.center, float), range=vp.scene.range, pitch=forward.y / forward.z)
+    return scene, arrows, camera
+
+
+def run_30_s(model):
+    """t, r, p and F_net every 0.06 s or so of a 30 s run, the masses the scene expects to run away left out."""
+    from physics.simulate import every, trajectory
+
     engine = model.simulation()
     steps = round(30.0 / model.dt)
     traj = trajectory(engine, engine.advance(steps, record=every(max(1, steps // 500))), with_energy=False)
     kept = [i for i in range(model.state.count) if i not in model.expected_runaways(engine.methods)]
     for n in range(len(traj.t)):
-        r, p = traj.r[n][kept], traj.p[n][kept]
-        F = net_force(model.forces, traj.t[n], traj.r[n], velocity(traj.p[n], traj.m), traj.m)[kept]
-        for tips in (r + scales.momentum_axis(p), r + scales.force_axis(F)):
-            on_screen = np.stack([(tips - scene.centre) @ right, (tips - scene.centre) @ up], axis=1)
-            out = np.abs(on_screen) - half
-            assert np.all(out <= 0), f"{name}: an arrow ends {out.max():.2f} m outside the view at t = {traj.t[n]:.2f} s"
-            if not scene.wall:
-                through = tips[:, 1] - scene.support_box[0][1]
-                assert np.all(through <= 0), f"{name}: an arrow ends {through.max():.2f} m above the ceiling"
+        F = net_force(model.forces, traj.t[n], traj.r[n], velocity(traj.p[n], traj.m), traj.m)
+        yield traj.t[n], traj.r[n][kept], traj.p[n][kept], F[kept]
+
+
+SIX = [("vertical", None), ("damped", None), ("driven", 3), ("pendulum", None), ("resonance", None), ("regimes", None)]
+
+
+@pytest.mark.parametrize("name, scenario", SIX)
+def test_the_arrows_stay_in_the_picture_the_page_frames(name, scenario):
+    """Every p and F_net arrow, at the run's scales, ends inside the 3-D view the page frames
+    (browser/scene3d.py, drawn on the stand-in vpython, its camera as the page leaves it after
+    the arrows are first drawn, looking along `forward`) over the 30 s the scales are chosen for;
+    no arrow goes up through the ceiling or back through the wall. `resonance --arrows p` had its
+    scale chosen from the whole row's width (4.8 m) while each spring moves 1.8 m: its p arrows
+    ran 2 m up, through the ceiling to the top of the view."""
+    scene, arrows, camera = page_picture(name, scenario)
+    scales = arrows.scales
+    for t, r, p, F in run_30_s(scene_model(name, scenario)):
+        for axes in (scales.momentum_axis(p), scales.force_axis(F)):
+            used = room_used(camera, r, axes)
+            assert np.all(used <= 1), f"{name}: an arrow ends {np.nanmax(used):.2f} of the way out, t = {t:.1f} s"
+            through = (r + axes)[:, 1] - scene.support_box[0][1] if not scene.wall else \
+                scene.support_box[1][0] - (r + axes)[:, 0]
+            assert np.all(through <= 0), f"{name}: an arrow ends {through.max():.2f} m through the support"
+
+
+def scene_model(name, scenario):
+    return catalog.configure(name, scenario=scenario).build()
+
+
+@pytest.mark.parametrize("name, scenario, least", [*((name, scenario, 0.5) for name, scenario in SIX[:3] + SIX[4:]),
+                                                   ("integrators", None, 0.5), ("drag", None, 0.5),
+                                                   ("pendulum", None, 0.75)])
+def test_the_longest_arrow_of_a_run_uses_most_of_its_room(name, scenario, least):
+    """Over 30 s the longest p arrow and the longest F_net arrow each reach most of the way from
+    their mass to the picture's edge, or to the ceiling or wall (pendulum, the 0.12 m ball in a 2 m
+    tall picture, over three quarters). The scales used to be rounded up from half the motion's size with no regard to
+    where the edge was: pendulum's longest p and F_net arrows reached 0.56 and 0.50 of the way,
+    integrators' 0.14 and 0.13."""
+    scene, arrows, camera = page_picture(name, scenario)
+    face = (0, scene.support_box[1][0], -1) if scene.wall else (1, scene.support_box[0][1], 1)
+    longest = {"p": 0.0, "F_net": 0.0}
+    for t, r, p, F in run_30_s(scene_model(name, scenario)):
+        for kind, axes in (("p", arrows.scales.momentum_axis(p)), ("F_net", arrows.scales.force_axis(F))):
+            longest[kind] = max(longest[kind], np.nanmax(room_used(camera, r, axes, face=face)))
+    assert min(longest.values()) >= least, f"{name}: the longest arrows reach {longest} of the way to the edge"
+
+
+def test_reset_rescales_against_the_picture_the_camera_shows():
+    """An arrow tip that left the picture the page's camera showed makes the next Reset pick the
+    next round scale that keeps every tip of that run in it, and only then. The camera here is
+    moved closer, on the swing itself (pendulum: looking straight on, so the picture is x and y
+    within range × 900/440 and range of its centre); the old rule compared the largest |p| with
+    twice its own reach and kept the scale, though the tips were out of the picture."""
+    from browser.arrows3d import MomentumArrows
+    from browser.clock import LiveRun
+    from browser.scene3d import CANVAS_SIZE, Scene3D
+
+    setup = catalog.configure("pendulum")
+    model = setup.build()
+    vp = stand_in_with_arrows()
+    scene = Scene3D(vp, model=model, view=view_of(setup), title="pendulum")
+    arrows = MomentumArrows(vp, model=model, integrator=DEFAULT_INTEGRATOR, shown={"p"}, radius=scene.radius,
+                            view=view_of(setup), make_room=scene.make_room, camera=scene.camera)
+    live = LiveRun(model, integrator=DEFAULT_INTEGRATOR)
+
+    def run(seconds: float):
+        """Draw a frame every 0.05 s; the masses' r and p at each, and the p arrow's tip drawn."""
+        r, p, tips = [], [], []
+        for _ in range(round(seconds / 0.05)):
+            live.advance(round(0.05 / model.dt))
+            arrows.draw(live)
+            r.append(live.state.r[0].copy())
+            p.append(live.state.p[0].copy())
+            tips.append(np.array(arrows.p[0].pos) + np.array(arrows.p[0].axis))
+        return np.array(r), np.array(p), np.array(tips)
+
+    def inside(tips) -> bool:
+        width, height = CANVAS_SIZE
+        half = np.array([scene.range * width / height, scene.range]) - TIP_ROOM * scene.radius
+        return bool(np.all(np.abs(tips[:, :2] - scene.centre[:2]) <= half))
+
+    r, p, tips = run(10.0)
+    first = arrows.scales
+    assert inside(tips) and np.allclose(tips, r + p / first.p_unit)   # framed for them: Reset keeps the scales
+    live.restart()
+    arrows.reset()
+    assert arrows.scales == first
+
+    scene.centre, scene.range = np.array([0.0, -1.3, 0.0]), 0.3   # the picture the camera shows: closer
+    r, p, tips = run(10.0)
+    assert inside(r) and not inside(tips)
+    assert arrows.scales == first and np.allclose(tips, r + p / first.p_unit)   # fixed through the run
+    live.restart()
+    arrows.reset()
+    unit = arrows.scales.p_unit
+    assert is_round(unit) and unit > first.p_unit and arrows.scales.F_unit == first.F_unit
+    assert inside(r + p / unit) and not inside(r + p / next_smaller(unit))   # the next round scale that keeps them in
+
+
+def test_the_arrows_leave_a_camera_that_follows_the_masses_alone():
+    """drag "falling, no spring": the camera follows the balls from the start (the whole fall
+    framed would draw them as dots). Choosing the arrows' scales must not widen it, then or at
+    Reset, to the fall's framed range."""
+    from browser.arrows3d import MomentumArrows
+    from browser.clock import LiveRun
+    from browser.scene3d import Scene3D
+
+    setup = catalog.configure("drag", preset="falling, no spring")
+    model = setup.build()
+    vp = stand_in_with_arrows()
+    scene = Scene3D(vp, model=model, view=view_of(setup), title="drag")
+    assert scene.follows_from_start
+    close = scene.range
+    arrows = MomentumArrows(vp, model=model, integrator=DEFAULT_INTEGRATOR, shown={"p", "F_net"}, radius=scene.radius,
+                            view=view_of(setup), make_room=scene.make_room, camera=scene.camera)
+    live = LiveRun(model, integrator=DEFAULT_INTEGRATOR)
+    arrows.draw(live)
+    assert arrows.scales.view_range > 10 * close and vp.scene.range == close
+    live.advance(round(3.0 / model.dt))        # the balls fall; the camera follows them
+    scene.draw(live, matter=list(range(model.state.count)))
+    arrows.draw(live)
+    live.restart()
+    arrows.reset()
+    scene.clear()                              # back to the start, as close as it began
+    assert vp.scene.range == scene.range == pytest.approx(close)

@@ -17,6 +17,7 @@ import pytest
 import main
 from browser_support import launched, require_browser, screenshot_folder, wait_for
 from export.arrows import choose_scales
+from scenes._view import DEFAULT_VIEW
 from export.step_update import update_force
 from physics.forces import net_force
 from physics.state import velocity
@@ -93,7 +94,7 @@ def test_step_read_out_and_arrows_are_the_engines(browser, capsys, args):
     page = Page(browser, args)
     try:
         first = page.objects()
-        scales = choose_scales(model)
+        scales = choose_scales(model, view={**DEFAULT_VIEW, **setup.hooks.view})
         assert (first["p_unit"], first["F_unit"]) == (scales.p_unit, scales.F_unit)
         wait_for(lambda: shown_time(page.page) > 1.0, timeout=60, what="the run to go")
         page.click("Pause")

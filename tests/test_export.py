@@ -57,6 +57,7 @@ class helix(_Shown): pass
 class sphere(_Shown): pass
 class graph(_Shown): pass
 class arrow(_Shown): pass
+class label(_Shown): pass
 
 
 class gcurve(_Shown):

@@ -335,13 +335,15 @@ def test_the_notebook_shows_the_arrows_and_its_check_boxes_reach_the_kernel(page
     """As on the page: `vertical` opens with its p (yellow) and F_net (reddish purple) arrows on,
     its checked boxes and the legend of the scales, and the mass see-through around them.
     Unchecking both boxes in the cell hides both arrows (at every moment one of them is over
-    1 m long: |p|/20 and |F_net|/50 are never small together) and makes the mass solid again."""
+    1 m long: |p|/20 and |F_net|/20 are never small together) and makes the mass solid again."""
     from export.arrows import choose_scales
     from export.palette import mass_colour
+    from scenes._view import DEFAULT_VIEW
 
     cell = running_scene_cell(page, "vertical")
-    scales = choose_scales(catalog.configure("vertical").build())
-    assert scales.legend() in cell.inner_text()   # an arrow of 1 m = 20 kg·m/s for p, 50 N for forces
+    setup = catalog.configure("vertical")
+    scales = choose_scales(setup.build(), view={**DEFAULT_VIEW, **setup.hooks.view})
+    assert scales.legend() in cell.inner_text()   # an arrow of 1 m = 20 kg·m/s for p, 20 N for forces
     boxes = cell.locator("input[type=checkbox]")
     assert boxes.count() == 4                      # p, F_net, forces, F∥ and F⊥
     assert [boxes.nth(n).is_checked() for n in range(4)] == [True, True, False, False]

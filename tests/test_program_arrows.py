@@ -8,6 +8,7 @@ import numpy as np
 import pytest
 
 from export.arrows import choose_scales
+from scenes._view import DEFAULT_VIEW
 from export.palette import ARROW_COLOURS
 from physics.forces import net_force
 from physics.state import velocity
@@ -33,7 +34,7 @@ def test_the_programs_arrows_end_on_the_final_p_and_F_net(args, stand_in, tmp_pa
     t_end, r_end, p_end = final_state(drawn)   # the program's own, to every digit
     answers = [(t_end, r, p) for r, p in zip(r_end, p_end)]
     model = setup.build()
-    scales = choose_scales(model, integrator=integrator)
+    scales = choose_scales(model, view={**DEFAULT_VIEW, **setup.hooks.view}, integrator=integrator)
     result = headless.simulate(setup, model=model, integrator=integrator, every_step=True, progress=None)
     traj = result.trajectory
     p, r = traj.p[-1], traj.r[-1]
@@ -77,10 +78,11 @@ def test_no_arrows_writes_none(stand_in, tmp_path):  # noqa: F811
                                   ("driven", "--scenario", "3", "--integrator", "rk4", "--set", "until=4")])
 def test_the_programs_forces_and_split_arrows_are_the_pages(args, stand_in, tmp_path):  # noqa: F811
     """`--arrows forces,split`: the program draws each force on its own thin grey arrow, tip to tail,
-    ending at F_net's tip, and F∥ (sky blue) and F⊥ (white), in the page's colours and at the
-    page's force scale; at the end F⊥ is across the final p, F∥ + F⊥ = F_net, and each force is
-    the engine's force of the last update (euler-cromer) at that scale."""
-    from export.arrows import forces_each, split
+    ending at F_net's tip, named beside its middle, and F∥ (sky blue) and F⊥ (white), each
+    labelled at its tip with its size in N, in the page's colours and at the page's force scale;
+    at the end F⊥ is across the final p, F∥ + F⊥ = F_net, and each force is the engine's force of
+    the last update (euler-cromer) at that scale."""
+    from export.arrows import force_name, forces_each, split
 
     path = tmp_path / "program.py"
     web = tmp_path / "web.py"
@@ -96,7 +98,8 @@ def test_the_programs_forces_and_split_arrows_are_the_pages(args, stand_in, tmp_
     answers = [(t_end, r, p) for r, p in zip(r_end, p_end)]
     integrator = rest[rest.index("--integrator") + 1] if "--integrator" in rest else None
     model = setup.build()
-    scales = choose_scales(model, integrator=integrator)
+    scales = choose_scales(model, view={**DEFAULT_VIEW, **setup.hooks.view}, integrator=integrator,
+                           forces=True)   # each force drawn: the page's scale with them on
     traj = headless.simulate(setup, model=model, integrator=integrator, every_step=True, progress=None).trajectory
     m, count, kinds = traj.m, model.state.count, len(model.forces)
     each_last = forces_each(model.forces, traj.t[-2], traj.r[-2], velocity(traj.p[-2], m), m)
@@ -107,6 +110,10 @@ def test_the_programs_forces_and_split_arrows_are_the_pages(args, stand_in, tmp_
                 if shown["kind"] == "arrow" and shown["color"] == pytest.approx(list(ARROW_COLOURS[kind]))]
     F_arrows, force_arrows = arrows("F_net"), arrows("forces")
     par, perp = arrows("F_par"), arrows("F_perp")
+    labels = {kind: [shown for shown in drawn if shown["kind"] == "label"
+                     and shown["color"] == pytest.approx(list(ARROW_COLOURS[kind]))]
+              for kind in ("forces", "F_par", "F_perp")}
+    assert [len(labels[kind]) for kind in labels] == [count * kinds, count, count]
     assert len(F_arrows) == len(par) == len(perp) == count and len(force_arrows) == count * kinds
     for i in range(count):
         r, p = answers[i][1], answers[i][2]
@@ -116,6 +123,13 @@ def test_the_programs_forces_and_split_arrows_are_the_pages(args, stand_in, tmp_
         for a, b in zip(mine, mine[1:]):   # tip to tail
             assert np.allclose(np.array(a["pos"]) + a["axis"], b["pos"], atol=1e-9)
         assert np.allclose(np.array(mine[-1]["pos"]) + mine[-1]["axis"], r + F, atol=1e-9)   # ends at F_net's tip
+        names = labels["forces"][i * kinds:(i + 1) * kinds]   # each force named, as on the page, beside its middle
+        assert [label["text"] for label in names] == [force_name(force) for force in model.forces]
+        for n, (label, a) in enumerate(zip(names, mine)):
+            assert np.allclose(label["pos"], np.array(a["pos"]) + 0.5 * np.array(a["axis"]), atol=1e-9)
+            assert label["height"] >= 18 and label["box"] is False
+            # every other name on the left: a hanging mass's spring and gravity lie along one line
+            assert (label["xoffset"] < 0, label["align"]) == ((True, "right") if n % 2 else (False, "left"))
         assert all(a["shaftwidth"] < F_arrows[i]["shaftwidth"] for a in mine)               # thin, as on the page
         if integrator is None:   # euler-cromer: each force of the last update, at the page's scale
             for n in range(kinds):
@@ -125,6 +139,10 @@ def test_the_programs_forces_and_split_arrows_are_the_pages(args, stand_in, tmp_
         assert np.allclose(F_par + F_perp, F, atol=1e-12)
         assert abs(F_perp @ p) <= 1e-9 * max(1.0, np.linalg.norm(F_perp) * np.linalg.norm(p))   # across p
         assert abs(F_par @ p) == pytest.approx(np.linalg.norm(F_par) * np.linalg.norm(p), rel=1e-9)  # along p
+        for label, part, symbol in ((labels["F_par"][i], F_par, "F∥"), (labels["F_perp"][i], F_perp, "F⊥")):
+            assert np.allclose(label["pos"], r + part, atol=1e-9) and label["height"] >= 18   # at its tip
+            assert label["text"] == f"{symbol} = {np.linalg.norm(part) * scales.F_unit:.2f} N"
+        assert labels["F_perp"][i]["yoffset"] < 0 < labels["F_par"][i]["yoffset"]   # short ones apart
         # parallel to the engine's own split of the final F_net along the final p
         for drawn_part, engine_part in ((F_par, along[i]), (F_perp, across[i])):
             size = np.linalg.norm(engine_part) / scales.F_unit
@@ -134,6 +152,42 @@ def test_the_programs_forces_and_split_arrows_are_the_pages(args, stand_in, tmp_
     # expression; no f-strings
     code = [line.split("#")[0] for line in web.read_text().splitlines()]
     assert code[0].startswith("Web VPython 3.2") and ".axis = Fscale*Fpar" in web.read_text()
+    assert '.text = "F∥ = {:.2f} N".format(mag(Fpar))' in web.read_text()   # str.format, as the answer's print
     assert "Fpar = dot(Fnet, phat)*phat" in [line.strip() for line in code]
     assert all(line.strip().startswith("if ") for line in code if " if " in f" {line.strip()} ")
     assert not any('f"' in line or "f'" in line for line in code)
+
+
+def test_web_vpythons_own_format_writes_the_split_labels_alike(tmp_path):
+    """The F∥ and F⊥ labels are written with "F∥ = {:.2f} N".format(mag(Fpar)): Web VPython runs
+    str.format with its own code (String.prototype.format in glow.min.js, which vpython ships).
+    Run under node, it writes a pendulum run's |F∥| and |F⊥| (0.001 N to 20 N) as Python does,
+    and so as the page does. (With '{:.3g}' it wrote 7 of 401 otherwise: 0.3135 as 0.314.)"""
+    from export.arrows import PART_DIGITS
+    import importlib.util
+    import json
+    import shutil
+    import subprocess
+    from pathlib import Path
+
+    from export.arrows import sampled, split
+
+    node = shutil.which("node")
+    glow = Path(importlib.util.find_spec("vpython").submodule_search_locations[0]) / "vpython_libraries" / "glow.min.js"
+    if node is None or not glow.exists():
+        pytest.skip("needs node and vpython's glow.min.js")
+    source = glow.read_text(encoding="utf-8")
+    start = source.index("String.prototype.format=function")
+    end = source.index("function parse_html", start)
+    script = tmp_path / "format.js"
+    written = "console.log(JSON.stringify(v.map(function (x) { return 'F∥ = %s N'.format(x); })));\n" % PART_DIGITS
+    script.write_text("var pow = Math.pow;\n" + source[start:end] + "\nvar v = JSON.parse(process.argv[2]);\n" + written,
+                      encoding="utf-8")
+    _, p, F = sampled(catalog.configure("pendulum").build())
+    along, across = split(F.reshape(-1, 3), p.reshape(-1, 3))
+    sizes = [float(x) for x in np.concatenate([np.linalg.norm(along, axis=1), np.linalg.norm(across, axis=1)])]
+    sizes = [x for x in sizes if x > 1e-3]
+    assert len(sizes) > 200 and max(sizes) > 5
+    done = subprocess.run([node, str(script), json.dumps(sizes)], capture_output=True, text=True, timeout=60)
+    assert done.returncode == 0, done.stderr
+    assert json.loads(done.stdout) == [f"F∥ = {PART_DIGITS} N".format(x) for x in sizes]
