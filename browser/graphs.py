@@ -33,6 +33,7 @@ from physics.state import State, velocity
 from .axes import AxisFit, nice_range, time_axis
 from .clock import Trace, window
 from .page_layout import NOTE_MARK
+from .readout import length_text
 
 SAMPLE_EVERY = 0.05       # s of simulation time between graph points
 LEGEND_MASSES = 6         # more masses than this: no legend entry per mass
@@ -380,12 +381,13 @@ class Graphs:
             return ""
         if errors.size == 1:
             name = "xyz"[self.axes[0]]
-            return f"error {name} − {name}<sub>exact</sub> = {float(errors.flat[0]):+.3g} m"
+            return f"error {name} − {name}<sub>exact</sub> = {length_text(float(errors.flat[0]), signed=True)}"
         left_out = [model.labels[i] for i in live.may_run_away]
         past = [model.labels[i] for i in matter if i not in known]
         others = (f" ({', '.join(left_out)} left out)" if left_out else "") + \
                  (f" ({', '.join(past)}: past the anchor, no exact value)" if past else "")
-        return f"largest |error| against the exact solutions = {float(np.max(np.abs(known_errors))):.3g} m{others}"
+        largest = length_text(float(np.max(np.abs(known_errors))))
+        return f"largest |error| against the exact solutions = {largest}{others}"
 
 
 def csv_text(samples, *, m, labels, dt) -> str:
