@@ -31,6 +31,7 @@ from physics.energy import kinetic, potential, rest_potential
 from physics.state import State, velocity
 
 from .axes import AxisFit, nice_range, time_axis
+from .error_envelope import PeriodMax, periods
 from .clock import Trace, window
 from .page_layout import NOTE_MARK
 from .readout import length_text
@@ -80,9 +81,10 @@ class Graphs:
         self.show_exact = self.exact_curves
         if self.show_exact:
             self._add_exact_curves(model)
-        # VIEW["error"]: log₁₀ |x − x_exact| of each mass over that many seconds (integrators: each method's order)
+        # VIEW["error"]: each mass's error envelope over that many seconds (integrators: each method's order)
         self.error_span = float(view["error"]) if view.get("error") and self.exact_curves else None
         self.error_fit = AxisFit(pixels=GRAPH_CANVAS_HEIGHT)
+        self.error_windows = [PeriodMax(period) for period in periods(model)]
         self.error_graph = self._build_error_graph(model) if self.error_span else None
         # What the energy graph shows, so that it tells the story (what would fill it otherwise):
         # one method per mass: each mass's own E = K + U (summed, euler's runaway would swamp it);
@@ -164,7 +166,9 @@ class Graphs:
                             width=EXACT_WIDTH)
 
     def _build_error_graph(self, model):
-        """log₁₀ |x − x_exact| of each mass against t, one curve per mass (per method, in integrators).
+        """Each mass's error against t, one curve per mass (per method, in integrators): log₁₀ of
+        the largest |x − x_exact| over the last period (browser/error_envelope.py), without the
+        dips where x crosses x_exact.
 
         On a logarithmic scale a first-order method's error sits (ωΔt)³ above a fourth-order one's,
         and an error that grows like e^(γt) is a straight line of slope γ / ln 10: euler climbs,
@@ -174,7 +178,7 @@ class Graphs:
         width, height = self.size
         name = "xyz"[self.axes[0]]
         graph = vp.graph(title="Error of each method, on a log scale", xtitle="t (s)",
-                         ytitle=f"log₁₀ |{name} − {name}_exact| (m)", width=width, height=height, align="left",
+                         ytitle=f"log₁₀ of the largest |{name} − {name}_exact| over a period (m)", width=width, height=height, align="left",
                          fast=True, xmin=0, xmax=self.error_span)
         for n, i in enumerate(self.graphed):
             self._curve(graph, model.labels[i], vp.vector(*self.colours[i]), ("error", i, self.axes[0]),
@@ -221,12 +225,15 @@ class Graphs:
             self.energy_graph.title = self._energy_title(setup)
         self.show_exact = self.exact_curves and model.exact is not None
         self.spacing = max(model.dt, SAMPLE_EVERY)   # s between graph points
+        self.error_windows = [PeriodMax(period) for period in periods(model)]   # a new m or k: a new period
 
     def clear(self) -> None:
         """Empty every curve and the recorded samples, and show t from 0 again."""
         self.position_fit.clear()
         self.energy_fit.clear()
         self.error_fit.clear()
+        for window in self.error_windows:
+            window.clear()
         if self.data_values:
             _fit(self.position_graph, self.position_fit, self.data_values)
         for _, trace, _ in self.curves:
@@ -288,8 +295,9 @@ class Graphs:
                     values = np.zeros(0)
                 elif what[0] == "exact":
                     values = exact[:, what[1], what[2]]
-                else:
-                    values = log_error(r[:, what[1], what[2]], exact[:, what[1], what[2]])
+                else:   # the error's envelope: its largest size over the last period (error_envelope.py)
+                    values = [self.error_windows[what[1]].add(float(a), float(b)) for a, b in
+                              zip(t, r[:, what[1], what[2]] - exact[:, what[1], what[2]])]
             else:
                 values = energies[what[1]]
             points = [[float(a), float(b)] for a, b in zip(t, values) if math.isfinite(b)]
@@ -409,13 +417,6 @@ def csv_text(samples, *, m, labels, dt) -> str:
                    *energy]
             writer.writerow(row + ([] if single else [label]))
     return out.getvalue()
-
-
-def log_error(x, x_exact) -> np.ndarray:
-    """log₁₀ |x − x_exact|, the error graph's values (−inf where they agree exactly, NaN where no
-    exact value is known: the graph leaves out both), log₁₀ m."""
-    with np.errstate(divide="ignore", invalid="ignore"):
-        return np.log10(np.abs(np.asarray(x, dtype=float) - np.asarray(x_exact, dtype=float)))
 
 
 def replace_points(series, points) -> None:
