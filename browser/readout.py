@@ -13,17 +13,19 @@ import math
 
 UNITS = (("mm", 1e-3), ("µm", 1e-6), ("nm", 1e-9), ("pm", 1e-12))  # smaller and smaller, each with its size in m
 METRES_FROM = 0.1  # m: a length this size or more is written in metres
-ROUND_OFF = "less than 1 pm (round-off)"
+ROUND_OFF = "less than 1\u00a0pm (round-off)"
+NO_BREAK = "\u00a0"   # between a number and its unit: the caption wrapped `921` and `µm` onto two lines
 
 
 def length_text(metres: float, *, signed: bool = False) -> str:
-    """`metres` as a plain decimal of three significant digits with its unit: `+1.24 nm`, `0.153 m`.
+    """`metres` as a plain decimal of three significant digits with its unit: `+1.24 nm`, `0.153 m`
+    (a no-break space between them).
     `signed` writes a + before a positive length (an error's direction). Not finite: `not a number`."""
     if not math.isfinite(metres):
         return "not a number"
     size = abs(metres)
     if size == 0:
-        return "0 m"
+        return f"0{NO_BREAK}m"
     unit, scale = "m", 1.0
     if size < METRES_FROM:
         for unit, scale in UNITS:
@@ -37,7 +39,7 @@ def length_text(metres: float, *, signed: bool = False) -> str:
         value = round_3(size / scale)
     decimals = max(0, 2 - math.floor(math.log10(value)))
     sign = "−" if metres < 0 else ("+" if signed else "")
-    return f"{sign}{value:.{decimals}f} {unit}"
+    return f"{sign}{value:.{decimals}f}{NO_BREAK}{unit}"
 
 
 def round_3(x: float) -> float:

@@ -14,7 +14,7 @@ from scenes import catalog
 from test_trail import stand_in_vpython
 
 SIZES = {"m": 1.0, "mm": 1e-3, "µm": 1e-6, "nm": 1e-9, "pm": 1e-12}
-PLAIN = re.compile(r"^([+−]?)(\d+(?:\.\d+)?) (m|mm|µm|nm|pm)$")
+PLAIN = re.compile(r"^([+−]?)(\d+(?:\.\d+)?)\u00a0(m|mm|µm|nm|pm)$")   # a no-break space before the unit
 
 
 def metres(text: str) -> float:
@@ -28,7 +28,7 @@ def metres(text: str) -> float:
     (2.5e-5, "+25.0 µm"), (9.9996e-4, "+1.00 mm"), (3.2e-12, "+3.20 pm"), (1234.5, "+1230 m"),
     (0.0, "0 m")])
 def test_hand_worked_lengths(value, text):
-    assert length_text(value, signed=True) == text
+    assert length_text(value, signed=True) == text.replace(" ", "\u00a0")
 
 
 def test_round_off_and_not_a_number_are_said_in_words():
