@@ -174,12 +174,13 @@ class Controls:
         self.notice = text
         self.status_text.text = text
 
-    def choice_refused(self, kind: str, scene: str) -> None:
-        """A scene or preset chosen in a menu could not be used: the menu goes back to what runs."""
+    def choice_refused(self, kind: str, scene: str, preset: str | None = None) -> None:
+        """A scene or preset chosen in a menu could not be used: the menu goes back to what runs
+        (the scene, and the preset whose constants run, or the prompt if none)."""
         if kind == "scene":
             self.scene_menu.selected = scene
-        else:
-            self.preset_left()
+        elif self.preset_menu is not None:
+            self.preset_menu.selected = preset or PRESET_PROMPT
 
     def preset_left(self) -> None:
         """The constants no longer match the preset chosen: the menu shows its prompt again."""

@@ -31,8 +31,10 @@ from physics.energy import kinetic, potential, rest_potential
 from physics.state import State, velocity
 
 from .axes import AxisFit, data_window, nice_range, time_axis
+from .error_envelope import PeriodMax, periods
 from .clock import Trace, window
 from .page_layout import NOTE_MARK
+from .readout import length_text
 
 SAMPLE_EVERY = 0.05       # s of simulation time between graph points
 LEGEND_MASSES = 6         # more masses than this: no legend entry per mass
@@ -80,9 +82,10 @@ class Graphs:
         self.show_exact = self.exact_curves
         if self.show_exact:
             self._add_exact_curves(model)
-        # VIEW["error"]: log₁₀ |x − x_exact| of each mass over that many seconds (integrators: each method's order)
+        # VIEW["error"]: each mass's error envelope over that many seconds (integrators: each method's order)
         self.error_span = float(view["error"]) if view.get("error") and self.exact_curves else None
         self.error_fit = AxisFit(pixels=GRAPH_CANVAS_HEIGHT)
+        self.error_windows = [PeriodMax(period) for period in periods(model)]
         self.error_graph = self._build_error_graph(model) if self.error_span else None
         # What the energy graph shows, so that it tells the story (what would fill it otherwise):
         # one method per mass: each mass's own E = K + U (summed, euler's runaway would swamp it);
@@ -164,7 +167,9 @@ class Graphs:
                             width=EXACT_WIDTH)
 
     def _build_error_graph(self, model):
-        """log₁₀ |x − x_exact| of each mass against t, one curve per mass (per method, in integrators).
+        """Each mass's error against t, one curve per mass (per method, in integrators): log₁₀ of
+        the largest |x − x_exact| over the last period (browser/error_envelope.py), without the
+        dips where x crosses x_exact.
 
         On a logarithmic scale a first-order method's error sits (ωΔt)³ above a fourth-order one's,
         and an error that grows like e^(γt) is a straight line of slope γ / ln 10: euler climbs,
@@ -174,7 +179,7 @@ class Graphs:
         width, height = self.size
         name = "xyz"[self.axes[0]]
         graph = vp.graph(title="Error of each method, on a log scale", xtitle="t (s)",
-                         ytitle=f"log₁₀ |{name} − {name}_exact| (m)", width=width, height=height, align="left",
+                         ytitle=f"log₁₀ of the largest |{name} − {name}_exact| over a period (m)", width=width, height=height, align="left",
                          fast=True, xmin=0, xmax=self.error_span)
         for n, i in enumerate(self.graphed):
             self._curve(graph, model.labels[i], vp.vector(*self.colours[i]), ("error", i, self.axes[0]),
@@ -221,12 +226,15 @@ class Graphs:
             self.energy_graph.title = self._energy_title(setup)
         self.show_exact = self.exact_curves and model.exact is not None
         self.spacing = max(model.dt, SAMPLE_EVERY)   # s between graph points
+        self.error_windows = [PeriodMax(period) for period in periods(model)]   # a new m or k: a new period
 
     def clear(self) -> None:
         """Empty every curve and the recorded samples, and show t from 0 again."""
         self.position_fit.clear()
         self.energy_fit.clear()
         self.error_fit.clear()
+        for window in self.error_windows:
+            window.clear()
         if self.data_values:
             _fit(self.position_graph, self.position_fit, self.data_values)
         for _, trace, _ in self.curves:
@@ -294,8 +302,9 @@ class Graphs:
                     values = np.zeros(0)
                 elif what[0] == "exact":
                     values = exact[:, what[1], what[2]]
-                else:
-                    values = log_error(r[:, what[1], what[2]], exact[:, what[1], what[2]])
+                else:   # the error's envelope: its largest size over the last period (error_envelope.py)
+                    values = [self.error_windows[what[1]].add(float(a), float(b)) for a, b in
+                              zip(t, r[:, what[1], what[2]] - exact[:, what[1], what[2]])]
             else:
                 values = energies[what[1]]
             points = [[float(a), float(b)] for a, b in zip(t, values) if math.isfinite(b)
@@ -389,12 +398,13 @@ class Graphs:
             return ""
         if errors.size == 1:
             name = "xyz"[self.axes[0]]
-            return f"error {name} − {name}<sub>exact</sub> = {float(errors.flat[0]):+.3g} m"
+            return f"error {name} − {name}<sub>exact</sub> = {length_text(float(errors.flat[0]), signed=True)}"
         left_out = [model.labels[i] for i in live.may_run_away]
         past = [model.labels[i] for i in matter if i not in known]
         others = (f" ({', '.join(left_out)} left out)" if left_out else "") + \
                  (f" ({', '.join(past)}: past the anchor, no exact value)" if past else "")
-        return f"largest |error| against the exact solutions = {float(np.max(np.abs(known_errors))):.3g} m{others}"
+        largest = length_text(float(np.max(np.abs(known_errors))))
+        return f"largest |error| against the exact solutions = {largest}{others}"
 
 
 def csv_text(samples, *, m, labels, dt) -> str:
@@ -416,13 +426,6 @@ def csv_text(samples, *, m, labels, dt) -> str:
                    *energy]
             writer.writerow(row + ([] if single else [label]))
     return out.getvalue()
-
-
-def log_error(x, x_exact) -> np.ndarray:
-    """log₁₀ |x − x_exact|, the error graph's values (−inf where they agree exactly, NaN where no
-    exact value is known: the graph leaves out both), log₁₀ m."""
-    with np.errstate(divide="ignore", invalid="ignore"):
-        return np.log10(np.abs(np.asarray(x, dtype=float) - np.asarray(x_exact, dtype=float)))
 
 
 def replace_points(series, points) -> None:

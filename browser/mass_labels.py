@@ -13,7 +13,6 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 LABELLED_MASSES = 6   # more masses than this (and no rows): no labels, they would cover the picture
-SHORT_LINE = 12       # characters: a longer name is broken at its first space
 
 
 @dataclass(frozen=True)
@@ -47,8 +46,6 @@ def two_lines(label: str) -> str:
         head, tail = label.split(", ", 1)
     else:
         return label
-    if len(head) > SHORT_LINE:  # `critically damped` ran into its neighbours' labels
-        head = head.replace(" ", "\n", 1)
     return f"{head}\n{tail}"
 
 

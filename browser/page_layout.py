@@ -14,7 +14,9 @@ browser, where the window's size is known, and again whenever the window is resi
   (22 px), with every graph line LINE_FACTOR times thicker and black on white;
 * each graph's legend in a line of its own above the graph, never over its data, each colour box
   kept on one line with its label (a legend that wraps breaks between entries);
-* the 3-D view's labels grow with projector mode as the page's text does;
+* the 3-D view's labels grow with projector mode as the page's text does, their offsets from
+  their masses follow the canvas's size, and each is drawn wholly inside the canvas (moved in from
+  an edge it would cross: 18 px text in the 538 × 263 px canvas of a 1024 × 768 window);
 * keys: Space runs or pauses, → steps, R resets, + and − change the speed, P projector mode; every
   control is reached with Tab and shows a thick outline when it has the focus.
 
@@ -69,7 +71,7 @@ body.sm-projector button, body.sm-projector select { border: 2px solid #000; col
 # graph's legend above it, makes lines thicker in projector mode, and listens to the keys.
 SCRIPT = """
 (function () {
-  var ASPECT = %(aspect)s, GRAPH_WIDTH = %(graph_width)s, SHARE = %(share)s, GAP = %(gap)s,
+  var ASPECT = %(aspect)s, CANVAS_HEIGHT = %(canvas_height)s, GRAPH_WIDTH = %(graph_width)s, SHARE = %(share)s, GAP = %(gap)s,
       FACTOR = %(factor)s, TITLE_PX = [%(body)d, %(projector)d], NOTE_MARK = %(note_mark)s;
   if (window.smProjector === undefined) window.smProjector = %(projector_on)s;
   // In a Jupyter notebook the scene is one cell's output: the notebook lays out its page and owns
@@ -142,6 +144,52 @@ SCRIPT = """
     if (o.__smHeight === undefined) o.__smHeight = o.height;
     var want = window.smProjector ? Math.round(o.__smHeight * TITLE_PX[1] / TITLE_PX[0]) : o.__smHeight;
     if (o.height !== want) o.height = want;
+    // Its offset from the mass, set in Python for a canvas CANVAS_HEIGHT px tall, follows the
+    // canvas as the picture does (the text does not shrink: it stays readable).
+    if (o.__smOffsets === undefined) o.__smOffsets = [o.xoffset, o.yoffset];
+    var scale = o.canvas && o.canvas.__height ? o.canvas.__height / CANVAS_HEIGHT : 1;
+    var x = Math.round(o.__smOffsets[0] * scale), y = Math.round(o.__smOffsets[1] * scale);
+    if (o.xoffset !== x) o.xoffset = x;
+    if (o.yoffset !== y) o.yoffset = y;
+    keepInside(Object.getPrototypeOf(o));
+  }
+  // Every 3-D label is drawn wholly inside its canvas: vpython's own drawing of it is tried first
+  // on a spare 2-D canvas, and if its box (the rectangle vpython fills behind the text) would
+  // cross an edge, the label is drawn moved in by just that much. Its text stays 18 px while a
+  // small window shrinks the canvas, so near an edge it would otherwise be cut off.
+  var SPARE = document.createElement('canvas').getContext('2d');
+  function keepInside(proto) {
+    if (proto.__smInside) return;
+    proto.__smInside = true;
+    var update = proto.__update;
+    proto.__update = function (ctx, camera) {
+      var box = null;
+      SPARE.fillRect = function (x, y, w, h) { box = [x, y, w, h]; };
+      try { update.call(this, SPARE, camera); } finally { delete SPARE.fillRect; }
+      if (!box) return update.call(this, ctx, camera);
+      var W = this.canvas.__width, H = this.canvas.__height, me = this;
+      var dx = Math.max(-box[0], Math.min(0, W - box[0] - box[2]));
+      var dy = Math.max(-box[1], Math.min(0, H - box[1] - box[3]));
+      if (!dx && !dy) return update.call(this, ctx, camera);
+      return shifted(ctx, dx, dy, function () { return update.call(me, ctx, camera); });
+    };
+  }
+  // Draw with everything a label draws moved by (dx, dy) px: vpython resets the context's
+  // transform after each piece of text, so a translate() would move only the first line.
+  function shifted(ctx, dx, dy, draw) {
+    var kept = {};
+    [['fillRect', 0], ['moveTo', 0], ['lineTo', 0], ['fillText', 1]].forEach(function (pair) {
+      var name = pair[0], at = pair[1], f = ctx[name];
+      kept[name] = Object.prototype.hasOwnProperty.call(ctx, name) ? f : null;
+      ctx[name] = function () {
+        var a = Array.prototype.slice.call(arguments);
+        a[at] += dx; a[at + 1] += dy;
+        return f.apply(ctx, a);
+      };
+    });
+    try { return draw(); } finally {
+      Object.keys(kept).forEach(function (name) { if (kept[name]) ctx[name] = kept[name]; else delete ctx[name]; });
+    }
   }
   // The graphs in the order Python made them (vpython places a graph when its first point
   // arrives, and a graph of errors gets none at t = 0, where every error is 0), each under its legend.
@@ -166,10 +214,11 @@ SCRIPT = """
     if (typeof fontsize !== 'undefined') fontsize = TITLE_PX[window.smProjector ? 1 : 0];
     var button = document.getElementById('sm-projector');
     if (button) button.textContent = window.smProjector ? 'Projector: on (P)' : 'Projector: off (P)';
-    objects(function (o) { return o.constructor && o.constructor.name === 'label'; }).forEach(grow);
+    var labels = objects(function (o) { return o.constructor && o.constructor.name === 'label'; });
     if (inNotebook) {  // vpython writes the titles in the graphs there: without the line meant under one
       objects(function (o) { return o.graph_options && o.title && o.title.indexOf(NOTE_MARK) >= 0; })
         .forEach(function (g) { g.title = g.title.split(NOTE_MARK)[0]; });
+      labels.forEach(grow);
       return;
     }
     // Always a vertical scrollbar: one that came and went would change the width, the layout the
@@ -186,6 +235,7 @@ SCRIPT = """
       if (c.width !== cw) c.width = cw;
       if (c.height !== ch) c.height = ch;
     });
+    labels.forEach(grow);  // after the canvas has its size: the labels' offsets follow it
     var right = column();
     right.style.left = (8 + left + GAP) + 'px';
     document.querySelectorAll('#glowscript > .glowscript-graph').forEach(function (el) {
@@ -267,6 +317,7 @@ def page_head(*, projector: bool = False) -> str:
     mode if asked (`--projector`); a page already shown keeps the mode its viewer chose."""
     numbers = {"body": BODY_PX, "projector": PROJECTOR_PX}
     script = SCRIPT % {**numbers, "aspect": json.dumps(CANVAS_SIZE[0] / CANVAS_SIZE[1]),
+                       "canvas_height": json.dumps(CANVAS_SIZE[1]),
                        "graph_width": json.dumps(list(GRAPH_WIDTH)), "share": json.dumps(GRAPH_SHARE),
                        "gap": json.dumps(GAP), "factor": json.dumps(LINE_FACTOR),
                        "projector_on": json.dumps(bool(projector)), "note_mark": json.dumps(NOTE_MARK)}

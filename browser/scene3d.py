@@ -240,7 +240,7 @@ class Scene3D:
         t, _ = live.runaways[i]
         inward = 60 if where[0] < self.centre[0] else -60  # px: the text stays inside the picture
         label = self.vp.label(pos=vec(self.vp, where), text=f"{live.model.labels[i]} ran away\nat t = {t:.2f} s",
-                              xoffset=inward, yoffset=30, height=15, color=self.vp.vector(1, 1, 1),
+                              xoffset=inward, yoffset=30, height=LABEL_HEIGHT, color=self.vp.vector(1, 1, 1),
                               box=False, line=False)
         self.runaway_labels[i] = label
         self.shapes.append(label)

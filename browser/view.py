@@ -101,6 +101,7 @@ class SceneView:
         self.budget = StepBudget()
         self.loads_shown = self._page_loads()
         self.setup = setup
+        self.preset = preset   # the preset whose constants run now (None once a slider moved one)
         self.data = data or MeasuredData()
         self.live = LiveRun(model, integrator=integrator, sample_every=SAMPLE_EVERY)
         self.scene, self.controls, self.graphs = self._build_parts(preset=preset)
@@ -136,7 +137,7 @@ class SceneView:
             self.scene.take_down()
             self.graphs.take_down()
             self.controls.take_down()
-        self.setup = setup
+        self.setup, self.preset = setup, preset
         self.live = LiveRun(model, integrator=self.integrator, sample_every=SAMPLE_EVERY)
         self.scene, self.controls, self.graphs = self._build_parts(preset=preset)
         self._start_run()
@@ -194,7 +195,8 @@ class SceneView:
         for kept in (baseObj.attach_arrows, baseObj.attach_trails, baseObj.follow_objects):
             kept.clear()
         self.vp.scene = self.vp.canvas()
-        self._build_page(self.setup, self.setup.build(), old_page_gone=True)
+        # the menus show what runs: the preset whose constants these are, as the old page did
+        self._build_page(self.setup, self.setup.build(), preset=self.preset, old_page_gone=True)
         self.loads_shown = loads
         self.server.page_built(loads)
 
@@ -284,13 +286,13 @@ class SceneView:
                         continue
                 except ValueError as problem:  # a scene file a teacher broke: say so, keep this one
                     self.controls.say(f"<b>Cannot open that:</b> {problem}")
-                    self.controls.choice_refused(kind, self.setup.name)
+                    self.controls.choice_refused(kind, self.setup.name, self.preset)
                     continue
                 self.integrator = integrator or self.integrator
                 changes, integrator = {}, None
                 if self._switch(setup, preset=preset):
                     break
-                self.controls.choice_refused(kind, self.setup.name)
+                self.controls.choice_refused(kind, self.setup.name, self.preset)
         if changes or integrator:
             self._rebuild(changes=changes, integrator=integrator or self.integrator)
         return bool(pending)
@@ -316,6 +318,7 @@ class SceneView:
             return
         if changes:
             self.controls.preset_left()
+            self.preset = None
         self.setup, self.integrator = setup, integrator
         self.graphs.rebuilt(setup, model, changes=changes)
         self.live = LiveRun(model, integrator=integrator, sample_every=SAMPLE_EVERY)

@@ -17,7 +17,8 @@ A scene file ends with VIEW, a few lines naming what to draw; both front ends th
              chosen springs, not all 39); None: every mass
     arrows   the arrows drawn on each mass when the page opens (export/arrows.py): "p", "F_net",
              "forces", "split"; `--arrows` and the page's check boxes change them
-    error    seconds of a graph of log₁₀ |x − x_exact| of each mass (integrators: each method's order
+    error    seconds of a graph of log₁₀ of the largest |x − x_exact| over the last period, of each
+             mass (browser/error_envelope.py; integrators: each method's order
              and how its error grows); None: no such graph. Only where the model has an exact solution
     energy_note  a function of the configured scene giving one line shown under the energy graph
              (resonance: what the energy's spikes are); None: no line

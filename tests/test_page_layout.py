@@ -2,8 +2,10 @@
 
 One page load per scene, at a laptop's 1280 × 800 window: nothing scrolls sideways, the 3-D view
 and the position graph are both wholly inside the window, every text (body, buttons, menus, axis
-ticks, legends) is at least 18 px, and each legend sits outside its graph's drawing area. Then at
-1024 × 768 nothing scrolls sideways either.
+ticks, legends) is at least 18 px, each legend sits outside its graph's drawing area, and every
+tick label is a plain decimal on one line. On the same page the keys work with real key presses
+(Space, →, R, +, −), and in projector mode (key P) every text is at least 22 px and the ticks stay
+on one line. Then at 1024 × 768 nothing scrolls sideways either.
 
 One more page goes through the keys with real key presses (Space, →, R, +, −), Tab's focus outline,
 and projector mode (key P): text at least 22 px and graph lines LINE_FACTOR times thicker.
@@ -12,6 +14,7 @@ Skipped, with the reason, where Chromium or Playwright is missing.
 """
 from __future__ import annotations
 
+import re
 import subprocess
 import sys
 
@@ -23,6 +26,7 @@ from test_browser import ROOT, Program, browser, drawable_scenes, graph_count, s
 from browser_support import wait_for
 
 pytestmark = pytest.mark.browser
+PLAIN = re.compile(r"^[-−]?\d+(\.\d+)?$")   # a tick label: a plain decimal, never 4e-2
 
 MEASURE = """() => {
   const box = e => { const b = e.getBoundingClientRect(); return {x: b.x, y: b.y, width: b.width, height: b.height}; };
@@ -39,6 +43,9 @@ MEASURE = """() => {
             buttons: Math.min(...sizes('button')), menus: Math.min(...sizes('select')),
             ticks: Math.min(...sizes('.tickLabel')), legends: Math.min(...sizes('.legendLabel')),
             titles: Math.min(...sizes('.sm-title'))},
+    ticks: Array.from(document.querySelectorAll('.glowscript-graph .tickLabel')).filter(e => e.offsetParent !== null)
+      .map(e => ({text: e.textContent, height: e.getBoundingClientRect().height,
+                  font: parseFloat(getComputedStyle(e).fontSize)})),
   };
 }"""
 
@@ -78,6 +85,10 @@ def test_the_view_and_the_position_graph_fit_a_laptop_window_in_large_text(brows
         for legend in m["legends"]:
             for graph in m["graphs"]:
                 assert not overlap(legend, graph), f"legend {legend} over graph {graph}"
+        single_line_ticks(m["ticks"])
+        keys_work(page, scene)
+        m = projector_mode(page)
+        single_line_ticks(m["ticks"])
 
         page.set_viewport_size({"width": 1024, "height": 768})
         m = wait_for(lambda: (m := page.evaluate(MEASURE)) and m["canvas"]["width"] < 600 and m,
@@ -87,6 +98,49 @@ def test_the_view_and_the_position_graph_fit_a_laptop_window_in_large_text(brows
     finally:
         page.close()
         program.stop()
+
+
+def single_line_ticks(ticks) -> None:
+    """Every tick label is a plain decimal on one line (its box under 1.5 lines of its text)."""
+    assert ticks, "no tick labels"
+    for tick in ticks:
+        assert PLAIN.match(tick["text"]), f"tick label {tick['text']!r}"
+        assert tick["height"] < 1.5 * tick["font"], f"tick label {tick['text']!r} on more than one line"
+
+
+def keys_work(page, scene: str) -> None:
+    """Real key presses with the focus on the page: Space pauses, → steps one Δt, R resets to 0,
+    + speeds up, − slows down again, Space runs again."""
+    dt = catalog.configure(scene).build().dt
+    page.locator("body").click(position={"x": 5, "y": 790})      # the focus on the page itself
+    page.keyboard.press("Space")
+    page.get_by_role("button", name="Run").wait_for(timeout=30_000)
+    paused = shown_time(page)
+    page.keyboard.press("ArrowRight")
+    stepped = wait_for(lambda: (t := shown_time(page)) != paused and t, what="→ to step")
+    assert stepped - paused == pytest.approx(dt, abs=1e-6)
+    page.keyboard.press("r")
+    wait_for(lambda: shown_time(page) == 0.0, what="R to reset")
+    page.keyboard.press("+")
+    wait_for(lambda: speed_shown(page) == "2×", what="+ to speed up")
+    page.keyboard.press("-")
+    wait_for(lambda: speed_shown(page) == "1×", what="− to slow down")
+    page.keyboard.press("Space")
+    page.get_by_role("button", name="Pause").wait_for(timeout=30_000)
+
+
+def projector_mode(page):
+    """Key P: every text at least PROJECTOR_PX; the page's measurements then, P again to leave it."""
+    page.locator("body").click(position={"x": 5, "y": 790})
+    page.keyboard.press("p")
+    m = wait_for(lambda: (m := page.evaluate(MEASURE)) and m["fonts"]["buttons"] >= PROJECTOR_PX
+                 and min(tick["font"] for tick in m["ticks"]) >= PROJECTOR_PX and m,
+                 timeout=120.0, what="projector mode's larger text")
+    for name, size in m["fonts"].items():
+        assert size >= PROJECTOR_PX, f"{name} in {size} px text in projector mode"
+    page.keyboard.press("p")
+    wait_for(lambda: page.evaluate(MEASURE)["fonts"]["buttons"] < PROJECTOR_PX, what="projector mode off")
+    return m
 
 
 def speed_shown(page) -> str:

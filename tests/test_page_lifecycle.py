@@ -16,6 +16,7 @@ Screenshots go to /tmp, not docs/: the reloaded page and the second tab are look
 from __future__ import annotations
 
 import queue
+import re
 import signal
 import socket
 import subprocess
@@ -28,6 +29,7 @@ from pathlib import Path
 
 import pytest
 
+from browser.controls import PRESET_PROMPT
 from browser_support import ENDS_WITHIN, TIME, colours, free_port, launched, require_browser, wait_for
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -130,6 +132,41 @@ def test_a_reload_shows_the_scene_again_and_the_program_keeps_running(browser, p
     assert "Traceback" not in "".join(program.errors)
     assert exit_seconds_after(page.close, program) < ENDS_WITHIN
     assert program.returncode == 0
+
+
+def constants_line(page) -> str:
+    return page.locator("span, div").filter(has_text=re.compile(r"^Constants: ")).last.inner_text()
+
+
+def preset_shown(page) -> str:
+    return page.locator("select").filter(has=page.locator("option", has_text="Moon gravity")).input_value()
+
+
+def test_a_reload_shows_the_preset_that_runs_in_its_menu(browser, program):
+    """After a preset, a reloaded tab runs the preset's constants and its menu names that preset
+    (it said "choose a preset" while g was still the Moon's); after a slider moves a constant the
+    preset no longer holds, and the reloaded menu says so."""
+    page = browser.new_page(viewport={"width": 1280, "height": 1000})   # the sliders inside the window
+    page.goto(program.url)
+    running_past(page, 1.0)
+    page.locator("select").filter(has=page.locator("option", has_text="Moon gravity")).select_option("Moon gravity")
+    wait_for(lambda: "g = 1.62 m/s²" in constants_line(page), what="the Moon's g in the constants")
+    page.reload()
+    running_past(page, 0.3)
+    wait_for(lambda: "g = 1.62 m/s²" in constants_line(page), what="the Moon's g after the reload")
+    assert preset_shown(page) == "Moon gravity"
+
+    track = page.locator(".ui-slider").nth(1).bounding_box()          # vertical: m, then k: a new k
+    page.mouse.click(track["x"] + 0.8 * track["width"], track["y"] + track["height"] / 2)
+    wait_for(lambda: "k = 40 N/m" not in constants_line(page), timeout=120.0, what="the new k")
+    wait_for(lambda: preset_shown(page) == PRESET_PROMPT, what="the menu to leave the preset")
+    page.reload()
+    running_past(page, 0.3)
+    wait_for(lambda: "g = 1.62 m/s²" in constants_line(page) and "k = 40 N/m" not in constants_line(page),
+             what="the constants kept after the reload")
+    assert preset_shown(page) == PRESET_PROMPT
+    assert "Traceback" not in "".join(program.errors)
+    page.close()
 
 
 def test_a_second_tab_says_so_and_closing_it_leaves_the_first_running(browser, program):
