@@ -233,8 +233,8 @@ class Graphs:
         self.position_fit.clear()
         self.energy_fit.clear()
         self.error_fit.clear()
-        for window in self.error_windows:
-            window.clear()
+        for envelope in self.error_windows:
+            envelope.clear()
         if self.data_values:
             _fit(self.position_graph, self.position_fit, self.data_values)
         for _, trace, _ in self.curves:
