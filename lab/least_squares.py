@@ -35,15 +35,17 @@ MAX_ITERATIONS = 60               # Levenberg-Marquardt steps at most (a fit fro
 
 
 def least_squares(problem, theta, low, high):
-    """The theta within [low, high] that minimises Σ problem.residuals(theta)²: Levenberg-Marquardt.
+    """(theta, Σ r²): the theta within [low, high] that minimises Σ problem.residuals(theta)², by
+    Levenberg-Marquardt.
 
     Each step solves (ĴᵀĴ + λ I) δ = −Ĵᵀ r for the columns of J scaled to unit length (Ĵ), so a
     constant in N/m and an offset in s take comparable steps; a step that lowers Σ r² is taken and
     λ shrinks tenfold (towards Gauss-Newton), one that does not is refused and λ grows tenfold
     (towards a short step downhill). A step is clipped to the bounds. It stops when Σ r² falls by
-    less than a part in 10¹⁰ or no step lowers it any more.
+    less than a part in 10¹⁰, when the full Gauss-Newton step would take less than that off it (no
+    further run of the engine), or when no step lowers it any more.
 
-    Why not scipy.optimize.least_squares (used until this change): the problem has two to five
+    Why not scipy.optimize.least_squares (which the fit used before): the problem has two to five
     values and starts near the answer, which plain Levenberg-Marquardt handles in a few steps,
     and importing scipy.optimize took 0.33 s, a third of the whole `--fit` command (docs/performance.md).
     """
