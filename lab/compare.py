@@ -10,7 +10,7 @@ the other way from the model's (a motion detector above the mass measures downwa
 axis points down): both signs are tried and the one that matches better is kept, or --data-sign
 says which. Before its release the model's mass is
 held still at its start position. `--fit k,b` fits named constants too, by least squares
-(Levenberg-Marquardt, numpy only: lab/least_squares.py says why not scipy).
+(scipy.optimize.least_squares, optional: only --fit needs scipy; lab/least_squares.py).
 
 The model is the engine's own run (physics.simulate.Simulation) with the chosen integrator and Δt:
 at the engine's step times it is exactly the engine's positions, and between two steps a cubic
@@ -31,7 +31,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from . import LabError, start as start_search
-from .least_squares import least_squares, offsets_only
+from .least_squares import MissingScipy, least_squares, offsets_only
 from physics.simulate import BlowUpError, every, steps_to_reach, trajectory
 from scenes import ConstantError, check_value
 from scenes._constants import DECLARED
@@ -383,7 +383,10 @@ def _fit_from(problem, setup, start, omega, t_offset, position_offset):
         high = np.array([DECLARED[name].high for name in names] + [np.inf, np.inf])
         for j, (lo, hi) in reach.items():
             low[j], high[j] = max(low[j], lo), min(high[j], hi)
-        theta, _ = least_squares(problem, theta, low, high)
+        try:
+            theta, _ = least_squares(problem, theta, low, high)
+        except MissingScipy as missing:
+            raise FitError(str(missing)) from None
         if not np.all(np.isfinite(theta)):
             raise FitError("the fit did not converge to finite values; check the constants set with --set")
         for j, (lo, hi) in reach.items():

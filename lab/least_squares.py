@@ -1,4 +1,4 @@
-"""Least squares for the fit (lab/compare.py): Levenberg-Marquardt, and Gauss-Newton on the offsets alone.
+"""Least squares for the fit (lab/compare.py): scipy's least_squares, and Gauss-Newton on the offsets alone.
 
 `problem` has residuals(theta) (data − model at every point) and jacobian(theta) (d residual / d
 theta, one column per value); theta is the fitted constants, then t_offset and position_offset.
@@ -31,59 +31,32 @@ def offsets_only(problem, theta, iterations: int = 30):
     return theta
 
 
-MAX_ITERATIONS = 60               # Levenberg-Marquardt steps at most (a fit from the start takes 3 to 8)
+class MissingScipy(Exception):
+    """--fit without scipy installed: main.py and the page say this one line."""
+
+    def __init__(self):
+        super().__init__("--fit needs scipy, which is not installed; install it with "
+                         "python -m pip install scipy (everything else runs without it)")
 
 
 def least_squares(problem, theta, low, high):
-    """(theta, Σ r²): the theta within [low, high] that minimises Σ problem.residuals(theta)², by
-    Levenberg-Marquardt.
-
-    Each step solves (ĴᵀĴ + λ I) δ = −Ĵᵀ r for the columns of J scaled to unit length (Ĵ), so a
-    constant in N/m and an offset in s take comparable steps; a step that lowers Σ r² is taken and
-    λ shrinks tenfold (towards Gauss-Newton), one that does not is refused and λ grows tenfold
-    (towards a short step downhill). A step is clipped to the bounds. It stops when Σ r² falls by
-    less than a part in 10¹⁰, when the full Gauss-Newton step would take less than that off it (no
-    further run of the engine), or when no step lowers it any more.
-
-    Why not scipy.optimize.least_squares (which the fit used before): the problem has two to five
-    values and starts near the answer, which plain Levenberg-Marquardt handles in a few steps,
-    and importing scipy.optimize took 0.33 s, a third of the whole `--fit` command (docs/performance.md).
+    """(theta, Σ residual²): the theta within [low, high] that minimises Σ problem.residuals(theta)²,
+    by scipy.optimize.least_squares (trust-region reflective, the columns scaled by the Jacobian so
+    a constant in N/m and an offset in s take comparable steps). scipy is optional for the project
+    and imported here only, when a fit is asked for; without it MissingScipy says what to install.
     """
-    theta = np.clip(np.array(theta, dtype=float), low, high)
-    residual = problem.residuals(theta)
-    cost, damping = float(residual @ residual), 1e-3
+    try:
+        from scipy.optimize import least_squares as scipy_least_squares
+    except ImportError:
+        raise MissingScipy() from None
+    theta = np.array(theta, dtype=float)
+    finite = np.isfinite(low) & np.isfinite(high)
+    inside = 1e-9 * np.maximum(np.abs(theta), 1.0)          # strictly inside, as trf starts
+    theta = np.where(np.isfinite(low), np.maximum(theta, low + inside), theta)
+    theta = np.where(np.isfinite(high), np.minimum(theta, high - inside), theta)
+    theta = np.where(finite & (low >= high), low, theta)
     with np.errstate(all="ignore"):
-        for _ in range(MAX_ITERATIONS):
-            theta, residual, fallen = _step(problem, theta, residual, cost, damping, low, high)
-            if fallen is None:
-                break
-            damping, before, cost = fallen[0], cost, float(residual @ residual)
-            if before - cost <= 1e-10 * before:
-                break
-    return theta, cost
-
-
-def _step(problem, theta, residual, cost, damping, low, high):
-    """One Levenberg-Marquardt step from theta: (theta, residual, (λ,)) after a step that lowers
-    the cost, or (theta, residual, None) where none does (λ grown past 10¹⁰)."""
-    J = problem.jacobian(theta)
-    scale = np.linalg.norm(J, axis=0)
-    scale[~(scale > 0)] = 1.0
-    A, gradient = (J / scale).T @ (J / scale), (J / scale).T @ residual
-    try:     # what the Gauss-Newton step would take off the cost: converged when that is nothing
-        if float(gradient @ np.linalg.lstsq(A, gradient, rcond=None)[0]) <= 1e-10 * cost:
-            return theta, residual, None
-    except np.linalg.LinAlgError:
-        pass
-    while damping < 1e10:
-        try:
-            step = -np.linalg.solve(A + damping * np.eye(len(A)), gradient) / scale
-        except np.linalg.LinAlgError:
-            step = np.full(len(A), np.nan)
-        trial = np.clip(theta + step, low, high)
-        if np.all(np.isfinite(trial)) and np.any(trial != theta):
-            moved = problem.residuals(trial)
-            if float(moved @ moved) < cost:
-                return trial, moved, (max(damping / 10, 1e-9),)
-        damping *= 10
-    return theta, residual, None
+        solution = scipy_least_squares(problem.residuals, theta, jac=problem.jacobian, bounds=(low, high),
+                                       method="trf", x_scale="jac", ftol=1e-10, xtol=1e-10, gtol=1e-10,
+                                       max_nfev=200)
+    return solution.x, float(2 * solution.cost)
