@@ -141,6 +141,10 @@ def _temporary_beside(target: str, *, what: str, shown: str) -> str:
     return temporary
 
 
+# Windows refuses to replace a file another program holds open (a CSV open in Excel): say so.
+IN_USE = " (is the file open in another program, such as Excel? close it there and run again)"
+
+
 @contextlib.contextmanager
 def atomic_file(path: str, *, what: str):
     """Yield a temporary file name in path's folder; on success it is renamed onto `path`.
@@ -157,7 +161,9 @@ def atomic_file(path: str, *, what: str):
         yield temporary
         os.replace(temporary, target)
     except OSError as problem:
-        raise OutputError(f"cannot write {what} {path!r}: {problem.strerror or problem}") from None
+        raise OutputError(f"cannot write {what} {path!r}: {problem.strerror or problem}"
+                          f"{IN_USE if isinstance(problem, PermissionError) and os.path.exists(target) else ''}"
+                          ) from None
     finally:
         with contextlib.suppress(FileNotFoundError):
             os.remove(temporary)

@@ -307,6 +307,25 @@ def test_a_file_that_fails_part_way_leaves_the_old_file_untouched(tmp_path):
     assert os.listdir(tmp_path) == ["run.csv"]
 
 
+def test_a_file_another_program_holds_open_is_named_as_such_and_left_untouched(tmp_path, monkeypatch):
+    """Windows refuses os.replace onto a CSV open in Excel (PermissionError): one line that says
+    why, the old file as it was, no temporary file left."""
+    from export import files
+
+    path = tmp_path / "run.csv"
+    path.write_text("the teacher's old data\n")
+
+    def held_open(source, target):
+        raise PermissionError(13, "Permission denied")
+    monkeypatch.setattr(files.os, "replace", held_open)
+    with pytest.raises(files.OutputError) as refused:
+        files.write_text(str(path), "t,x\n", what="CSV file")
+    assert str(refused.value) == (f"cannot write CSV file {str(path)!r}: Permission denied (is the file open in "
+                                  f"another program, such as Excel? close it there and run again)")
+    assert path.read_text() == "the teacher's old data\n"
+    assert os.listdir(tmp_path) == ["run.csv"]
+
+
 def test_a_file_size_limit_leaves_the_old_csv_untouched_and_no_partial_file(tmp_path):
     import resource
 
