@@ -14,7 +14,7 @@ from scenes import catalog
 def view_with_clicks(*clicks):
     """A SceneView of `vertical` on euler-cromer whose page has queued `clicks`, and what it did."""
     view = SceneView.__new__(SceneView)
-    view.setup, view.integrator = catalog.configure("vertical"), "euler-cromer"
+    view.setup, view.integrator, view.preset = catalog.configure("vertical"), "euler-cromer", None
     view.controls = SimpleNamespace(clicks=lambda: list(clicks))
     done = []
     view._switch = lambda setup, preset=None: done.append(("switch", setup, preset)) or True
@@ -72,7 +72,7 @@ def test_a_broken_scene_chosen_in_the_scene_menu_is_a_sentence_on_the_page(monke
     said, refused = [], []
     view, done = view_with_clicks(("scene", "damped"))
     view.controls.say = said.append
-    view.controls.choice_refused = lambda kind, scene: refused.append((kind, scene))
+    view.controls.choice_refused = lambda kind, scene, preset=None: refused.append((kind, scene))
     monkeypatch.setattr(catalog, "configure", broken)
     view._apply_commands(now=0.0)
     assert done == [] and view.setup.name == "vertical"
@@ -86,7 +86,7 @@ def test_a_scene_or_preset_that_cannot_be_built_puts_its_menu_back():
         refused = []
         view, done = view_with_clicks(click)
         view._switch = lambda setup, preset=None: False   # it said why, and built nothing
-        view.controls.choice_refused = lambda kind, scene: refused.append((kind, scene))
+        view.controls.choice_refused = lambda kind, scene, preset=None: refused.append((kind, scene))
         view._apply_commands(now=0.0)
         assert refused == [(click[0], "vertical")]
 
@@ -106,3 +106,16 @@ def test_what_the_page_says_stays_on_it_until_the_next_run_starts():
     assert controls.status_text.text == "<b>Stopped:</b> it blew up"
     controls.choice_refused("scene", "vertical")
     assert controls.scene_menu.selected == "vertical"
+
+
+def test_a_refused_preset_puts_the_menu_back_on_the_preset_that_runs():
+    """A preset that cannot be built leaves the constants of the one before: the menu names that
+    one (it showed the prompt, though the Moon's g still ran), or the prompt if none runs."""
+    from browser.controls import PRESET_PROMPT, Controls
+
+    controls = Controls.__new__(Controls)
+    controls.preset_menu = SimpleNamespace(selected="Jupiter gravity")
+    controls.choice_refused("preset", "vertical", "Moon gravity")
+    assert controls.preset_menu.selected == "Moon gravity"
+    controls.choice_refused("preset", "vertical", None)
+    assert controls.preset_menu.selected == PRESET_PROMPT
