@@ -192,15 +192,20 @@ def _longest_that_fit(camera: Camera, r, q, *, margin: float, face) -> tuple[flo
     size = float(np.linalg.norm(q, axis=-1).max(initial=0.0))
     if size == 0:
         return 1.0, camera.range
+    open_side = (r[..., axis] - where) * towards < 0   # a mass that ran away through the support is not judged
 
     def needed(unit: float) -> float:
         tips = r + q / unit
-        through = np.any((tips[..., axis] - where) * towards > -margin)
+        through = np.any(((tips[..., axis] - where) * towards > -margin) & open_side)
         return math.inf if through else camera.range_holding(tips) + margin
 
-    limit = GROW * max(camera.range, needed(math.inf))
+    limit = GROW * max(camera.range, camera.range_holding(r) + margin)
     unit = round_scale(size / (0.01 * camera.range))   # arrows a hundredth of the picture: they fit
-    while needed(smaller := round_scale(unit / 2.5 * (1 - 1e-9))) <= limit:
+    if needed(unit) == math.inf:   # even these cross the support: masses that blow up (euler) pass it
+        open_side[...] = False     # at speed; such a run is judged on the picture alone
+    # no longer than the picture is wide: a run that blows up (euler) holds its huge arrows in
+    # the huge picture its masses need, for every scale
+    while size / (smaller := round_scale(unit / 2.5 * (1 - 1e-9))) <= 5 * limit and needed(smaller) <= limit:
         unit = smaller
     return unit, max(camera.range, needed(unit))
 
