@@ -20,8 +20,10 @@ import pytest
 pty = pytest.importorskip("pty", reason="needs a POSIX pseudo-terminal (the pty module)")
 
 ROOT = Path(__file__).resolve().parents[1]
-# 2,000,000 steps: 5-20 s, well under the 60 s run-cost limit, and long enough for several progress lines
-LONG_RUN = ["vertical", "--headless", "--set", "dt=0.00001", "--until", "20"]
+# 2,000,000 rk4 steps: about 4.5 s on a quiet machine (4 progress lines, one a second of computing),
+# 15-20 s at load 20, well under the 60 s run-cost limit. (Euler-Cromer's 2,000,000 steps take 1.3 s
+# since the stepping got faster: too short for a progress line to be sure.)
+LONG_RUN = ["vertical", "--headless", "--set", "dt=0.00001", "--until", "20", "--integrator", "rk4"]
 
 
 def on_a_terminal(argv: list[str], ctrl_c_after: str | None = None, timeout: float = 300) -> tuple[str, int]:
