@@ -9,7 +9,6 @@ from __future__ import annotations
 
 import math
 import queue
-import textwrap
 from urllib.parse import quote
 
 from physics.integrators import INTEGRATORS
@@ -33,6 +32,23 @@ PRIME_SLIDERS = ("<script>$('.ui-slider').each(function () {"
                  " if (this.dataset.primed) return; this.dataset.primed = '1';"
                  " var change = $(this).slider('option', 'change');"
                  " if (change) change({originalEvent: {}}); });</script>")
+
+
+class _OwnLine:
+    """A wtext on a line of its own when it has something to say, and no room at all when empty:
+    `.text` is the sentence, the page shows it after a line break."""
+
+    def __init__(self, wtext):
+        self.wtext, self._text = wtext, ""
+
+    @property
+    def text(self) -> str:
+        return self._text
+
+    @text.setter
+    def text(self, value: str) -> None:
+        self._text = value
+        self.wtext.text = "<br>" + value if value else ""
 
 
 class Controls:
@@ -99,6 +115,10 @@ class Controls:
         self.time_text = vp.wtext(text="t = 0.00 s")
         caption("    ")
         self.error_text = vp.wtext(text="")
+        # the status (why the run stopped, a runaway, Δt stable but inaccurate, a file that cannot
+        # open) under the time, where a class looks: at the page's foot it was below a 1280×800 screen
+        self.status_text = _OwnLine(vp.wtext(text=""))
+        self.notice = ""   # a sentence said (say()) that stays until the next run starts
         caption("\n")
         self.arrow_boxes = arrow_checkboxes(vp, put, arrows)   # browser/arrows3d.py
         self.arrow_legend = vp.wtext(text="")
@@ -125,9 +145,6 @@ class Controls:
         caption("\n<i>Moving a slider, choosing another integrator or a preset restarts "
                 "the run from t = 0; Reset returns to the start; "
                 "Step advances one Δt.</i>\n")
-        self.status_text = vp.wtext(text="")
-        self.notice = ""   # a sentence said (say()) that stays until the next run starts
-        caption("\n")
 
     def clicks(self) -> list[tuple]:
         """The commands queued by clicks since the last call, oldest first."""
@@ -160,7 +177,7 @@ class Controls:
         """The status line: why the run stopped, or which masses ran away and that Δt is stable but
         inaccurate (advice, physics/accuracy.py), or that it runs slower than real time (slow_dt:
         the Δt that is small for this computer, None if keeping up)."""
-        status = problem or "\n".join([wrap(reason) for reason in runaways] + ([wrap(advice)] if advice else []))
+        status = problem or "\n".join([*runaways] + ([advice] if advice else []))   # the page wraps them
         if slow_dt is not None and not status:
             status = (f"Running slower than real time (Δt = {slow_dt:g} s is small for "
                       f"this computer at this speed).")
@@ -316,8 +333,3 @@ def constants_text(setup) -> str:
             line = ""
         line = f"{line}, {part}" if line else part
     return "\n".join(lines + [line])
-
-
-def wrap(text: str, width: int = 110) -> str:
-    """Line breaks in a long sentence: the caption keeps line breaks but does not wrap."""
-    return "\n".join(textwrap.wrap(text, width, break_on_hyphens=False))

@@ -239,3 +239,24 @@ def test_at_1400_px_the_resonance_graphs_stand_in_one_column_beside_the_view(bro
     finally:
         page.close()
         program.stop()
+
+
+def test_the_stable_but_inaccurate_warning_is_on_a_laptop_screen(browser):
+    """vertical at Δt = 0.9 s (issue 18 item 10): the page's one line saying Δt is stable but inaccurate
+    stands under the time, inside a 1280×800 window without scrolling. At the page's foot, after the
+    sliders and the constants, it was below the window's bottom edge (y ≈ 870 px)."""
+    program = Program("vertical", "--set", "dt=0.9")
+    page = browser.new_page(viewport={"width": 1280, "height": 800})
+    try:
+        page.goto(program.url())
+        warning = page.get_by_text(re.compile(r"Δt = 0\.9 s is stable but inaccurate here")).first
+        wait_for(lambda: warning.count() and warning.bounding_box(), timeout=120.0,
+                 what="the stable-but-inaccurate line on the page")
+        box = warning.bounding_box()
+        assert page.evaluate("window.scrollY") == 0
+        assert box["y"] >= 0 and box["y"] + box["height"] <= 800, box
+        time_box = page.get_by_text(re.compile(r"^t = [\d.]+ s$")).first.bounding_box()
+        assert box["y"] > time_box["y"], (box, time_box)       # under the time, where a class looks
+    finally:
+        page.close()
+        program.stop()
