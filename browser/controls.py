@@ -142,7 +142,7 @@ class Controls:
         vp.wtext(text="").text = PLAIN_TICKS  # every graph's tick labels in plain decimals (browser/axes.py)
         caption("\n\n")
         self.constants_text = vp.wtext(text="")
-        caption("\n<i>Moving a slider, choosing another integrator or a preset restarts "
+        caption("\n<i>Moving a slider, choosing another integrator or a preset, or loading data restarts "
                 "the run from t = 0; Reset returns to the start; "
                 "Step advances one Δt.</i>\n")
 

@@ -103,6 +103,7 @@ class SceneView:
         self.setup = setup
         self.preset = preset   # the preset whose constants run now (None once a slider moved one)
         self.data = data or MeasuredData()
+        self.fresh_file = False     # a file from Load data, not yet compared
         self.live = LiveRun(model, integrator=integrator, sample_every=SAMPLE_EVERY)
         self.scene, self.controls, self.graphs = self._build_parts(preset=preset)
         self._start_run()
@@ -380,6 +381,7 @@ class SceneView:
         if upload is None:
             return False
         self.data.load(upload[1], upload[0], self.setup, self.integrator)   # on a thread
+        self.fresh_file = True      # once read, the run restarts (_data_answered)
         self._show_data()
         return True
 
@@ -396,6 +398,9 @@ class SceneView:
         answer = self.data.finished()
         if answer is False:
             return False
+        if self.fresh_file and answer is not None and not answer.fitted:
+            self._reset()   # from t = 0, so the model's curve spans the data (early points scroll away)
+        self.fresh_file = False
         if answer is not None and answer.fitted:
             fitted = {name: answer.setup.values[name] for name in answer.fitted}   # r0: its vector
             if self.controls.move_sliders(fitted):

@@ -220,3 +220,30 @@ def test_the_position_graph_holds_the_data_in_view_long_after_its_last_point(bro
     finally:
         program.stop()
     assert not [line for line in program.errors if "Traceback" in line], program.errors
+
+
+def test_a_file_loaded_late_in_the_run_restarts_it_so_the_model_spans_the_data(browser, tmp_path):
+    """Loaded 10 s into a run, the file's dots showed, but the model's curve for the data's first
+    seconds had already scrolled out of the graph's records, so it was missing until Reset or Fit.
+    Loading data now restarts the run from t = 0, as a slider does, and says so on the page."""
+    path = mystery(tmp_path)
+    program = Program("damped")
+    try:
+        page = browser.new_page(viewport={"width": 1280, "height": 800})
+        page.goto(program.url())
+        wait_for(lambda: shown_time(page) > 10, timeout=300, what="the clock to pass 10 s")
+        assert "or loading data restarts the run from t = 0" in data_lines(page)
+        page.locator("#sm-data-file").set_input_files(str(path))
+        wait_for(lambda: rms_shown(page), timeout=120, what="the comparison's RMS residual")
+        restarted = wait_for(lambda: (lambda t: t if t < 10 else None)(shown_time(page)), timeout=120,
+                             what="the run to start again from t = 0 after the file was read")
+        assert restarted < 10
+        axis = page.locator(".glowscript-graph").nth(0).locator(".xAxis .tickLabel")
+        wait_for(lambda: [label for label in axis.all_inner_texts() if label.strip()], timeout=120,
+                 what="the position graph's time labels")
+        ticks = [float(label.replace("−", "-")) for label in axis.all_inner_texts() if label.strip()]
+        assert min(ticks) <= 0.0, ticks          # the graph shows the model from its start
+        page.close()
+    finally:
+        program.stop()
+    assert not [line for line in program.errors if "Traceback" in line], program.errors
