@@ -28,14 +28,11 @@ import json
 
 import numpy as np
 
-from export.arrows import (ARROW_LABELS, ARROWS, LABEL_PX, PART_DIGITS, TIP_ROOM, choose_scales, force_name,
-                           forces_each, split, unit_keeping_in)
+from export.arrows import (ARROW_LABELS, ARROWS, LABEL_PX, PART_DIGITS, SEE_THROUGH, TIP_ROOM, choose_scales,
+                           force_name, forces_each, split, unit_keeping_in)
 from export.palette import ARROW_COLOURS
 from physics.forces import net_force
 from physics.state import velocity
-
-SEE_THROUGH = 0.5    # the masses' opacity while an arrow is shown: the arrow inside the ball shows
-
 
 
 def arrow_checkboxes(vp, put, shown) -> dict:

@@ -38,6 +38,7 @@ ARROWS = ("p", "F_net", "forces", "split")   # what --arrows and the page's chec
 ARROW_LABELS = {"p": "p", "F_net": "F_net", "forces": "forces", "split": "F∥ and F⊥"}
 LABEL_PX = {"height": 18, "xoffset": 20, "yoffset": 16}   # px: an arrow's label (the back row reads 18 px),
                                                          # beside its point; F⊥'s below it (−yoffset)
+SEE_THROUGH = 0.5    # the masses' opacity while an arrow is shown (page and program): the arrow inside the ball shows
 PART_DIGITS = "{:.2f}"  # N: how F∥'s and F⊥'s labels write their sizes, on the page and in the program
                        # (Web VPython's own '{:.3g}' writes 0.3135 as 0.314: 7 of a pendulum run's 401)
 GROW = 1.2            # the picture may widen this much (its range) to hold the arrows at a round scale

@@ -23,7 +23,7 @@ append.
 """
 from __future__ import annotations
 
-from .arrows import ARROWS, LABEL_PX, PART_DIGITS, choose_scales, force_name
+from .arrows import ARROWS, LABEL_PX, PART_DIGITS, SEE_THROUGH, choose_scales, force_name
 from .lines import commented
 from .palette import ARROW_COLOURS
 
@@ -84,6 +84,11 @@ def setup_lines(model, *, shown, integrator: str | None, single: bool, view: dic
         return []
     scales = choose_scales(model, view=view, integrator=integrator, forces="forces" in kinds)
     lines = ["", f"# ---- the arrows: {', '.join(kinds)} at fixed scales, as on the page ----"]
+    see_through = "see-through, as on the page: an arrow shorter than the radius shows inside"
+    if single:
+        lines.append(commented(f"ball.opacity = {SEE_THROUGH:g}", see_through))
+    else:
+        lines += [commented("for each in balls:", see_through), f"    each.opacity = {SEE_THROUGH:g}"]
     if "p" in kinds:
         lines.append(commented(f"pscale = 1/{scales.p_unit:g}",
                                f"m per kg·m/s: an arrow 1 m long is {scales.p_unit:g} kg·m/s"))

@@ -7,7 +7,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from export.arrows import choose_scales
+from export.arrows import SEE_THROUGH, choose_scales
 from scenes._view import DEFAULT_VIEW
 from export.palette import ARROW_COLOURS
 from physics.forces import net_force
@@ -60,6 +60,9 @@ def test_the_programs_arrows_end_on_the_final_p_and_F_net(args, stand_in, tmp_pa
             assert np.allclose(axis * scales.F_unit, F_last[i], rtol=1e-6, atol=1e-9)
         else:                                     # rk4: its last slope's force, near the final one
             assert np.linalg.norm(axis) * scales.F_unit == pytest.approx(np.linalg.norm(F[i]), rel=0.1)
+    # the balls see-through, as on the page, so an arrow shorter than the radius is not hidden
+    balls = [shown for shown in drawn if shown["kind"] == "sphere"]
+    assert len(balls) == count and all(ball.get("opacity") == SEE_THROUGH for ball in balls), balls
     text = path.read_text()
     assert f"pscale = 1/{scales.p_unit:g}" in text and f"{scales.p_unit:g} kg·m/s" in text
     assert f"Fscale = 1/{scales.F_unit:g}" in text
@@ -71,6 +74,7 @@ def test_no_arrows_writes_none(stand_in, tmp_path):  # noqa: F811
     drawn = []
     run_program(path, stand_in, drawn)
     assert not [shown for shown in drawn if shown["kind"] == "arrow"] and "arrow" not in path.read_text()
+    assert all("opacity" not in shown for shown in drawn if shown["kind"] == "sphere")   # solid, as on the page
 
 
 @pytest.mark.parametrize("args", [("vertical", "--set", "until=3"), ("pendulum", "--set", "until=2"),
