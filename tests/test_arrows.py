@@ -204,7 +204,7 @@ def test_other_methods_show_their_own_update(capsys, method):
                        r_i=r_i[0], r_f=after.r[0])
     row = steps_rows(capsys, ("vertical", "--integrator", method), 1)[0]
     text = "\n".join(lines)
-    assert lines[0] == f"t = 0.1 s, {method}:" and f"F_net = " in text and row[2] + " N" in text
+    assert lines[0] == f"t = 0.1 s, {method}:" and "F_net = " in text and row[2] + " N" in text
     assert f"= {row[3]} kg·m/s" in text and f"{row[5]} m" in text
     assert ("average force" in text) == (method != "euler")
     assert vector(after.r[0]) == row[5]
