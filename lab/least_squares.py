@@ -50,11 +50,8 @@ def least_squares(problem, theta, low, high):
     except ImportError:
         raise MissingScipy() from None
     theta = np.array(theta, dtype=float)
-    finite = np.isfinite(low) & np.isfinite(high)
     inside = 1e-9 * np.maximum(np.abs(theta), 1.0)          # strictly inside, as trf starts
-    theta = np.where(np.isfinite(low), np.maximum(theta, low + inside), theta)
-    theta = np.where(np.isfinite(high), np.minimum(theta, high - inside), theta)
-    theta = np.where(finite & (low >= high), low, theta)
+    theta = np.clip(theta, low + inside, high - inside)     # an infinite bound stays infinite
     with np.errstate(all="ignore"):
         solution = scipy_least_squares(problem.residuals, theta, jac=problem.jacobian, bounds=(low, high),
                                        method="trf", x_scale="jac", ftol=1e-10, xtol=1e-10, gtol=1e-10,
