@@ -30,6 +30,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from .declared import Declared
+from .rows import magnitude, row_dot  # noqa: F401  (energy, stability and tests read them here too)
 
 
 def _per_mass(value) -> np.ndarray | float:
@@ -41,23 +42,6 @@ def _per_mass(value) -> np.ndarray | float:
 def _new_like(r: np.ndarray) -> np.ndarray:
     """An empty array laid out like r, of floats (or of traced numbers, see physics/compiled.py)."""
     return np.empty_like(r, dtype=np.result_type(r, float))
-
-
-def magnitude(vectors: np.ndarray) -> np.ndarray:
-    """|a| of each row of an (N, D) array, shape (N, 1): √(a_x² + a_y² + a_z²)."""
-    return np.sqrt(row_dot(vectors, vectors))[..., None]
-
-
-def row_dot(a: np.ndarray, b: np.ndarray) -> np.ndarray:
-    """a · b of each row, shape (N,): a_x b_x + a_y b_y + a_z b_z, added in that order.
-
-    The same sums as (a * b).sum(axis=-1) bit for bit, one column at a time: a sum along the
-    short last axis of column-major arrays is several times slower in numpy.
-    """
-    total = a[..., 0] * b[..., 0]
-    for i in range(1, a.shape[-1]):
-        total += a[..., i] * b[..., i]
-    return total
 
 
 def _unit(vector) -> np.ndarray:
@@ -81,6 +65,10 @@ class Force:
                and {t}, {r}, {v}, {m} (time, position, velocity and mass as the program spells
                them) in braces, filled in by export/ with str.format
     conservative, uses_velocity   whether it has a potential energy, whether it reads v
+    VECTORS    its vectors by attribute: "point" where it pushes along r − point (a spring from
+               its anchor), "direction" where it pushes along it (gravity); else it pushes only
+               along v, with numbers per mass. None (the default): it may push along any axis.
+               The engine steps only the axes a motion uses (physics/motion_axes.py) where all say so.
 
     A class that subclasses Force is known by that alone (FORCES), wherever it is defined.
     """
@@ -90,6 +78,7 @@ class Force:
     PROGRAM: tuple[tuple[str, str], ...] = ()
     conservative = False
     uses_velocity = False
+    VECTORS: dict[str, str] | None = None
 
     def __init_subclass__(cls, **options):
         super().__init_subclass__(**options)
@@ -152,6 +141,7 @@ class Spring(Force):
         "anchor": Declared("m", -1e4, 1e4, vector=True, meaning="fixed end of the spring"),
     }
     TERM = "Fspring"
+    VECTORS = {"anchor": "point"}
     PROGRAM = (("L = {r} - {anchor}", "the spring, from its fixed end to the mass"),
                ("Fspring = {k}*({L0}/mag(L) - 1)*L", "Hooke's law: F = −k (|L| − L0) L̂, written k (L0/|L| − 1) L"))
     LINEAR = (("L = {r} - {anchor}", "the spring, from its fixed end to the mass"),
@@ -268,6 +258,7 @@ class Gravity(Force):
     CONSTANTS = {"g": Declared("m/s²", 0, 1e3, note="it is a magnitude; gravity acts along −y",
                                slider_from_zero=True, meaning="strength of gravity, along −y")}
     TERM = "Fgravity"
+    VECTORS = {"direction": "direction", "g_vector": "direction"}
     PROGRAM = (("Fgravity = {m}*vector(0, -{g}, 0)", "gravity: F = m g, down (−y)"),)
 
     def __post_init__(self):
@@ -305,6 +296,7 @@ class LinearDamping(Force):
     CONSTANTS = {"b": Declared("kg/s", 0, 1e6, none="critical damping, b = 2√(mk)", slider_from_zero=True,
                                meaning="linear damping constant in F = −b v")}
     TERM = "Fdamping"
+    VECTORS = {}
     PROGRAM = (("Fdamping = -{b}*{v}", "linear damping: F = −b v"),)
 
     def __post_init__(self):
@@ -340,6 +332,7 @@ class QuadraticDrag(Force):
         "rho": Declared("kg/m³", 0, 1e5, symbol="ρ", meaning="air density, for drag"),
     }
     TERM = "Fdrag"
+    VECTORS = {}
     PROGRAM = (("Fdrag = -0.5*{C}*{A}*{rho}*mag({v})*{v}", "air drag: F = −½ C A ρ |v|² v̂ = −½ C A ρ |v| v"),)
 
     def __post_init__(self):
@@ -380,6 +373,7 @@ class Driving(Force):
                                meaning="direction of the driving force (a unit vector)"),
     }
     TERM = "Fdrive"
+    VECTORS = {"axis": "direction"}
     PROGRAM = (("Fdrive = {F0}*cos({omega}*{t})*{drive_axis}", "driving: F = F0 cos(ω t) along drive_axis"),)
 
     def __post_init__(self):

@@ -17,7 +17,7 @@ from .energy import series
 from .state import State, velocity
 
 BLOCK = 1024                 # recorded rows packed into one array at a time
-PREPARED_NUMBERS = 1 << 25   # the most numbers (256 MB) a recording of every(n) keeps in an array made beforehand
+PREPARED_NUMBERS = 1 << 26   # the most numbers (512 MB) a recording keeps in an array made beforehand
 
 
 def steps_to_reach(until: float, dt: float) -> int:
@@ -103,12 +103,18 @@ class Recorder:
         self.mark = self._next(engine.steps)
 
     def _expected(self, done: int) -> int:
-        """How many rows every(n) keeps from step `done` to the target (0 if unknown or too many)."""
-        n, target = self.stride, self.target
-        if not n or not math.isfinite(target):
+        """How many rows the schedule keeps from step `done` to the target (0 if unknown or too many):
+        every(n) works it out; another schedule (a time grid) is asked, up to as many rows as fit."""
+        n, target, most = self.stride, self.target, PREPARED_NUMBERS // self.width
+        if not math.isfinite(target):
             return 0
-        count = int(target) // n - done // n + (1 if self.final and int(target) % n else 0)
-        return count if 0 < count * self.width <= PREPARED_NUMBERS else 0
+        if n:
+            count = int(target) // n - done // n + (1 if self.final and int(target) % n else 0)
+        else:
+            count, mark = 0, self._next(done)
+            while mark <= target and count <= most:
+                count, mark = count + 1, (self._next(mark) if mark < target else math.inf)
+        return count if 0 < count <= most else 0
 
     def _next(self, done: int):
         mark = self.schedule(done)
@@ -121,9 +127,13 @@ class Recorder:
         return self.mark
 
     def add(self, done, *, values=None, arrays=None):
-        if values is None:             # the numpy tick's arrays, maybe of 10⁴ masses: a block of its own
+        if values is None:             # the numpy tick's arrays, maybe of 10⁴ masses
             self.flush()
-            self._keep(np.concatenate([[done], *(np.asarray(a, dtype=float).ravel() for a in arrays)])[None])
+            if not self.blocks and self.filled + 1 < len(self.buffer):   # straight into the row made for it
+                self.filled += 1
+                _fill(self.buffer[self.filled], done, arrays)
+            else:
+                self._keep(_fill(np.empty((1, self.width)), done, arrays))
             return
         self.rows.append(done)
         self.rows.extend(values)
@@ -154,6 +164,17 @@ class Recorder:
             rows = self.buffer[:1 + self.filled]
         r, p, work = _columns(rows[1:], start)
         return Samples(t=start.t + rows[1:, 0] * self.engine.dt, r=r, p=p, work=work, m=start.m, rows=rows)
+
+
+def _fill(row: np.ndarray, done: int, arrays) -> np.ndarray:
+    """Row (or a (1, width) block) = the step number, then every component of the arrays in order."""
+    flat, offset = row.reshape(-1), 1
+    flat[0] = done
+    for a in arrays:
+        size = np.size(a)
+        flat[offset:offset + size].reshape(np.shape(a))[...] = a    # one pass, whatever a's layout
+        offset += size
+    return row
 
 
 def _columns(rows: np.ndarray, start: State):

@@ -36,6 +36,7 @@ from dataclasses import replace
 
 import numpy as np
 
+from .motion_axes import columns, cut, moving_axes, put_back
 from .compiled import MAX_COMPONENTS, MAX_TRACES, compile_loop
 from .energy import nonconservative_power, report, work_step
 from .integrators import DEFAULT_INTEGRATOR, INTEGRATORS, methods_for
@@ -75,10 +76,12 @@ class Simulation:
     growth_limit  how many times the starting size of the motion a mass may stray from its
                anchor before the run counts as blown up
     compiled   False keeps to the numpy tick (for comparison; the results are the same)
+    cut_axes   False steps all three axes even where the motion uses fewer (for comparison; the
+               results are the same, bit for bit: physics/motion_axes.py)
     """
 
     def __init__(self, state: State, forces, *, dt: float, integrator=DEFAULT_INTEGRATOR,
-                 may_run_away=(), growth_limit: float = 1e6, compiled: bool = True):
+                 may_run_away=(), growth_limit: float = 1e6, compiled: bool = True, cut_axes: bool = True):
         if not (math.isfinite(dt) and dt > 0):
             raise ValueError(f"dt must be a finite time greater than 0 s (got {dt!r})")
         self.start = state
@@ -94,6 +97,10 @@ class Simulation:
         tethers = [tether for tether in tethers if tether is not None]
         self._anchor = np.broadcast_to(tethers[0][0], state.r.shape) if tethers else None
         self._limit = _motion_scale(state, tethers, fastest_angular_frequency(self.forces, state.m)) * growth_limit
+        # the axes the motion uses, and the forces cut to them (None: every axis; physics/motion_axes.py)
+        self.cut_axes = cut_axes
+        self.axes = moving_axes(state.r, state.p, self.forces) if cut_axes else None
+        self._stepped_forces = self.forces if self.axes is None else cut(self.forces, self.axes)
         self.restart()
 
     # ---- where the engine is ----
@@ -194,11 +201,17 @@ class Simulation:
         t is the time at the start of the step and t_next = t + Δt at its end (both from the step
         count). The same function runs on floats (numpy) and on traced numbers (the compiled loop).
         """
-        new = self._step(State(t=t, r=r, p=p, m=self.start.m), self.forces, self.dt)
-        if not self.metered:
+        axes, whole_r, whole_p = self.axes, r, p
+        if axes is not None:              # only the axes the motion uses; the others stay as they are
+            r, p = r[:, columns(axes)], p[:, columns(axes)]
+        new = self._step(State(t=t, r=r, p=p, m=self.start.m), self._stepped_forces, self.dt)
+        if self.metered:
+            power_next = nonconservative_power(State(t=t_next, r=new.r, p=new.p, m=self.start.m),
+                                               self._stepped_forces)
+            power, work = power_next, work_step(work, power, power_next, self.dt)
+        if axes is None:
             return new.r, new.p, power, work
-        power_next = nonconservative_power(State(t=t_next, r=new.r, p=new.p, m=self.start.m), self.forces)
-        return new.r, new.p, power_next, work_step(work, power, power_next, self.dt)
+        return put_back(whole_r, axes, new.r), put_back(whole_p, axes, new.p), power, work
 
     def _ticks(self, stop: int, recorder: Recorder, *, compile_ok: bool) -> None:
         """Tick up to step number `stop`, recording the steps the recorder marks."""
@@ -265,7 +278,7 @@ class Simulation:
         that takes the same path as a real run (physics/run_cost.py)."""
         if self._seconds_per_step is None:
             trial = Simulation(self.state, self.forces, dt=self.dt, integrator=self.methods,
-                               compiled=self.compiled, growth_limit=math.inf)
+                               compiled=self.compiled, growth_limit=math.inf, cut_axes=self.cut_axes)
             compiles = self.compiled and self.start.r.size <= MAX_COMPONENTS
             self._seconds_per_step = time_steps(trial.advance, warm_up=COMPILE_FROM_STEPS if compiles else 1,
                                                 batch=CHUNK if compiles else 1,
