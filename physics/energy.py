@@ -14,7 +14,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .forces import row_dot
+from .rows import row_dot
 from .state import State, velocity
 
 SERIES_BLOCK = 1 << 16       # numbers of r in one block of samples whose energies are worked out at once

@@ -30,7 +30,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from .declared import Declared
-from .rows import magnitude, row_dot  # noqa: F401  (energy, stability and tests read them here too)
+from .rows import magnitude
 
 
 def _per_mass(value) -> np.ndarray | float:

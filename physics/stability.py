@@ -26,7 +26,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .forces import LinearDamping, Spring, magnitude
+from .forces import LinearDamping, Spring
+from .rows import magnitude
 from .integrators import INTEGRATORS, describe
 from .state import make_state
 

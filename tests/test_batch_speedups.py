@@ -5,7 +5,8 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from physics.forces import Driving, LinearDamping, Spring, magnitude, net_force, row_dot
+from physics.forces import Driving, LinearDamping, Spring, net_force
+from physics.rows import magnitude, row_dot
 from physics.integrators import rk4
 from physics.state import State, make_state, velocity
 
