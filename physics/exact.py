@@ -91,15 +91,23 @@ def displacement_bound(T, *, m, k, b, x0, v0, F0, omega):
 
 def _elementwise(regimes, t, **parameters):
     """x(t), v(t) from the closed form of each element's case, on arrays of t and the parameters
-    broadcast together: `regimes` pairs a case's formula with the mask of the elements it holds for
-    (a damping regime, undamped resonance). Each formula sees only its own elements, as one mass at a
-    time would; an element no mask covers stays 0."""
-    t, *values = np.broadcast_arrays(np.asarray(t, dtype=float),
-                                     *(np.asarray(value, dtype=float) for value in parameters.values()))
-    x, v = np.zeros(t.shape), np.zeros(t.shape)
-    for formula, mask in regimes(**dict(zip(parameters, values))):
-        if mask.any():
-            x[mask], v[mask] = formula(t[mask], **{name: value[mask] for name, value in zip(parameters, values)})
+    broadcast together: `regimes` pairs a case's formula with the mask, over the parameters, of the
+    elements it holds for (a damping regime, undamped resonance). Each formula sees only its own
+    elements, as one mass at a time would (all of them at once where one case holds for all); an
+    element no mask covers stays 0."""
+    t = np.asarray(t, dtype=float)
+    parameters = dict(zip(parameters, np.broadcast_arrays(*(np.asarray(value, dtype=float)
+                                                            for value in parameters.values()))))
+    shape = np.broadcast_shapes(t.shape, *(value.shape for value in parameters.values()))
+    x, v = np.zeros(shape), np.zeros(shape)
+    for formula, mask in regimes(**parameters):
+        if mask.all():
+            x[...], v[...] = formula(t, **parameters)
+        elif mask.any():
+            mask = np.broadcast_to(mask, shape)
+            x[mask], v[mask] = formula(np.broadcast_to(t, shape)[mask],
+                                       **{name: np.broadcast_to(value, shape)[mask]
+                                          for name, value in parameters.items()})
     return x, v
 
 
