@@ -12,6 +12,7 @@ from typing import Optional
 
 import numpy as np
 
+from physics.exact import lengths
 from physics.forces import net_force
 from physics.state import velocity
 from export.number_blocks import clean_array, float_block
@@ -72,11 +73,15 @@ def as_json(result: Result) -> dict:
     out["constants"] = {name: {"value": _plain(setup.values[name]), "unit": c.unit, "meaning": c.meaning}
                         for name, c in setup.constants.items()}
     out["units"] = UNITS
+    # to 15 digits, all but what is so already: the final state and the bodies, array by array
+    out = {key: value if key in _CLEANED else cleaned(value) for key, value in out.items()}
     if setup.hooks.extra_json is not None:  # a scene's own results, e.g. a resonance curve
-        out.update(setup.hooks.extra_json(result))
-    out = {key: value if value is bodies else cleaned(value) for key, value in out.items()}
+        out.update(cleaned(setup.hooks.extra_json(result)))
     out["t"] = clean_time(traj.t[-1], model.dt)
     return out
+
+
+_CLEANED = ("r", "p", "v", "F_net", "bodies")   # the keys as_json's own steps give to 15 digits already
 
 
 def _final_state(result: Result) -> dict:
@@ -105,10 +110,15 @@ def _bodies(result: Result, state: dict, entries: list) -> list[dict]:
     """One entry per mass of a row: its label, m, r, p, v, F_net, and its exact answer or why not."""
     m = clean_array(result.trajectory.m).tolist()
     notes, valid_until = result.exact_notes(), clean_array(result.exact_valid_until_each()).tolist()
-    return [{"label": label, "m": m[i], **{key: state[key][i] for key in ("r", "p", "v", "F_net")},
-             **({"exact": entries[i]} if entries[i] is not None else {}),
-             **({"exact_note": notes[i], "exact_valid_until": valid_until[i]} if notes[i] else {})}
-            for i, label in enumerate(result.labels)]
+    r, p, v, F_net = (state[key] for key in ("r", "p", "v", "F_net"))
+    bodies = [{"label": label, "m": m[i], "r": r[i], "p": p[i], "v": v[i], "F_net": F_net[i]}
+              for i, label in enumerate(result.labels)]
+    for body, entry, note, until in zip(bodies, entries, notes, valid_until):
+        if entry is not None:
+            body["exact"] = entry
+        if note:
+            body.update(exact_note=note, exact_valid_until=until)
+    return bodies
 
 
 def _exact_entries(result: Result) -> list[Optional[dict]]:
@@ -117,16 +127,16 @@ def _exact_entries(result: Result) -> list[Optional[dict]]:
     traj = result.trajectory
     exact = result.exact()
     count = len(traj.m)
-    known = [exact is not None and bool(np.all(np.isfinite(exact[0][i]))) for i in range(count)]
-    if not any(known):
+    known = np.zeros(count, dtype=bool) if exact is None else np.isfinite(exact[0]).all(axis=1)
+    if not known.any():
         return [None] * count
-    r, v = traj.r[-1], velocity(traj.p[-1], traj.m)
     r_exact, v_exact = exact
-    errors = np.array([[np.linalg.norm(r[i] - r_exact[i]), np.linalg.norm(v[i] - v_exact[i])] if known[i]
-                       else [0.0, 0.0] for i in range(count)])
+    r, v = traj.r[-1], velocity(traj.p[-1], traj.m)
+    # |r − r_exact| and |v − v_exact| of each mass (numpy's norm of each, bit for bit); 0 where unknown
+    errors = np.where(known[:, None], np.stack([lengths(r - r_exact), lengths(v - v_exact)], axis=1), 0.0)
     r_exact, v_exact, errors = (clean_array(a).tolist() for a in (r_exact, v_exact, errors))
-    return [{"r": r_exact[i], "v": v_exact[i], "error": {"r": errors[i][0], "v": errors[i][1]}} if known[i] else None
-            for i in range(count)]
+    return [{"r": r_exact[i], "v": v_exact[i], "error": {"r": errors[i][0], "v": errors[i][1]}} if known_i else None
+            for i, known_i in enumerate(known.tolist())]
 
 
 def _plain(value):

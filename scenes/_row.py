@@ -27,7 +27,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from physics.exact import displacement_bound, single_mass_motion
+from physics.exact import displacement_bound, row_motion, single_mass_motion
 
 from ._single_mass import ANCHOR_LIMIT, AnchorCrossing
 
@@ -188,8 +188,9 @@ class EachMassValidity:
 def exact_row(*, anchors, r0, m, k, L0, g, b=0.0, C=0.0, F0=0.0, omega=0.0, drive_axis=DOWN) -> dict:
     """The row's closed form, as the Model takes it: exact, exact_valid_until and exact_limit.
 
-    exact is t -> (r, v) of shape (len(t), N, 3), from the single-mass closed form of each mass,
-    NaN ("not known") for a mass that has none (quadratic drag, C ≠ 0); None if no mass has one.
+    exact is t -> (r, v) of shape (len(t), N, 3), the single-mass closed form of every mass at once
+    (physics.exact.row_motion), NaN ("not known") for a mass that has none (quadratic drag, C ≠ 0);
+    None if no mass has one.
     Every parameter but m, k, L0 and g may be one number or one value per mass. The masses start
     at rest at r0. With L0 > 0 each mass's closed form holds until it reaches its anchor
     (:class:`EachMassValidity`); with L0 = 0 the spring is linear in 3-D and it always holds.
@@ -197,30 +198,19 @@ def exact_row(*, anchors, r0, m, k, L0, g, b=0.0, C=0.0, F0=0.0, omega=0.0, driv
     anchors, r0 = np.asarray(anchors, dtype=float), np.asarray(r0, dtype=float)
     count = len(anchors)
     b, C, F0, omega = (np.broadcast_to(np.asarray(x, dtype=float), (count,)) for x in (b, C, F0, omega))
-
-    def motion(i):
-        return single_mass_motion(m=m, k=k, L0=L0, g=g, b=b[i], C=C[i], F0=F0[i], omega=omega[i],
-                                  drive_axis=drive_axis, anchor=anchors[i], r0=r0[i], v0=(0, 0, 0))
-    # The masses of a row differ in b, C, F0 and ω; of these only C decides whether there is a
-    # closed form, so if the mass with the least drag has none, no mass has.
-    if motion(int(np.argmin(np.abs(C)))) is None:
+    known, exact = row_motion(m=m, k=k, L0=L0, g=g, b=b, C=C, F0=F0, omega=omega, drive_axis=drive_axis,
+                              anchors=anchors, r0=r0, v0=(0.0, 0.0, 0.0))
+    if not known.any():
         return {"exact": None}
-    motions = []
-
-    def exact(t):
-        if not motions:        # worked out when first asked for: a big batch may never need it
-            motions.extend(motion(i) for i in range(count))
-        unknown = np.full((np.size(t), 3), np.nan)
-        rs, vs = zip(*((unknown, unknown) if each is None else each(t) for each in motions))
-        return np.stack(rs, axis=1), np.stack(vs, axis=1)
 
     if L0 == 0:
         return {"exact": exact}
 
     def crossing(i):
-        each = motion(i)
-        if each is None:
+        if not known[i]:
             return None
+        each = single_mass_motion(m=m, k=k, L0=L0, g=g, b=b[i], C=C[i], F0=F0[i], omega=omega[i],
+                                  drive_axis=drive_axis, anchor=anchors[i], r0=r0[i], v0=(0, 0, 0))
         return AnchorCrossing(each, anchor=anchors[i], r0=r0[i], m=m, k=k, b=b[i], F0=F0[i], omega=omega[i])
 
     # Along each spring's line û: the start s0 from the anchor, the equilibrium s_eq, the drive's part.

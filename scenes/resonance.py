@@ -57,6 +57,7 @@ SMOOTH_POINTS = 401            # ω values on which extra_json gives the exact c
 # would read as several per cent). --integrator still chooses another method.
 DEFAULT_INTEGRATOR = "rk4"
 ROW_DEPTH = 1.0                # m: distance between the rows of different b, front to back
+BLOCK_VALUES = 2**17           # numbers per array when measuring the amplitudes: 1 MB, kept in the cache
 
 
 class Sweep(NamedTuple):
@@ -206,14 +207,28 @@ def amplitudes(setup, model, trajectory) -> Sweep | None:
     inside = np.flatnonzero((trajectory.t >= start - 1e-9 * v["dt"]) & (trajectory.t <= end + v["dt"]))
     if trajectory.t[-1] < end or not inside.size:
         return None
-    State = type(model.state)
-    window = slice(inside[0], inside[-1] + 1)      # the times are in order: one stretch, no copy
-    measured = amplitude_now(model, State(t=trajectory.t[window], r=trajectory.r[window],
-                                          p=trajectory.p[window], m=trajectory.m)).max(axis=0)
+    measured = _largest_amplitude(model, trajectory, first=inside[0], last=inside[-1])
     omega, b_each, omega_all, b_all = _grid_of(v)
     shape = (len(b_each), len(omega))
     exact = curve_amplitude(v, b=b_all, omega=omega_all)
     return Sweep(omega=omega, b=b_each, amplitude=measured.reshape(shape), exact=exact.reshape(shape))
+
+
+def _largest_amplitude(model, trajectory, *, first: int, last: int) -> np.ndarray:
+    """The largest amplitude_now of each mass over the recorded samples first to last, (N,) m.
+
+    Worked out a block of samples at a time, each about BLOCK_VALUES numbers per array, so that no
+    array as large as the whole window ((samples, N): 38 MB at 10⁴ masses) is ever made.
+    """
+    State = type(model.state)
+    per_block = max(1, BLOCK_VALUES // model.state.count)
+    largest = None
+    for start in range(first, last + 1, per_block):
+        block = slice(start, min(start + per_block, last + 1))     # the times are in order: no copy
+        A = amplitude_now(model, State(t=trajectory.t[block], r=trajectory.r[block], p=trajectory.p[block],
+                                       m=trajectory.m)).max(axis=0)
+        largest = A if largest is None else np.maximum(largest, A, out=largest)
+    return largest
 
 
 def sweep(setup, *, integrator=None) -> Sweep:
