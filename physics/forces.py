@@ -301,9 +301,10 @@ class LinearDamping(Force):
 
     def __post_init__(self):
         object.__setattr__(self, "b", _per_mass(self.b))
+        object.__setattr__(self, "_minus_b", -self.b)      # −b once, not at every call
 
     def __call__(self, t, r, v, m):
-        return -self.b * v
+        return self._minus_b * v
 
     @classmethod
     def switched_on(cls, *, b, **_others):
