@@ -19,6 +19,7 @@ from scenes import DECLARED, catalog, format_value
 
 from .axes import PLAIN_TICKS
 from .arrows3d import arrow_checkboxes
+from .readout import units_kept
 
 SPEEDS = {"¼×": 0.25, "½×": 0.5, "1×": 1.0, "2×": 2.0, "4×": 4.0}
 SLIDER_CHOICES = ("m", "k", "b", "F0", "omega")
@@ -36,7 +37,8 @@ PRIME_SLIDERS = ("<script>$('.ui-slider').each(function () {"
 
 class _OwnLine:
     """A wtext on a line of its own when it has something to say, and no room at all when empty:
-    `.text` is the sentence, the page shows it after a line break."""
+    `.text` is the sentence, the page shows it after a line break, each number kept on the line of
+    its unit (the browser wrapped `330` and `%` onto two lines at 1280×800)."""
 
     def __init__(self, wtext):
         self.wtext, self._text = wtext, ""
@@ -48,7 +50,7 @@ class _OwnLine:
     @text.setter
     def text(self, value: str) -> None:
         self._text = value
-        self.wtext.text = "<br>" + value if value else ""
+        self.wtext.text = "<br>" + units_kept(value) if value else ""
 
 
 class Controls:

@@ -25,6 +25,7 @@ import numpy as np
 from lab import LabError, compare, readers
 
 from .controls import symbol
+from .readout import length_text
 
 DEFAULT_FIT = ("k", "b")     # what the Fit button fits unless --fit names others
 MAX_DOTS = 1500              # measured points drawn at most (a long file is thinned evenly)
@@ -180,7 +181,7 @@ class MeasuredData:
         elif result is not None:
             c = result.coordinate
             shown = f"{c} − {c}₀" if result.sign > 0 else f"−({c} − {c}₀)"
-            lines.append(f"<b>RMS residual = {_metres(result.rms)}</b>; blue dots: the data at t − t₀, {shown} "
+            lines.append(f"<b>RMS residual = {length_text(result.rms)}</b>; blue dots: the data at t − t₀, {shown} "
                          f"with t₀ = {result.t_offset}, {c}₀ = {result.position_offset} (fitted offsets)")
             if result.sign < 0:
                 lines.append(html.escape(result.sign_said, quote=False))
@@ -201,10 +202,6 @@ def _slow_dt_note(dt: float, interval: float, smaller: str, *, dt_slider: bool) 
             "choose rk4 in the integrator menu (far closer to the real motion at the same Δt)")
     return (f"The model's Δt = {dt:g} s is longer than the data's sample interval {interval:.3g} s, so the "
             f"integrator's own error is in the comparison: {what}.")
-
-
-def _metres(value: float) -> str:
-    return f"{value:.3g} m ({value * 1000:.3g} mm)"
 
 
 def _key(setup, integrator: str):

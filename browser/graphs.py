@@ -312,8 +312,9 @@ class Graphs:
             if what[0] in ("r", "mass_energy", "error") and what[1] in live.runaways:
                 frozen = live.runaways[what[1]][0]  # the curve ends where the mass ran away
                 points = [point for point in points if point[0] <= frozen]
-            if what[0] == "error":
-                errors_shown += [value for _, value in points]  # (euler's too: its climb is the lesson)
+            if what[0] == "error":   # the axis: errors over a whole period (euler's too: its climb is the
+                whole = self.error_windows[what[1]].period      # lesson); the first period's, from 0 m, ran
+                errors_shown += [value for at, value in points if at >= whole]   # to 1e-7 m and squashed them
             if trace.add(points) or redraw:
                 replace_points(curve, list(trace.points))
             elif points:

@@ -10,11 +10,14 @@ m, mm, µm, nm and pm that keeps it at 1 or more (0.1 m and up stay in metres):
 from __future__ import annotations
 
 import math
+import re
 
 UNITS = (("mm", 1e-3), ("µm", 1e-6), ("nm", 1e-9), ("pm", 1e-12))  # smaller and smaller, each with its size in m
 METRES_FROM = 0.1  # m: a length this size or more is written in metres
 ROUND_OFF = "less than 1\u00a0pm (round-off)"
 NO_BREAK = "\u00a0"   # between a number and its unit: the caption wrapped `921` and `µm` onto two lines
+# a number, one space, and the unit after it (a letter or %): `330 %`, `9.42 s`, `1e-05 N/m`
+NUMBER_THEN_UNIT = re.compile(r"(\d[\d,.]*(?:e[+-]?\d+)?) (?=%|[^\W\d_])")
 
 
 def length_text(metres: float, *, signed: bool = False) -> str:
@@ -40,6 +43,15 @@ def length_text(metres: float, *, signed: bool = False) -> str:
     decimals = max(0, 2 - math.floor(math.log10(value)))
     sign = "−" if metres < 0 else ("+" if signed else "")
     return f"{sign}{value:.{decimals}f}{NO_BREAK}{unit}"
+
+
+def units_kept(html: str) -> str:
+    """The page's HTML with a no-break space between each number and its unit, outside tags, so the
+    browser never wraps `330` and `%` onto two lines. The sentences come from physics/ and the
+    command line prints them as they are (a console that is not UTF-8 has no no-break space)."""
+    parts = re.split(r"(<[^>]*>)", html)
+    return "".join(part if part.startswith("<") else NUMBER_THEN_UNIT.sub(rf"\1{NO_BREAK}", part)
+                   for part in parts)
 
 
 def round_3(x: float) -> float:

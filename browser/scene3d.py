@@ -238,12 +238,21 @@ class Scene3D:
         if i in self.runaway_labels:
             return
         t, _ = live.runaways[i]
-        inward = 60 if where[0] < self.centre[0] else -60  # px: the text stays inside the picture
         label = self.vp.label(pos=vec(self.vp, where), text=f"{live.model.labels[i]} ran away\nat t = {t:.2f} s",
-                              xoffset=inward, yoffset=30, height=LABEL_HEIGHT, color=self.vp.vector(1, 1, 1),
+                              **self._runaway_place(where), height=LABEL_HEIGHT, color=self.vp.vector(1, 1, 1),
                               box=False, line=False)
         self.runaway_labels[i] = label
         self.shapes.append(label)
+
+    def _runaway_place(self, where) -> dict:
+        """Where a runaway's label sits: beside its frozen ball, toward the middle of the picture so
+        the text stays inside it; in front of a wall, on the open side (centred 60 px left of a ball
+        just right of the middle, integrators' "euler ran away" covered the wall)."""
+        pixels = 0.5 * CANVAS_SIZE[1] / self.range * self.radius  # the sphere's radius on the page, px
+        from_middle = (where[0] - self.centre[0]) / self.range * 0.5 * CANVAS_SIZE[1]   # px
+        if from_middle < 0 or (self.wall and from_middle < 0.25 * CANVAS_SIZE[0]):
+            return {"xoffset": pixels + 8, "yoffset": 0, "align": "left"}
+        return {"xoffset": -(pixels + 8), "yoffset": 0, "align": "right"}
 
     def _follow(self, r) -> None:
         """Centre the camera on the masses at r, close enough to see the balls and their labels."""

@@ -306,7 +306,8 @@ def compare(setup, t, y, *, integrator=None, coordinate="y", fit=(), sign=None) 
         return start
 
     candidates = start_search.frequencies(t, y) if {"k", "m"} & set(names) else []
-    starts = [(start_from(None), None)] + [(start_from(omega), omega) for omega in candidates]
+    starts = _within_range(setup, names, [(start_from(None), None)]
+                           + [(start_from(omega), omega) for omega in candidates])
     still = problem.run(starts[0][0], 1.0)
     if np.ptp(still.r) <= 1e-12 * (1.0 + np.max(np.abs(still.r))):
         raise FitError(f"the model's {coordinate} does not move in scene {setup.name!r}, so there is nothing "
@@ -367,6 +368,35 @@ def compare(setup, t, y, *, integrator=None, coordinate="y", fit=(), sign=None) 
                       t_offset=Estimate(float(theta[-2]), float(sigma[-2]), "s"),
                       position_offset=Estimate(sign * float(theta[-1]), float(sigma[-1]), "m"),
                       setup=final, notes=notes, sign=sign, slow_dt=slow_dt)
+
+
+def _within_range(setup, names, starts) -> list:
+    """The starts whose every value lies in its declared range. If the start from the constants as
+    set (b from the data's decay) or from the data's strongest frequency lies outside (a swing at a
+    kilohertz on a 10 kg mass asks for k = 4e8 N/m: the data's units are not what the file says, or
+    the scene's m is not the mass used), FitError says which constant, the value, its range and what
+    to check; another frequency's start outside is a weaker peak's, and is dropped."""
+    strongest = starts[1][1] if len(starts) > 1 else None
+    kept = []
+    for start, omega in starts:
+        wrong = [(name, value) for name, value in zip(names, start) if not DECLARED[name].allows(value)]
+        if not wrong:
+            kept.append((start, omega))
+        elif omega is None or omega == strongest:
+            raise FitError(_outside_said(setup, *wrong[0], omega))
+    return kept
+
+
+def _outside_said(setup, name, value, omega) -> str:
+    """One line: the value the data suggest for `name` (k, m from the swing's ω; b from its decay),
+    its declared range, and what to check."""
+    unit, values = setup.constants[name].unit, setup.values
+    how = {"k": f"a swing at ω = {omega or 0:.4g} rad/s with m = {values.get('m', 1.0):.4g} kg (k = m ω²)",
+           "m": f"a swing at ω = {omega or 0:.4g} rad/s with k = {values.get('k', 0.0):.4g} N/m (m = k / ω²)"}
+    other = "k" if name == "m" else "m"
+    return (f"--fit {name}: {how.get(name, 'how fast the data swing dies away')} suggests {name} = "
+            f"{value:.3g} {unit}, outside its range ({DECLARED[name].words(unit)}); check the data's units "
+            f"(time in s, position in m) and the scene's {other} (--set {other}=...)")
 
 
 def _fit_from(problem, setup, start, omega, t_offset, position_offset):

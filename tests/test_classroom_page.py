@@ -175,7 +175,8 @@ def see_through(colour) -> tuple:
 
 
 def status_text(page) -> str:
-    return page.locator("body").inner_text()
+    """The page's text, its no-break spaces (between each number and its unit) read as spaces."""
+    return page.locator("body").inner_text().replace("\u00a0", " ")
 
 
 def test_in_integrators_euler_runs_away_alone_and_the_good_masses_stay_large(browser, tmp_path):
@@ -249,7 +250,7 @@ def test_the_stable_but_inaccurate_warning_is_on_a_laptop_screen(browser):
     page = browser.new_page(viewport={"width": 1280, "height": 800})
     try:
         page.goto(program.url())
-        warning = page.get_by_text(re.compile(r"Δt = 0\.9 s is stable but inaccurate here")).first
+        warning = page.get_by_text(re.compile(r"Δt = 0\.9\ss is stable but inaccurate here")).first
         wait_for(lambda: warning.count() and warning.bounding_box(), timeout=120.0,
                  what="the stable-but-inaccurate line on the page")
         box = warning.bounding_box()
@@ -257,6 +258,46 @@ def test_the_stable_but_inaccurate_warning_is_on_a_laptop_screen(browser):
         assert box["y"] >= 0 and box["y"] + box["height"] <= 800, box
         time_box = page.get_by_text(re.compile(r"^t = [\d.]+ s$")).first.bounding_box()
         assert box["y"] > time_box["y"], (box, time_box)       # under the time, where a class looks
+    finally:
+        page.close()
+        program.stop()
+
+
+# Each number followed by its unit in an element's text, with the top of the number's last digit
+# and of the unit's first character as the browser lays them out (client pixels).
+NUMBER_AND_UNIT_TOPS = """element => {
+    const found = [];
+    const walker = document.createTreeWalker(element, NodeFilter.SHOW_TEXT);
+    for (let node = walker.nextNode(); node; node = walker.nextNode()) {
+        for (const match of node.data.matchAll(/\\d[ \\u00a0]+(?:%|\\p{L})/gu)) {
+            const top = (start) => { const range = document.createRange();
+                range.setStart(node, start); range.setEnd(node, start + 1);
+                return range.getBoundingClientRect().top; };
+            found.push([match[0], top(match.index), top(match.index + match[0].length - 1)]);
+        }
+    }
+    return found;
+}"""
+
+
+@pytest.mark.parametrize("viewport", [{"width": 1280, "height": 800}, {"width": 1920, "height": 1080}])
+def test_the_status_line_keeps_each_number_on_the_line_of_its_unit(browser, viewport):
+    """vertical at Δt = 0.9 s: at 1280×800 the browser wrapped the accuracy warning between `330`
+    and `%` (the number at the end of one line, its unit at the start of the next). The page joins
+    each number to its unit with a no-break space (browser/readout.units_kept); the command line
+    prints physics/accuracy.py's sentence as it is."""
+    program = Program("vertical", "--set", "dt=0.9")
+    page = browser.new_page(viewport=viewport)
+    try:
+        page.goto(program.url())
+        warning = page.get_by_text(re.compile(r"Δt = 0\.9\ss is stable but inaccurate here")).first
+        wait_for(lambda: warning.count() and warning.bounding_box(), timeout=120.0,
+                 what="the stable-but-inaccurate line on the page")
+        pairs = warning.evaluate(NUMBER_AND_UNIT_TOPS)
+        assert any(text.endswith("%") for text, _, _ in pairs), pairs      # `330 %` and `1 %` among them
+        height = warning.evaluate("e => parseFloat(getComputedStyle(e).fontSize)")
+        for text, number_top, unit_top in pairs:
+            assert abs(number_top - unit_top) < height / 2, (text, number_top, unit_top)
     finally:
         page.close()
         program.stop()

@@ -29,6 +29,7 @@ from pathlib import Path
 
 import pytest
 
+from browser.readout import length_text
 from lab.compare import Estimate
 from browser_support import launched, pixels_like, require_browser, screenshot_folder, wait_for
 from test_browser import Program, crop, graph_boxes, menu, shown_time
@@ -71,8 +72,14 @@ def data_lines(page) -> str:
 
 
 def rms_shown(page) -> str | None:
-    found = re.search(r"RMS residual = (\S+) m", data_lines(page))
+    """The RMS residual as the page writes it, number and unit (`2.13 mm`), or None."""
+    found = re.search(r"RMS residual = (\S+ \S*m)\b", data_lines(page))
     return found.group(1) if found else None
+
+
+def rms_written(metres: float) -> str:
+    """An RMS residual in metres as the page writes it (browser/readout.py), read as data_lines does."""
+    return length_text(metres).replace("\u00a0", " ")
 
 
 def position_graph_blue(page, tmp_path: Path, name: str) -> int:
@@ -124,7 +131,7 @@ def test_load_data_overlay_and_fit_move_the_sliders(browser, tmp_path):
 
         page.locator("#sm-data-file").set_input_files(str(path))
         wait_for(lambda: rms_shown(page), timeout=120, what="the comparison's RMS residual")
-        assert rms_shown(page) == f"{compared['rms_residual']:.3g}"
+        assert rms_shown(page) == rms_written(compared['rms_residual'])
         assert "spring.csv: 312 points" in data_lines(page) and "scope.bin" not in data_lines(page)
 
         page.get_by_role("button", name="Fit", exact=True).click()
@@ -166,7 +173,7 @@ def test_data_on_the_command_line_shows_on_the_page_and_fitting_does_not_stop_th
         page = browser.new_page(viewport={"width": 1920, "height": 1080})
         page.goto(program.url())
         wait_for(lambda: rms_shown(page), timeout=120, what="the comparison's RMS residual")
-        assert rms_shown(page) == f"{compared['rms_residual']:.3g}"
+        assert rms_shown(page) == rms_written(compared['rms_residual'])
         for symbol, key in (("t₀", "t_offset"), ("y₀", "position_offset")):
             assert f"{symbol} = {Estimate(**compared['fit'][key])}" in data_lines(page)
         # With the scene's own k and b the data's release lands at the model's t ≈ 9 s: the dots

@@ -16,6 +16,7 @@ import numpy as np
 import pytest
 
 from browser.data_panel import MAX_DOTS, MeasuredData
+from browser.readout import length_text
 from browser.server.http_server import upload_name
 from lab import compare, mystery
 from scenes import catalog
@@ -52,7 +53,7 @@ def test_a_loaded_file_is_compared_off_the_calling_thread_and_shown(spring):
                                coordinate="y")
     assert result.rms == pytest.approx(expected.rms, rel=1e-9)
     text = data.text()
-    assert f"RMS residual = {expected.rms:.3g} m ({expected.rms * 1000:.3g} mm)" in text
+    assert f"RMS residual = {length_text(expected.rms)}</b>" in text       # as the page writes every length
     assert f"t₀ = {expected.t_offset}".replace(" ± ", "\u00a0±\u00a0") in text
     assert "nan" not in text and "inf" not in text
     # The dots are the data on the model's axes: t − t₀, y − y₀.

@@ -69,3 +69,27 @@ def test_the_page_draws_the_labels_and_looks_down_on_resonance_rows():
     assert len(rows) == 3
     for label in rows:
         assert label.align == "right" and -40 < label.xoffset < 0, (label.text, label.align, label.xoffset)
+
+
+def test_euler_ran_away_is_written_on_the_open_side_of_its_ball_not_over_the_wall():
+    """integrators: euler's "ran away" label was centred 60 px left of its frozen ball, over the
+    wall the springs hang from. It now starts just right of the ball (left-aligned), in the open."""
+    from browser.clock import LiveRun
+    from browser.scene3d import Scene3D
+    from test_trail import stand_in_vpython
+
+    setup = catalog.configure("integrators")
+    model = setup.build()
+    view = {**DEFAULT_VIEW, **setup.module.VIEW}
+    shown = Scene3D(stand_in_vpython(), model=model, view=view, title="integrators")
+    live = LiveRun(model, integrator="euler-cromer", sample_every=0.05)
+    while not live.runaways and live.state.t < 30.0:
+        shown.extend_trails(live.advance(round(1.0 / model.dt)), live.runaways)
+    assert list(live.runaways) == [0]                          # euler, alone
+    shown.draw(live, matter=[1, 2, 3])
+    (label,) = shown.runaway_labels.values()
+    assert label.text.startswith("euler ran away")
+    wall = shown.support_box[1][0]                             # the wall's face, m
+    assert float(label.pos[0]) > wall                          # the ball, in front of the wall
+    placed = getattr(label, "align", "center"), label.xoffset   # vpython centres a label unless told
+    assert placed[0] == "left" and placed[1] > 0, placed

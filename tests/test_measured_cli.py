@@ -198,3 +198,19 @@ def test_without_scipy_the_comparison_runs_and_fit_says_what_to_install():
     assert fitted.returncode == 2 and fitted.stdout == ""
     assert fitted.stderr == ("error: --fit needs scipy, which is not installed; install it with "
                              "python -m pip install scipy (everything else runs without it)\n")
+
+
+def test_a_file_whose_swing_needs_a_spring_stiffer_than_the_range_is_one_line(tmp_path):
+    """A Vernier file whose times are seconds but whose header says ms: its swing is 1000 times too
+    fast, so it asks for k = 5.5e7 N/m on the 10 kg mass. One line names k, the value with its unit,
+    k's range and what to check; exit status 2, no traceback, nothing written."""
+    path = tmp_path / "ms.csv"
+    path.write_text((ROOT / "examples" / "data" / "vernier.csv").read_text().replace("Time (s)", "Time (ms)", 1))
+    done = cli("damped", "--data", str(path), "--fit", "k", "--set", "dt=0.00001")
+    assert done.returncode == 2 and done.stdout == "", done.stderr
+    assert done.stderr.count("\n") == 1 and "Traceback" not in done.stderr
+    found = re.match(r"error: --fit k: a swing at ω = \S+ rad/s with m = 10 kg \(k = m ω²\) suggests "
+                     r"k = (\S+) N/m, outside its range \(from 0 to 1e6 N/m\); check the data's units", done.stderr)
+    assert found, done.stderr
+    assert float(found.group(1)) == pytest.approx(55.0 * 1e6, rel=0.02)      # 55 N/m, ω a thousand times
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["ms.csv"]

@@ -8,6 +8,7 @@ so the truth is known exactly; the fit must find it from the noisy points alone.
 from __future__ import annotations
 
 import math
+import re
 import sys
 from pathlib import Path
 
@@ -237,3 +238,29 @@ def test_fit_r0_needs_a_start_position_given_as_numbers():
     t, y = engine_run(["dt=0.01"], span=3.0, rate=25)
     with pytest.raises(FitError, match="can be fitted"):
         compare(setup, t, y, fit=["v0"])
+
+
+def _swing(omega, *, periods=8, points=500):
+    """A clean swing of 1 cm at angular frequency omega (rad/s): (t, y), s and m."""
+    t = np.linspace(0.0, periods * 2 * math.pi / omega, points)
+    return t, 0.01 * np.cos(omega * t)
+
+
+@pytest.mark.parametrize("name, omega, suggested, declared", [
+    ("k", 1000.0, (1e7, "N/m"), "from 0 to 1e6 N/m"),           # 160 Hz on the 10 kg mass: k = m ω²
+    ("m", 0.002, (1e7, "kg"), "from 1e-6 to 1e6 kg"),           # 40 N/m swinging once an hour: m = k/ω²
+])
+def test_a_start_the_data_suggest_outside_the_range_is_one_line_saying_what_to_check(name, omega, suggested,
+                                                                                       declared):
+    """The data's own frequency asks for a constant outside its declared range (the file's time in ms
+    read as s, or the scene's mass not the one used): FitError names the constant, the value with its
+    unit, the range, and what to check (the old code said 'the fit went out of range')."""
+    t, y = _swing(omega)
+    setup = catalog.configure("vertical", assignments=[f"dt={min(1e-5, 0.01 / omega):g}"])
+    with pytest.raises(FitError) as found:
+        compare(setup, t, y, fit=[name])
+    said = str(found.value)
+    assert "\n" not in said and said.startswith(f"--fit {name}: a swing at ω = ")
+    value, unit = re.search(rf"suggests {name} = (\S+) (\S+), outside", said).groups()
+    assert (float(value), unit) == (pytest.approx(suggested[0], rel=0.02), suggested[1])
+    assert declared in said and "units" in said and "--set" in said

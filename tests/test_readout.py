@@ -8,7 +8,8 @@ from hypothesis import given, strategies as st
 
 from browser.clock import LiveRun
 from browser.graphs import Graphs
-from browser.readout import ROUND_OFF, length_text
+from browser.readout import ROUND_OFF, length_text, units_kept
+from physics.accuracy import accuracy_message
 from browser.view import DEFAULT_VIEW
 from scenes import catalog
 from test_trail import stand_in_vpython
@@ -60,3 +61,18 @@ def test_the_page_writes_a_tiny_error_in_nanometres_not_with_an_exponent():
     assert 0 < abs(error) < 1e-3     # so the readout must use a unit smaller than the metre
     assert written == length_text(error, signed=True)
     assert math.isclose(metres(written), error, rel_tol=5.1e-3)
+
+
+def test_the_status_line_joins_each_number_to_its_unit_and_leaves_the_tags_alone():
+    """The page's status line (browser/controls.py) wrapped `330` and `%` onto two lines; the page
+    joins each number to its unit with a no-break space, and the sentence physics/ writes for the
+    command line keeps its plain spaces (a console that is not UTF-8 prints it too)."""
+    said = accuracy_message(dt=0.9, error=3.3, window=9.42, advised=0.01)
+    assert "330 %" in said and "\u00a0" not in said
+    shown = units_kept(f"<b style='font-size:150%'>Stopped:</b> {said}")
+    assert shown.startswith("<b style='font-size:150%'>Stopped:</b> ")            # a tag is left alone
+    for glued in ("0.9\u00a0s", "9.42\u00a0s", "330\u00a0%", "0.01\u00a0s", "1\u00a0%"):
+        assert glued in shown
+    assert not re.search(r"\d (%|[^\W\d_])", shown)                                 # no number left apart
+    assert shown.replace("\u00a0", " ") == f"<b style='font-size:150%'>Stopped:</b> {said}"
+    assert units_kept("k = 1e-05 N/m") == "k = 1e-05\u00a0N/m"

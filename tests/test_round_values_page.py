@@ -53,7 +53,8 @@ def test_the_dt_slider_gives_round_values_and_an_inaccurate_dt_is_said(browser):
             assert f"Δt = {expected:g} s" in constants
         assert seen == [values[round(f * (len(values) - 1))] for f in (0.1, 0.37, 0.52, 0.7, 0.99)]
         assert seen[-1] == 0.2                               # the top of the track: 0.2 s, round
-        wait_for(lambda: "Δt = 0.2 s is stable but inaccurate here" in page.locator("body").inner_text(),
+        wait_for(lambda: "Δt = 0.2 s is stable but inaccurate here"
+                 in page.locator("body").inner_text().replace("\u00a0", " "),
                  timeout=120.0, what="the accuracy line in the status")
         wait_for(lambda: shown_time(page) >= 0.4, timeout=60.0, what="t to run on at Δt = 0.2 s")
         assert re.fullmatch(r"\d+\.\d\d", f"{shown_time(page):.2f}")
