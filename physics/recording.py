@@ -8,6 +8,7 @@ energy of every sample.
 """
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import dataclass, field
 
@@ -186,14 +187,30 @@ def _columns(rows: np.ndarray, start: State):
 
 @dataclass
 class Trajectory:
-    """Samples of a run: t (n,), r and p (n, N, 3); energy (dict of (n,) arrays, J) if asked for."""
+    """Samples of a run: t (n,), r and p (n, N, 3), W_nc (n, N); where the forces are given, the
+    energy of every sample (a dict of (n,) arrays, J), worked out when first asked for, or of a
+    few samples alone (energy_at: a report of the start and the end needs no more)."""
 
     t: np.ndarray
     r: np.ndarray
     p: np.ndarray
     m: np.ndarray
-    energy: dict | None = None
+    forces: tuple | None = None
     work: np.ndarray | None = None
+
+    @functools.cached_property
+    def energy(self) -> dict | None:
+        return self.energy_at(slice(None))
+
+    def energy_at(self, samples) -> dict | None:
+        """K, U, E, W_nc and E − W_nc of these samples (an index, a list or a slice), J; None
+        without forces. The same numbers as those samples of `energy`."""
+        if self.forces is None:
+            return None
+        if "energy" in self.__dict__:
+            return {key: values[samples] for key, values in self.energy.items()}
+        return series(State(t=self.t[samples], r=self.r[samples], p=self.p[samples], m=self.m), self.forces,
+                      self.work[samples])
 
     @property
     def v(self) -> np.ndarray:
@@ -221,5 +238,4 @@ def trajectory(engine, samples: Samples, *, with_energy: bool = True) -> Traject
         r = np.concatenate([start.r[None], samples.r])
         p = np.concatenate([start.p[None], samples.p])
         work = np.concatenate([np.zeros((1, start.count)), samples.work])
-    energy = (series(State(t=t, r=r, p=p, m=start.m), engine.forces, work) if with_energy else None)
-    return Trajectory(t=t, r=r, p=p, m=start.m, energy=energy, work=work)
+    return Trajectory(t=t, r=r, p=p, m=start.m, forces=engine.forces if with_energy else None, work=work)

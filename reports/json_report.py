@@ -68,8 +68,9 @@ def as_json(result: Result) -> dict:
     bodies = None if single else _bodies(result, state, entries)   # cleaned already, array by array
     if bodies is not None:
         out["bodies"] = bodies
-    if traj.energy is not None:
-        out["energy"] = {key: float(values[-1]) for key, values in traj.energy.items()}
+    final_energy = traj.energy_at([-1])            # the last sample's alone, not the whole run's
+    if final_energy is not None:
+        out["energy"] = {key: float(values[0]) for key, values in final_energy.items()}
     out["constants"] = {name: {"value": _plain(setup.values[name]), "unit": c.unit, "meaning": c.meaning}
                         for name, c in setup.constants.items()}
     out["units"] = UNITS

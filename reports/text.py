@@ -40,11 +40,12 @@ def final_report(result: Result) -> str:
     lines += _masses(result)
     if len(m) == 1 and result.exact_note():
         lines.append(f"exact: none at t = {number(t)} s: {result.exact_note()}")
-    if traj.energy is not None:
-        e = {key: values[-1] for key, values in traj.energy.items()}
+    energy = traj.energy_at([0, -1])                # the start's and the end's alone
+    if energy is not None:
+        e = {key: values[-1] for key, values in energy.items()}
         lines.append(f"energy: K = {number(e['K'])} J, U = {number(e['U'])} J, E = {number(e['E'])} J, "
                      f"W_nc = {number(e['W_nc'])} J, E − W_nc = {number(e['E_minus_W_nc'])} J "
-                     f"({number(traj.energy['E_minus_W_nc'][0])} J at the start)")
+                     f"({number(energy['E_minus_W_nc'][0])} J at the start)")
     return "\n".join(lines)
 
 

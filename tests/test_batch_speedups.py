@@ -117,3 +117,25 @@ def test_every_n_is_kept_in_one_array_made_beforehand_with_the_same_rows(monkeyp
     assert kept.rows.base is not None and blocks.rows.base is None     # a view of the prepared array
     for name in ("t", "r", "p", "work"):
         assert np.array_equal(getattr(kept, name), getattr(blocks, name)), name
+
+
+def test_the_energy_of_a_few_samples_is_those_samples_of_the_whole_series():
+    """A report of the start and the end asks energy_at; a CSV file reads every sample's energy.
+    Both are the same numbers, bit for bit, and the whole series is worked out only when asked."""
+    from physics.forces import Gravity, QuadraticDrag
+    from physics.recording import every, trajectory
+    from physics.simulate import Simulation
+    from physics.state import make_state
+    state = make_state(r=[(0.0, -1.5, 0.0), (1.0, -1.2, 0.3)], v=[(0.1, 0.0, 0.0), (0.0, 0.2, 0.1)], m=[10.0, 2.0])
+    forces = (Spring(k=40.0, L0=1.0, anchor=[(0, 0, 0), (1, 0, 0)]), Gravity(g=9.8), LinearDamping(b=1.0),
+              QuadraticDrag(C=0.5, A=0.1, rho=1.2), Driving(F0=2.0, omega=3.0))
+    engine = Simulation(state, forces, dt=0.01)
+    traj = trajectory(engine, engine.advance(500, record=every(7)))
+    few = traj.energy_at([0, -1])
+    assert "energy" not in traj.__dict__, "energy_at alone must not work out the whole series"
+    whole = traj.energy
+    assert set(few) == set(whole) == {"K", "U", "E", "W_nc", "E_minus_W_nc"}
+    for key in whole:
+        assert few[key].tobytes() == whole[key][[0, -1]].tobytes(), key
+        assert traj.energy_at([-1])[key].tobytes() == whole[key][-1:].tobytes(), key
+    assert trajectory(engine, engine.advance(5), with_energy=False).energy is None

@@ -56,7 +56,7 @@ RUNS = [
 def test_block_writer_gives_the_row_writers_bytes(scene, assignments, energies):
     result = headless.simulate(configure(scene, assignments=assignments), progress=None)
     if not energies:
-        result = dataclasses.replace(result, trajectory=dataclasses.replace(result.trajectory, energy=None))
+        result = dataclasses.replace(result, trajectory=dataclasses.replace(result.trajectory, forces=None))
     text, rows = block_rows(result)
     assert text == reference_rows(result)
     assert rows == len(result.trajectory.t) * len(result.trajectory.m) == text.count("\r\n") - 1
