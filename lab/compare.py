@@ -303,6 +303,9 @@ def compare(setup, t, y, *, integrator=None, coordinate="y", fit=(), sign=None) 
                 start[j] = setup.values["k"] / omega ** 2
             elif name == "b":
                 start[j] = start_search.decay(t, y, m) or start[j]
+        if RELEASE in names:
+            j = names.index(RELEASE)
+            start[j] = start_search.release(problem, start, j, t, y)
         return start
 
     candidates = start_search.frequencies(t, y) if {"k", "m"} & set(names) else []

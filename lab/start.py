@@ -1,11 +1,14 @@
-"""Where the fit starts (lab/compare.py): the data's own frequency and decay, and the release time
-and position offset that match the data best on a coarse grid.
+"""Where the fit starts (lab/compare.py): the data's own frequency and decay, the release point that
+gives the data's swing, and the release time and position offset that match the data best on a
+coarse grid.
 """
 from __future__ import annotations
 
 import math
 
 import numpy as np
+
+from . import LabError
 
 START_POINTS = 2000              # points and release times the start's grid search uses at most
 START_OFFSETS = 5000
@@ -80,3 +83,18 @@ def start_offsets(problem, theta_constants, t, y):
         if cost < best[0]:
             best = (cost, float(t_offset), offset)
     return best[1], best[2], best[0]
+
+
+def release(problem, start, j, t, y) -> float:
+    """A start for r0 that gives the model the data's swing: the release point scaled about the
+    middle of the model's swing (its equilibrium), by the data's half range over the model's. Where
+    the mass starts from rest, the release point sets the amplitude, and the scene's own r0 may be
+    far from the data's (a 0.3 m swing against the scene's 1.95 m left the fit in a false minimum)."""
+    try:
+        r = problem.run(start, float(t[-1] - t[0])).r
+    except LabError:     # a start out of range: keep the scene's r0
+        return start[j]
+    middle, half = (np.max(r) + np.min(r)) / 2, np.ptp(r) / 2
+    if not (half > 0 and np.isfinite(half)):
+        return start[j]
+    return float(middle + (start[j] - middle) * (np.ptp(y) / 2) / half)

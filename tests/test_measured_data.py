@@ -264,3 +264,19 @@ def test_a_start_the_data_suggest_outside_the_range_is_one_line_saying_what_to_c
     value, unit = re.search(rf"suggests {name} = (\S+) (\S+), outside", said).groups()
     assert (float(value), unit) == (pytest.approx(suggested[0], rel=0.02), suggested[1])
     assert declared in said and "units" in said and "--set" in said
+
+
+@pytest.mark.parametrize("amplitude", [0.3, 1.0, 3.0])
+def test_a_swing_much_smaller_or_larger_than_the_scenes_is_fitted_with_r0(amplitude):
+    """A motion detector's record of the page's spring (k = 40 N/m, m = 10 kg) let go from rest
+    `amplitude` m from its equilibrium, in the detector's own zero: the scene's r0 = −1.5 m swings
+    1.95 m about y = −3.45 m. `--fit k,r0` finds k and the release, whatever the swing's size: its
+    start for r0 gives the model the data's half range (a 0.3 m swing used to end in a false
+    minimum, k = 167 N/m, RMS 0.2 m)."""
+    t = np.arange(0.0, 5.0, 0.02)
+    y = 0.7 + amplitude * np.cos(2.0 * t)          # ω = √(k/m) = 2 rad/s, from rest at the top
+    setup = catalog.configure("vertical", assignments=["dt=0.001"])
+    result = compare(setup, t, y, fit=("k", "r0"))
+    assert result.fitted["k"].value == pytest.approx(40.0, rel=1e-3)
+    assert result.fitted["r0"].value == pytest.approx(-3.45 + amplitude, abs=1e-3)
+    assert result.rms < 1e-3 * amplitude
