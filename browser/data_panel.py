@@ -190,6 +190,8 @@ class MeasuredData:
                     f"{symbol(name)} = {estimate}" for name, estimate in result.fitted.items()) + "</span>")
             if result.slow_dt:
                 lines.append(_slow_dt_note(*result.slow_dt, dt_slider=dt_slider))
+            if result.misfit:
+                lines.append(html.escape("Note: " + result.misfit, quote=False))
         elif measured is None and not self.problem:
             return ""
         return "\n".join(line.replace(" ± ", "\u00a0±\u00a0") for line in lines)

@@ -111,6 +111,15 @@ class Comparison:
     def points(self) -> int:
         return len(self.t)
 
+    @property
+    def misfit(self) -> str:
+        """Where the model misses the data by more than a tenth of its half swing, why the ± mean little."""
+        half = float(np.ptp(self.data)) / 2
+        return "" if not self.rms > 0.1 * half else (
+            f"the RMS residual, {self.rms:.3g} m, is {self.rms / half:.0%} of the data's half swing ({half:.3g} m): "
+            f"the model does not follow this data, so the ± figures, which assume it does, mean little; look at "
+            f"the plot, the data's column and units, and the constants not fitted (r0 sets the swing's size)")
+
 
 class ModelRun:
     """The engine's run of one set of constants, along one coordinate, readable at any time.
@@ -363,10 +372,10 @@ def compare(setup, t, y, *, integrator=None, coordinate="y", fit=(), sign=None) 
     interval = float(np.median(np.diff(t)))
     dt = float(final.values.get("dt", 0.0))
     if dt > interval:
-        slow_dt = (dt, interval, _smaller(interval))
+        slow_dt = (dt, interval, f"{10 ** math.floor(math.log10(interval / 10)):g}")    # a round Δt under it
         notes.append(f"note: the model's dt = {dt:g} s is longer than the data's sample interval "
                      f"{interval:.3g} s, so the integrator's own error is in the comparison; a smaller dt "
-                     f"(--set dt={_smaller(interval)}) follows the real motion more closely")
+                     f"(--set dt={slow_dt[2]}) follows the real motion more closely")
     return Comparison(t=t, data=data, model=model, coordinate=coordinate, fitted=fitted,
                       t_offset=Estimate(float(theta[-2]), float(sigma[-2]), "s"),
                       position_offset=Estimate(sign * float(theta[-1]), float(sigma[-1]), "m"),
@@ -438,9 +447,3 @@ def _better_way(fitted: dict) -> int:
     if 1 not in cost:
         return -1
     return -1 if -1 in cost and cost[-1] < SIGN_MARGIN * cost[1] else 1
-
-
-def _smaller(interval: float) -> str:
-    return f"{10 ** math.floor(math.log10(interval / 10)):g}"
-
-

@@ -35,7 +35,7 @@ def run_data(args, setup) -> int:
     names = args.fit.split(",") if args.fit else ()
     result = compare.compare(setup, measured.t, measured.position, integrator=args.integrator,
                              coordinate=coordinate, fit=names, sign=args.data_sign)
-    for note in result.notes:
+    for note in result.notes + ([f"note: {result.misfit}"] if result.misfit else []):
         print(note, file=sys.stderr)
     if args.plot is not None:
         plot(result, measured, args.plot, integrator=args.integrator)

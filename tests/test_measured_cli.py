@@ -214,3 +214,14 @@ def test_a_file_whose_swing_needs_a_spring_stiffer_than_the_range_is_one_line(tm
     assert found, done.stderr
     assert float(found.group(1)) == pytest.approx(55.0 * 1e6, rel=0.02)      # 55 N/m, ω a thousand times
     assert sorted(p.name for p in tmp_path.iterdir()) == ["ms.csv"]
+
+
+def test_the_command_line_notes_a_fit_whose_model_misses_the_data(tmp_path):
+    import numpy as np
+    t = np.arange(0.0, 5.0, 0.02)
+    data = tmp_path / "swing.csv"
+    data.write_text("t (s),y (m)\n" + "".join(f"{a:.3f},{0.7 + np.cos(2 * a):.6f}\n" for a in t))
+    done = cli("vertical", "--data", str(data), "--fit", "k", timeout=300)
+    assert done.returncode == 0, done.stderr
+    notes = [line for line in done.stderr.splitlines() if "does not follow this data" in line]
+    assert len(notes) == 1 and notes[0].startswith("note: the RMS residual, 0.") and "% of the data's half swing (1 m)" in notes[0]
