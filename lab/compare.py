@@ -116,9 +116,8 @@ class Comparison:
         """Where the model misses the data by more than a tenth of its half swing, why the ± mean little."""
         half = float(np.ptp(self.data)) / 2
         return "" if not self.rms > 0.1 * half else (
-            f"the RMS residual, {self.rms:.3g} m, is {self.rms / half:.0%} of the data's half swing ({half:.3g} m): "
-            f"the model does not follow this data, so the ± figures, which assume it does, mean little; look at "
-            f"the plot, the data's column and units, and the constants not fitted (r0 sets the swing's size)")
+            f"the model misses by {self.rms / half:.0%} of the data's half swing ({half:.3g} m), so the ± "
+            f"figures mean little; check the data's units and the constants not fitted (r0 sets the swing's size)")
 
 
 class ModelRun:
