@@ -71,8 +71,8 @@ def columns(axes) -> slice | list:
     return axes
 
 
-def put_back(whole: np.ndarray, axes, part: np.ndarray) -> np.ndarray:
-    """A new array like `whole`, with `part` in the axes' columns and whole's other columns."""
+def put_back(whole: np.ndarray, pick, part: np.ndarray) -> np.ndarray:
+    """A new array like `whole`, with `part` in the columns `pick` (columns(axes)) and whole's others."""
     out = whole.copy(order="K")       # one copy of the whole is cheaper than picking its other columns
-    out[..., columns(axes)] = part
+    out[..., pick] = part
     return out

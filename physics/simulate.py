@@ -101,6 +101,7 @@ class Simulation:
         self.cut_axes = cut_axes
         self.axes = moving_axes(state.r, state.p, self.forces) if cut_axes else None
         self._stepped_forces = self.forces if self.axes is None else cut(self.forces, self.axes)
+        self._columns = None if self.axes is None else columns(self.axes)    # their index, worked out once
         self.restart()
 
     # ---- where the engine is ----
@@ -201,17 +202,17 @@ class Simulation:
         t is the time at the start of the step and t_next = t + Δt at its end (both from the step
         count). The same function runs on floats (numpy) and on traced numbers (the compiled loop).
         """
-        axes, whole_r, whole_p = self.axes, r, p
-        if axes is not None:              # only the axes the motion uses; the others stay as they are
-            r, p = r[:, columns(axes)], p[:, columns(axes)]
+        pick, whole_r, whole_p = self._columns, r, p
+        if pick is not None:              # only the axes the motion uses; the others stay as they are
+            r, p = r[:, pick], p[:, pick]
         new = self._step(State(t=t, r=r, p=p, m=self.start.m), self._stepped_forces, self.dt)
         if self.metered:
             power_next = nonconservative_power(State(t=t_next, r=new.r, p=new.p, m=self.start.m),
                                                self._stepped_forces)
             power, work = power_next, work_step(work, power, power_next, self.dt)
-        if axes is None:
+        if pick is None:
             return new.r, new.p, power, work
-        return put_back(whole_r, axes, new.r), put_back(whole_p, axes, new.p), power, work
+        return put_back(whole_r, pick, new.r), put_back(whole_p, pick, new.p), power, work
 
     def _ticks(self, stop: int, recorder: Recorder, *, compile_ok: bool) -> None:
         """Tick up to step number `stop`, recording the steps the recorder marks."""
