@@ -1,33 +1,53 @@
-"""The documents name files and functions that exist, and the notebook gives the README's command.
+"""The documents name files and functions that exist, and every command they show runs as shown.
 
-README.md and docs/architecture.md are where a newcomer starts; a path or a name in them that has
-moved away sends the reader nowhere.
+README.md is where a newcomer starts and each guide in docs/ is where a reader goes next; a path
+or a name in them that has moved away sends the reader nowhere, and a command that fails there
+loses the reader at once. So every `python main.py ...` line of their code blocks that needs no
+browser is run here, as a user would type it, in a folder of its own.
 """
 import importlib
 import json
+import os
 import re
+import shlex
+import subprocess
+import sys
 from pathlib import Path
 
 import pytest
 
 ROOT = Path(__file__).resolve().parent.parent
-DOCS = ["README.md", "docs/architecture.md", "docs/performance.md", "docs/long_run.md"]
-PATH = re.compile(r"`((?:physics|scenes|browser|reports|export|tests|benchmarks|examples|docs)/[\w./-]*)`")
-NAME = re.compile(r"`((?:physics|scenes|browser|reports|export)\.\w+(?:\.\w+)?)`")
+GUIDES = ["README.md", "docs/model.md", "docs/teaching.md", "docs/homework.md", "docs/lab.md",
+          "docs/handout.md", "docs/architecture.md"]
+DOCS = GUIDES + ["docs/performance.md", "docs/long_run.md"]
+PATH = re.compile(r"`((?:physics|scenes|browser|reports|export|lab|cli|tests|benchmarks|examples|docs)/[\w./-]*)`")
+NAME = re.compile(r"`((?:physics|scenes|browser|reports|export|lab)\.\w+(?:\.\w+)?)`")
+LINK = re.compile(r"\]\(((?!https?:|#)[^)#\s]+)")
+README_LIMIT = 10 * 1024      # bytes: a front door read in two minutes (pymunk's is 6.3 KB)
+# What makes a command need no browser: the rest open the page, which the browser tests cover.
+HEADLESS = {"--headless", "--steps", "--list", "--constants", "--plot", "--data", "--mystery",
+            "--show-answer", "--vpython", "--webvpython", "--html"}
 
 
 @pytest.mark.parametrize("doc", DOCS)
 def test_every_path_a_document_names_exists(doc):
     text = (ROOT / doc).read_text(encoding="utf-8")
     paths = set(PATH.findall(text))
-    assert paths or doc.startswith("docs/long") or doc.startswith("docs/perf")
     placeholder = re.compile(r"/[A-Z]+\.")                     # scenes/NAME.py: any name
     missing = [path for path in sorted(paths)
                if not placeholder.search(path) and not (ROOT / path.rstrip("/")).exists()]
     assert not missing, missing
 
 
-@pytest.mark.parametrize("doc", ["README.md", "docs/architecture.md"])
+@pytest.mark.parametrize("doc", DOCS)
+def test_every_link_between_the_documents_leads_somewhere(doc):
+    text = (ROOT / doc).read_text(encoding="utf-8")
+    here = (ROOT / doc).parent
+    missing = [link for link in LINK.findall(text) if not (here / link).exists()]
+    assert not missing, missing
+
+
+@pytest.mark.parametrize("doc", GUIDES)
 def test_every_module_attribute_a_document_names_exists(doc):
     text = (ROOT / doc).read_text(encoding="utf-8")
     for dotted in sorted(set(NAME.findall(text))):
@@ -39,10 +59,47 @@ def test_every_module_attribute_a_document_names_exists(doc):
         assert found is not None, dotted
 
 
-def test_the_notebook_tells_the_readmes_jupyter_command():
-    readme = (ROOT / "README.md").read_text(encoding="utf-8")
-    command = next(line.strip() for line in readme.splitlines() if "jupyter notebook --config" in line)
+def test_the_readme_is_a_front_door_that_links_every_guide():
+    readme = (ROOT / "README.md").read_bytes()
+    assert len(readme) <= README_LIMIT, len(readme)
+    text = readme.decode("utf-8")
+    for guide in GUIDES[1:]:
+        assert f"]({guide})" in text, guide
+
+
+def test_the_notebook_tells_the_guides_jupyter_command():
+    teaching = (ROOT / "docs" / "teaching.md").read_text(encoding="utf-8")
+    command = next(line.strip() for line in teaching.splitlines() if "jupyter notebook --config" in line)
     notebook = json.loads((ROOT / "examples" / "scenes.ipynb").read_text(encoding="utf-8"))
     first = "".join(notebook["cells"][0]["source"])
     assert command in first
     assert all(not cell.get("outputs") for cell in notebook["cells"])  # committed without outputs
+
+
+def shown_commands(doc: str) -> list[list[str]]:
+    """Every `python main.py ...` line of a code block in a guide that needs no browser, as its
+    arguments, in the order shown. A line ends at its comment."""
+    found = []
+    for line in (ROOT / doc).read_text(encoding="utf-8").splitlines():
+        if not line.startswith("    python main.py"):
+            continue
+        args = shlex.split(line.partition("  #")[0])[2:]
+        if HEADLESS & set(args) and "--page" not in args:
+            found.append(args)
+    return found
+
+
+@pytest.mark.parametrize("doc", GUIDES)
+def test_every_command_a_guide_shows_runs_as_shown(doc, tmp_path):
+    """The guide's commands, in order, in an empty folder of their own (so a file one writes, a
+    mystery spring, is there for the next to read) with examples/ reachable by the same relative
+    paths: each exits 0, or 3 where a fit cannot be trusted, with no traceback."""
+    (tmp_path / "examples").symlink_to(ROOT / "examples")
+    env = {**os.environ, "PYTHONIOENCODING": "utf-8"}
+    failed = []
+    for args in shown_commands(doc):
+        done = subprocess.run([sys.executable, str(ROOT / "main.py"), *args], cwd=tmp_path, env=env,
+                              capture_output=True, text=True, encoding="utf-8", timeout=600)
+        if done.returncode not in (0, 3) or "Traceback" in done.stderr:
+            failed.append((" ".join(args), done.returncode, done.stderr.strip()[-300:]))
+    assert not failed, failed
