@@ -26,12 +26,14 @@ independent noise of the same size on every point. Constants that the data canno
 from __future__ import annotations
 
 import math
+from itertools import combinations
 from dataclasses import dataclass, field
 
 import numpy as np
 
 from . import LabError, start as start_search
 from .least_squares import MissingScipy, least_squares, offsets_only
+from physics.forces import FORCES
 from physics.simulate import BlowUpError, every, steps_to_reach, trajectory
 from scenes import ConstantError, check_value
 from scenes._constants import DECLARED
@@ -41,15 +43,9 @@ RELEASE = "r0"                    # --fit r0: the start position's component alo
 MAX_STEPS_PER_RUN = 2_000_000     # a fit runs the engine dozens of times: each run stays this short
 SIGN_MARGIN = 0.5                 # the data's axis is taken as reversed where that halves the misfit
 CONDITION_LIMIT = 1e8             # beyond this the fitted values cannot be told apart
-# Constants that enter the motion only in a combination: fitting two of a group is meaningless.
-TIED = [
-    ({"m", "k"}, "the motion depends on k/m, not on k and m apart (gravity gives every mass the same g)"),
-    ({"m", "b"}, "the motion depends on b/m, not on b and m apart"),
-    ({"m", "F0"}, "the motion depends on F0/m, not on F0 and m apart"),
-    ({"C", "A"}, "drag depends on the product C·A·ρ only"),
-    ({"C", "rho"}, "drag depends on the product C·A·ρ only"),
-    ({"A", "rho"}, "drag depends on the product C·A·ρ only"),
-]
+# Constants that enter the motion only in a combination, as each force declares them (TIED in
+# physics/forces/): fitting two of a group is meaningless.
+TIED = [(set(pair), why) for force in FORCES for names, why in force.TIED for pair in combinations(names, 2)]
 
 
 class FitError(LabError):
