@@ -23,7 +23,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from physics.forces import LinearDamping, Spring, net_force
+from physics.forces import Spring, net_force
 from physics.forces.friction import Friction
 from physics.integrators import INTEGRATORS
 from physics.simulate import Simulation, every, trajectory
