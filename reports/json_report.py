@@ -116,9 +116,12 @@ def _bodies(result: Result, state: dict, entries: list) -> list[dict]:
     r, p, v, F_net = (state[key] for key in ("r", "p", "v", "F_net"))
     bodies = [{"label": label, "m": m[i], "r": r[i], "p": p[i], "v": v[i], "F_net": F_net[i]}
               for i, label in enumerate(result.labels)]
-    for body, entry, note, until in zip(bodies, entries, notes, valid_until):
+    reasons = result.model.no_closed_form_each or ("",) * len(bodies)
+    for body, entry, note, until, reason in zip(bodies, entries, notes, valid_until, reasons):
         if entry is not None:
             body["exact"] = entry
+        elif reason:              # a force on this mass has no closed form: null, and which
+            body.update(exact=None, exact_note=reason, exact_valid_until=None)
         if note:
             body.update(exact_note=note, exact_valid_until=until)
     return bodies

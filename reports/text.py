@@ -75,6 +75,8 @@ def _masses(result: Result) -> list[str]:
                       f"|v − v_exact| = {number(np.linalg.norm(v[i] - v_exact), 4)} m/s"]
         elif notes[i] and not single:
             lines.append(f"{indent}exact: none at t = {number(t)} s: {notes[i]}")
+        elif model.no_closed_form_each and model.no_closed_form_each[i] and not single:
+            lines.append(f"{indent}exact: none ({model.no_closed_form_each[i]})")
     return lines
 
 

@@ -34,6 +34,8 @@ class Model:
     exact_limit  why the closed form can stop holding, one sentence
     no_closed_form  where exact is None because a force present has no closed form, why, naming
              it: "no closed form with friction" ("" otherwise)
+    no_closed_form_each  () where every mass's closed form covers its forces, else for each mass
+             why it has none ("no closed form with drag"; "" for a mass that has one)
     per_mass  None, or how the scene's build makes its lists of one value per mass, as data the
              handed-out program writes out (scenes/_row.py's MassLoop)
     """
@@ -52,6 +54,7 @@ class Model:
     may_run_away: tuple = ()
     per_mass: Optional[object] = None
     no_closed_form: str = ""
+    no_closed_form_each: tuple = ()
 
     def __post_init__(self):
         for force in self.forces:   # a plain callable, not a physics.forces.Force, declares nothing

@@ -220,16 +220,15 @@ def test_mu_s_below_mu_k_is_one_line():
     assert "mu_s must be at least mu_k" in line
 
 
-def test_a_single_mass_scene_takes_friction_from_the_force_and_has_no_exact_answer():
-    """`driven` on its table (g = 0: no load) refuses friction in one line; `vertical` takes it,
-    and reports no exact answer, naming friction."""
-    done = main_py("driven", "--set", "mu_k=0.1", "--set", "mu_s=0.2", "--headless")
-    assert done.returncode == 2 and "g = 0" in done.stderr
-    done = main_py("vertical", "--set", "mu_k=0.1", "--set", "mu_s=0.2", "--headless", "--json")
-    assert done.returncode == 0, done.stderr
-    out = json.loads(done.stdout)
-    assert out["exact"] is None and "exact_valid_until: null, no closed form with friction" in out["notes"]
-    assert out["constants"]["mu_k"] == {"value": 0.1, "unit": "1", "meaning": Friction.CONSTANTS["mu_k"].meaning}
+@pytest.mark.parametrize("scene", ["vertical", "driven", "damped", "pendulum"])
+def test_a_single_mass_scene_refuses_friction_in_one_line_naming_the_scene_that_has_a_table(scene):
+    """A single-mass scene has no table: its mass hangs or swings with gravity on, or lies on a
+    frictionless table with g = 0 (no load). `vertical --set mu_k=0.1` used to run and report no
+    exact answer while friction did nothing at all: now every such scene says so in one line."""
+    done = main_py(scene, "--set", "mu_k=0.1", "--set", "mu_s=0.2", "--headless")
+    assert done.returncode == 2 and done.stdout == "", done.stderr
+    (line,) = done.stderr.strip().splitlines()
+    assert line.startswith("error: friction needs a block sliding on a table") and "main.py friction" in line
 
 
 # A quick case: μ_k = 0.3 stops the top block within 1.5 s (three half swings), so a 2 s run has it
@@ -287,9 +286,14 @@ def test_the_friction_scene_shows_the_lesson(tmp_path):
         assert halved == pytest.approx(12.5, abs=period)
 
 
-def test_friction_is_among_the_forces_tried_alone_and_in_pairs_for_the_closed_form():
-    """tests/test_closed_form_by_forces.py builds its cases from the forces' declarations: friction,
-    in its own module, is one of them without a line there (and its cases report no exact answer)."""
-    from test_closed_form_by_forces import CASES, SWITCHED
-    assert SWITCHED["friction"] == {"mu_s": 0.2, "g": 9.8, "mu_k": 0.1}
-    assert sum("friction" in case for case in CASES) == len(SWITCHED)
+def test_the_friction_block_has_no_exact_answer_and_says_so_the_damped_one_has_its_own():
+    """26.2 in a row: friction has no closed form, so the friction block's exact answer is null in
+    --json with a note naming friction, and "none (no closed form with friction)" in the text;
+    the damped block beside it keeps its closed form and its error."""
+    done = main_py("friction", "--headless", "--json")
+    assert done.returncode == 0, done.stderr
+    damped, sliding = json.loads(done.stdout)["bodies"]
+    assert damped["exact"]["error"]["r"] < 0.05
+    assert sliding["exact"] is None and sliding["exact_note"] == "no closed form with friction"
+    text = main_py("friction", "--headless").stdout
+    assert text.count("exact: none (no closed form with friction)") == 1 and text.count("exact: r = ") == 1

@@ -102,9 +102,17 @@ class Friction(Force):
 
     @classmethod
     def switched_on(cls, **constants):
-        """Friction where μ_k or μ_s is not 0 (the scene's g gives N = m g)."""
-        mu_k, mu_s = constants.get("mu_k", 0.0), constants.get("mu_s", 0.0)
-        return cls(mu_k=mu_k, mu_s=mu_s, g=constants.get("g", 0.0)) if mu_k or mu_s else None
+        """None where μ_k and μ_s are 0. A scene of one mass switches its forces on from its constants
+        (physics.forces.switched_on), and none of them has a table: its mass hangs, or swings on its
+        spring, with gravity on (g > 0), or lies on a frictionless table with gravity off (g = 0, no
+        load N = m g). Friction there would do nothing or nonsense, so it is refused in one line,
+        naming the scene that has a table (scenes/friction.py builds its Friction itself)."""
+        if not (constants.get("mu_k", 0.0) or constants.get("mu_s", 0.0)):
+            return None
+        raise ValueError("friction needs a block sliding on a table, and this scene has none (its mass "
+                         "hangs or swings on its spring, or lies on a frictionless table with g = 0): "
+                         "leave mu_k and mu_s at 0 here; the friction scene puts a spring on a table "
+                         "(python main.py friction)")
 
     def __call__(self, t, r, v, m, F_rest=None):
         m = m[:, None]
