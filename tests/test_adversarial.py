@@ -319,7 +319,7 @@ def test_a_file_another_program_holds_open_is_named_as_such_and_left_untouched(t
         raise PermissionError(13, "Permission denied")
     monkeypatch.setattr(files.os, "replace", held_open)
     with pytest.raises(files.OutputError) as refused:
-        files.write_text(str(path), "t,x\n", what="CSV file")
+        files.write_text(str(path), "t,x\n", what="CSV file", overwrite=True)
     assert str(refused.value) == (f"cannot write CSV file {str(path)!r}: Permission denied (is the file open in "
                                   f"another program, such as Excel? close it there and run again)")
     assert path.read_text() == "the teacher's old data\n"
@@ -565,8 +565,11 @@ def test_the_program_never_writes_over_its_own_files(argv, monkeypatch, capsys):
     assert changed == []
     out, err = capsys.readouterr()
     what, path = argv.split()[-3:-1] if argv.endswith("--overwrite") else argv.split()[-2:]
+    why = (f"it is inside the program's own folder {path.split('/')[0]}/, which it never writes into; write it "
+           f"outside the program's folder, or in out/ (kept for your files)" if "/" in path else
+           "it is one of this program's own files; give another name")
     assert err.splitlines() == [f"error: cannot write {dict(csv='CSV file', plot='figure').get(what[2:], 'the program')} "
-                                f"{path!r}: it is one of this program's own files; give another name"]
+                                f"{path!r}: {why}"]
 
 
 def test_a_python_file_the_program_did_not_write_is_replaced_only_with_overwrite(tmp_path, monkeypatch, capsys):
