@@ -66,7 +66,7 @@ def test_arrows_reach_the_data_page_as_names_not_characters():
     ["damped", "--data", VERNIER, "--page", "--arrows", "bogus"],
     ["damped", "--mystery", "never.csv", "--arrows", "bogus"],
     ["damped", "--show-answer", "--seed", "3", "--arrows", "bogus"],
-    ["damped", "--constants", "--arrows", "bogus"],
+    ["damped", "--constants", "--arrows", "p"],           # bogus names were refused, good ones ignored
     ["--list", "--arrows", "bogus"],
     ["damped", "--data", VERNIER, "--fit", ""],
     ["damped", "--data", VERNIER, "--fit", " "],
@@ -188,3 +188,12 @@ def test_a_line_break_in_the_name_of_a_written_file_is_one_line_too(tmp_path):
     folder.mkdir()
     done = main_py("vertical", "--vpython", folder / "handout.py", cwd=tmp_path)
     assert done.returncode == 0 and done.stderr.splitlines() == [f"wrote {tmp_path}/a\\nb/handout.py"], done.stderr
+
+
+@pytest.mark.parametrize("argv, said", [
+    (["vertical", "--headless", "--until", "1e-320"], "(got 1e-320 s)"),
+    (["vertical", "--headless", "--set", "A=-4e-323"], "(got -4e-323 m²)"),
+])
+def test_a_number_too_small_for_a_normal_double_is_echoed_as_typed(argv, said):
+    """'got 9.99989e-321 s' for --until 1e-320: six digits of a subnormal double show its error."""
+    assert one_error(main_py(*argv)).endswith(said)
