@@ -88,8 +88,9 @@ def build_parser() -> argparse.ArgumentParser:
     parser.add_argument("--webvpython", metavar="FILE.py",
                         help="the same program for Web VPython (glowscript.org, trinket)")
     parser.add_argument("--overwrite", action="store_true",
-                        help="let --csv, --plot, --vpython or --webvpython replace an existing Python file "
-                             "this program did not write (its own files are never replaced)")
+                        help="let --csv, --plot, --vpython, --webvpython or --mystery replace an existing "
+                             "file this program did not write (its own outputs are replaced without it; "
+                             "the program's own files and the --data file never are)")
     _add_lab_options(parser)
     parser.add_argument("--arrows", metavar="LIST",
                         help="arrows on each mass, in the page and the program: any of p,F_net,forces,split "
