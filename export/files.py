@@ -107,6 +107,16 @@ def _module_name(name: str) -> str | None:
     return None
 
 
+def _importable(module: str) -> bool:
+    """Whether Python already has a top-level module of this name (json, numpy, physics, __main__)."""
+    if module in sys.stdlib_module_names or module in sys.builtin_module_names or module in sys.modules:
+        return True
+    try:
+        return importlib.util.find_spec(module) is not None
+    except (ImportError, ValueError):   # a module whose spec cannot be told: one that exists
+        return True
+
+
 def _user_folders() -> set[str]:
     """The folders at PROJECT's top that its own .gitignore gives to the user: the lines that name
     one folder at the root, such as `/out/` (none if there is no .gitignore)."""
@@ -191,11 +201,9 @@ def own_tree(target: str) -> str | None:
         if os.path.lexists(target):
             return None if written_here(target) else "it is one of this program's own files"
         module = _module_name(name)
-        if module is not None and module.isidentifier() and (
-                module in sys.stdlib_module_names or module in sys.builtin_module_names
-                or importlib.util.find_spec(module) is not None):
-            return (f"in the program's own folder it would be imported in place of Python's {module} "
-                    f"module and break the program")
+        if module is not None and module.isidentifier() and _importable(module):
+            return (f"in the program's own folder it would be imported in place of the {module} module "
+                    f"and break the program")
         return None
     for folder in _scene_folders():
         if _inside(target, folder) == [name] and _module_name(name) is not None:

@@ -113,8 +113,11 @@ def test_a_copy_without_git_is_protected_the_same_and_its_out_folder_is_the_user
     assert sorted(os.listdir(copy / "out")) == ["handout.py", "run.csv", "run.png"]
     # beside main.py a module name is refused: Python would import it instead of its own json
     line = one_error(main_py("damped", "--vpython", "json.py", cwd=copy, main=copy / "main.py"))
-    assert "it would be imported in place of Python's json module" in line
+    assert "it would be imported in place of the json module and break the program" in line
     assert not (copy / "json.py").exists()
+    # __main__ has no spec to find: once a ValueError, 'a bug in main.py'
+    assert "in place of the __main__ module" in one_error(main_py("vertical", "--headless", "--csv", "__main__.py",
+                                                                 cwd=copy, main=copy / "main.py"))
     # and a file there that is not ours is not replaced, even with --overwrite
     (copy / "notes.txt").write_text("mine\n")
     assert "own files" in one_error(main_py("vertical", "--headless", "--csv", "notes.txt", "--overwrite", cwd=copy,
