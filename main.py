@@ -48,7 +48,7 @@ if __name__ == "__main__":  # run() takes over once everything is loaded
     # them, 0.19-0.29 s without, the same user time. A value the user set is kept.
     os.environ.setdefault("NUMPY_MADVISE_HUGEPAGE", "0")
 
-from cli.options import UsageError, build_parser, check_options, headless_run, lab_command  # noqa: E402
+from cli.options import UsageError, build_parser, check_options, headless_run, lab_command, one_line  # noqa: E402
 from export import files  # noqa: E402
 from reports import csv_file, headless, json_report, step_table, terminal, text  # noqa: E402
 from physics.simulate import BlowUpError  # noqa: E402
@@ -90,7 +90,7 @@ def run_headless(args, setup, model) -> int:
         plotting.check_format(args.plot)
     warning = headless.stability_warning(model, model.methods(args.integrator))
     if warning:
-        print(warning, file=sys.stderr)
+        print(one_line(warning), file=sys.stderr)
     if args.steps is not None:
         print_step_table(args, setup, model, warning)
         if run is None:
@@ -98,7 +98,7 @@ def run_headless(args, setup, model) -> int:
     result = headless.simulate(setup, checked=run)
     note = headless.stop_note(model, until=until)
     if note:
-        print(note, file=sys.stderr)
+        print(one_line(note), file=sys.stderr)
     if args.csv is not None:
         csv_file.write_csv(result, args.csv)
     if args.plot is not None:
@@ -139,7 +139,7 @@ def write_programs(args, setup, model, *, warn: bool) -> None:
         except BlowUpError as problem:
             warning = f"warning: {problem}; the program is written as asked"
         if warning:
-            print(warning, file=sys.stderr)
+            print(one_line(warning), file=sys.stderr)
 
     try:
         texts = [(path, export.program(setup, integrator=args.integrator, web=web, arrows=args.arrows,
@@ -157,7 +157,7 @@ def write_programs(args, setup, model, *, warn: bool) -> None:
                 print(program_text, end="")
             else:
                 export.write_program(path, program_text, overwrite=args.overwrite)
-                print(f"wrote {path}", file=sys.stderr)
+                print(f"wrote {one_line(path)}", file=sys.stderr)
     except ValueError as problem:   # export.ProgramError, or constants the physics cannot take
         raise UsageError(str(problem)) from None
 
@@ -170,7 +170,7 @@ def main(argv=None) -> int:
             listing, problems = text.list_scenes()
             print(listing)
             for problem in problems:  # the other scenes are listed, and run, as usual
-                print(f"error: {problem}", file=sys.stderr)
+                print(f"error: {one_line(str(problem))}", file=sys.stderr)
             return 2 if problems else 0
         setup = catalog.configure(catalog.DEFAULT_SCENE if args.scene is None else args.scene,
                                   assignments=args.assignments,
@@ -196,10 +196,10 @@ def main(argv=None) -> int:
         if runs_headless:
             return run_headless(args, setup, model)
     except (ConstantError, UsageError, files.OutputError, LabError) as problem:
-        print(f"error: {problem}", file=sys.stderr)
+        print(f"error: {one_line(str(problem))}", file=sys.stderr)
         return 2
     except BlowUpError as problem:
-        print(f"error: {problem}", file=sys.stderr)
+        print(f"error: {one_line(str(problem))}", file=sys.stderr)
         return 1
     from browser.clock import check_live_cost
     from browser.view import show
@@ -207,7 +207,7 @@ def main(argv=None) -> int:
     try:
         check_live_cost(model, args.integrator)
     except ValueError as problem:
-        print(f"error: {problem}", file=sys.stderr)
+        print(f"error: {one_line(str(problem))}", file=sys.stderr)
         return 2
     # the page's integrator menu starts where a headless run would: the scene's own default (rk4 for
     # resonance), else the page's euler-cromer
@@ -265,7 +265,7 @@ def run(argv=None) -> int:
         return status
     except terminal.OutputStreamError as problem:
         terminal.discard_output(stdout)
-        print(f"error: {problem}", file=sys.stderr)
+        print(f"error: {one_line(str(problem))}", file=sys.stderr)
         return 2
     except KeyboardInterrupt:
         print("stopped: interrupted (Ctrl-C); no file was left half-written", file=sys.stderr)

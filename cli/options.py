@@ -35,11 +35,23 @@ class UsageError(ValueError):
     """Options that do not fit together, or a value out of range: a one-line message."""
 
 
+# What str.splitlines() breaks a line at, and the other control characters a terminal acts on.
+LINE_BREAKS = set("\n\r\x0b\x0c\x1c\x1d\x1e\x85\u2028\u2029")
+
+
+def one_line(message: str) -> str:
+    """`message` as one line: a line break or control character in it (a file name, a --fit
+    value) written as Python writes it in a string, \\n, so the message stays one line and still
+    names the value exactly. Tabs stay."""
+    return "".join(repr(c)[1:-1] if c in LINE_BREAKS or (c < " " and c != "\t") or c == "\x7f" else c
+                   for c in message)
+
+
 class Parser(argparse.ArgumentParser):
     """argparse, but a bad option is one line on stderr (no usage block), with exit status 2."""
 
     def error(self, message):
-        self.exit(2, f"error: {message} (see 'python main.py --help')\n")
+        self.exit(2, f"error: {one_line(message)} (see 'python main.py --help')\n")
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -76,8 +88,9 @@ def build_parser() -> argparse.ArgumentParser:
     parser.add_argument("--webvpython", metavar="FILE.py",
                         help="the same program for Web VPython (glowscript.org, trinket)")
     parser.add_argument("--overwrite", action="store_true",
-                        help="let --csv, --plot, --vpython or --webvpython replace an existing Python file "
-                             "this program did not write (its own files are never replaced)")
+                        help="let --csv, --plot, --vpython, --webvpython or --mystery replace an existing "
+                             "file this program did not write (its own outputs are replaced without it; "
+                             "the program's own files and the --data file never are)")
     _add_lab_options(parser)
     parser.add_argument("--arrows", metavar="LIST",
                         help="arrows on each mass, in the page and the program: any of p,F_net,forces,split "
@@ -171,19 +184,41 @@ def check_lab_options(args) -> None:
         return
     if command == "--show-answer" and args.seed is None:
         raise UsageError("--show-answer needs --seed N, the seed the mystery file was written with")
+    if args.seed is not None and args.seed < 0:
+        raise UsageError(f"--seed needs a whole number of 0 or more (got {args.seed})")
     if args.run is not None and args.run < 1:
         raise UsageError(f"--run needs a whole number of 1 or more (got {args.run})")
+    if args.fit is not None and not args.fit.strip():
+        raise UsageError("--fit needs the names of the constants to fit, like --fit k,b (got nothing); "
+                         "leave it out to fit only the offsets")
     others = [(flag, attribute) for flag, attribute in (("--csv", "csv"), ("--steps", "steps"),
                                                         ("--until", "until"), *PROGRAM_OPTIONS)]
     others += [("--json", "json"), ("--plot", "plot"), ("--headless", "headless")] if args.page else BROWSER_ONLY
     if command != "--data":
         others += [("--json", "json"), ("--plot", "plot"), ("--integrator", "integrator")]
+    if not args.page:   # arrows are drawn on the page only
+        others += [(_arrows_flag(args), "arrows")]
+    if not (command == "--mystery" or (command == "--data" and args.plot is not None)):
+        others += [("--overwrite", "overwrite")]   # it lets --plot or the mystery file replace a file
     for flag, attribute in others:
         if _given(args, attribute):
             page = (" (add --page to show the data on the page)" if command == "--data" and
-                    (flag, attribute) in BROWSER_ONLY else "")
+                    (flag, attribute) in BROWSER_ONLY + ((_arrows_flag(args), "arrows"),) else "")
             raise UsageError(f"{flag} does nothing with {command}{' --page' if args.page else ''}; "
                              f"leave out one of them{page}")
+    if command == "--data" and args.plot is not None and files.same_file(args.plot, args.data):
+        raise UsageError(f"--plot {args.plot!r} is the --data file (the same file{_how_same(args.plot, args.data)}), "
+                         f"and the data is never written over; give the figure another name")
+
+
+def _arrows_flag(args) -> str:
+    """How the user asked for arrows: --no-arrows sets them to ''."""
+    return "--no-arrows" if args.arrows == "" else "--arrows"
+
+
+def _how_same(first: str, second: str) -> str:
+    """' under another name' when two paths that name one file are spelt differently."""
+    return "" if first == second else ", under another name"
 
 
 def _given(args, attribute) -> bool:
@@ -201,11 +236,13 @@ def check_options(args) -> None:
         _check_list(args)
         return
     if args.constants:
-        for flag, attribute in (*RUN_OPTIONS, *PROGRAM_OPTIONS, *BROWSER_ONLY):
+        for flag, attribute in (*RUN_OPTIONS, *PROGRAM_OPTIONS, *BROWSER_ONLY, (_arrows_flag(args), "arrows"),
+                                ("--overwrite", "overwrite")):
             if _given(args, attribute):
                 raise UsageError(f"--constants only prints the constants, so {flag} would do nothing; "
                                  f"leave out one of them")
     if lab_command(args) is not None:
+        _parse_arrows(args)   # --data --page: the page draws them
         return
     _check_run(args)
     _check_until(args)
@@ -228,7 +265,7 @@ def _check_list(args) -> None:
     others = [flag for flag, attribute in (("--constants", "constants"), ("--set", "assignments"),
                                            ("--scenario", "scenario"), ("--preset", "preset"),
                                            *RUN_OPTIONS, *PROGRAM_OPTIONS, *BROWSER_ONLY,
-                                           ("--overwrite", "overwrite"))
+                                           ("--overwrite", "overwrite"), (_arrows_flag(args), "arrows"))
               if _given(args, attribute)]
     if args.scene is not None or others:
         what = f"scene {args.scene!r}" if args.scene is not None else others[0]
@@ -274,13 +311,20 @@ def _check_arrows(args) -> None:
     """--arrows LIST (or --no-arrows): parsed, and only where arrows are drawn."""
     if args.arrows is None:
         return
-    try:
-        args.arrows = parse_arrows(args.arrows)
-    except ValueError as problem:
-        raise UsageError(str(problem)) from None
+    _parse_arrows(args)
     if headless_run(args) and not _programs(args):
         raise UsageError("--arrows (and --no-arrows) is for the page and the program (--vpython, --webvpython), and a "
                          "headless run draws none; leave it out")
+
+
+def _parse_arrows(args) -> None:
+    """args.arrows, the text of --arrows, becomes the tuple of arrow names (UsageError naming an
+    unknown one); None stays None (the scene's own)."""
+    if isinstance(args.arrows, str):
+        try:
+            args.arrows = parse_arrows(args.arrows)
+        except ValueError as problem:
+            raise UsageError(str(problem)) from None
 
 
 def _check_outputs(args) -> None:

@@ -22,7 +22,7 @@ import numpy as np
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.dirname(HERE))
 
-from export.files import write_text  # noqa: E402
+from export.files import atomic_file  # noqa: E402
 from lab import formats  # noqa: E402
 from lab.compare import ModelRun  # noqa: E402
 from scenes import catalog  # noqa: E402
@@ -57,7 +57,11 @@ def main(folder: str) -> None:
             text = formats.write_format({"tracker.txt": "tracker", "vernier.csv": "vernier",
                                          "loggerpro.txt": "loggerpro", "simulated.csv": "csv"}[name], t, y)
         path = os.path.join(folder, name)
-        write_text(path, text, what="example file")
+        # atomic_file, not write_text: these files are the tree's own examples, which the program
+        # itself never writes (export/files.py own_tree), but this script is there to make
+        with atomic_file(path, what="example file") as temporary:
+            with open(temporary, "w", encoding="utf-8") as out:
+                out.write(text)
         print(f"wrote {path}: {len(t)} samples", file=sys.stderr)
 
 

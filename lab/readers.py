@@ -347,7 +347,7 @@ def _series(names, path, line) -> list[Series]:
 def _choose(series, names, *, column, run, coordinate, path, line):
     """The series asked for (or the first, preferring the scene's coordinate), and a sentence saying so."""
     if column is not None:
-        if column.strip().isdigit():
+        if column.strip().isdecimal():   # not isdigit: "²" is a digit int() cannot read
             place = int(column) - 1
             if not 0 <= place < len(names):
                 _fail(path, line, f"--data-column {column}: the file has columns 1 to {len(names)}")

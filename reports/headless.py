@@ -233,6 +233,8 @@ def stability_warning(model: Model, methods) -> Optional[str]:
     for verdict in verdicts:
         if verdict.past_limit:
             raise BlowUpError(f"the run would blow up, past the stability limit: {verdict.message}")
+        if verdict.at_limit:   # exactly at the limit: it runs, and the sentence says what it does
+            return f"warning: {verdict.message}"
         if not verdict.stable:
             return f"warning: expect the motion to grow: {verdict.message}"
     return f"warning: {judgement.advice}" if judgement.advice else None

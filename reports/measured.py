@@ -28,7 +28,7 @@ def run_data(args, setup) -> int:
     coordinate = compare.coordinate_of(setup, args.coordinate)
     measured = readers.read(args.data, column=args.data_column, run=args.run, coordinate=coordinate)
     if args.plot is not None:
-        check_writable(args.plot, what="figure")
+        check_writable(args.plot, what="figure", overwrite=args.overwrite)
         from reports import plotting
 
         plotting.check_format(args.plot)
@@ -118,14 +118,14 @@ def _sets(args) -> str:
 def run_mystery(args, setup) -> int:
     """--mystery FILE [--seed N]: write the run, say what the students are told, keep the answer."""
     path = args.mystery
-    if os.path.lexists(path):
-        raise OutputError(f"--mystery {path!r}: the file exists; give a new name (the program "
-                          f"never overwrites a file it did not make)")
-    check_writable(path, what="mystery file")
+    if os.path.lexists(path) and not args.overwrite:
+        raise OutputError(f"--mystery {path!r}: the file exists; give a new name, or add --overwrite to "
+                          f"replace it")
+    check_writable(path, what="mystery file", overwrite=args.overwrite)
     seed = args.seed if args.seed is not None else secrets.randbelow(9000) + 1000
     run = mystery.make(setup, seed=seed, given=_given(args),
                        coordinate=compare.coordinate_of(setup, args.coordinate))
-    write_text(path, mystery.text(run), what="mystery file")
+    write_text(path, mystery.text(run), what="mystery file", overwrite=args.overwrite)
     r0 = run.known.get("r0", (None, ""))[0]
     start = f", released from rest at r0 = {tuple(r0)} m" if r0 is not None else ""
     print(f"wrote {path}: {len(run.t)} samples at {run.rate} per second (Vernier CSV) of a spring with "

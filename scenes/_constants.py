@@ -18,6 +18,7 @@ import io
 import math
 import numbers
 import os
+import sys
 import tokenize
 from collections.abc import Mapping
 from dataclasses import dataclass
@@ -287,7 +288,14 @@ def format_value(value, unit: str = "") -> str:
     if value is None:
         text = "(derived)"
     elif isinstance(value, (tuple, list)):
-        text = "< " + ", ".join(f"{float(x):.6g}" for x in value) + " >"
+        text = "< " + ", ".join(_six_digits(x) for x in value) + " >"
     else:
-        text = f"{float(value):.6g}"
+        text = _six_digits(value)
     return f"{text} {unit}".rstrip() if unit and unit != "1" else text
+
+
+def _six_digits(x) -> str:
+    """x to 6 significant digits; a number below the normal doubles (1e-320) as typed, since its
+    binary value has fewer digits than that and .6g shows the error (9.99989e-321)."""
+    x = float(x)
+    return repr(x) if 0 < abs(x) < sys.float_info.min else f"{x:.6g}"

@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import subprocess
 import sys
+import threading
 import time
 from pathlib import Path
 
@@ -140,7 +141,9 @@ def test_an_answer_overtaken_by_a_newer_request_is_dropped(spring):
     data.compare(moved, "euler-cromer")          # a slider moved while the fit ran
     result = answer(data)
     assert not result.fitted and result.setup.values["k"] == 50.0
-    time.sleep(0.5)
+    for thread in threading.enumerate():     # the overtaken fit has finished too, not just 0.5 s passed
+        if thread.name == "measured-data-fit":
+            thread.join(timeout=120)
     assert data.finished() is False and data.result is result
 
 

@@ -440,7 +440,7 @@ def test_a_symbolic_link_is_followed_not_replaced(tmp_path):
     real, link = tmp_path / "real.csv", tmp_path / "link.csv"
     real.write_text("old\n")
     link.symlink_to("real.csv")
-    done = main_py("vertical", "--headless", "--csv", str(link))
+    done = main_py("vertical", "--headless", "--csv", str(link), "--overwrite")   # "old" is not a file of ours
     assert done.returncode == 0, done.stderr
     assert link.is_symlink() and os.readlink(link) == "real.csv"
     assert real.read_text().startswith("t,x,y,z")

@@ -238,7 +238,9 @@ def look(where, **parts):
     from PIL import Image
 
     where.evaluate("element => element.scrollIntoView({block: 'start'})")
-    time.sleep(0.3)  # a frame or two, so the canvas is drawn at its new place
+    # two frames drawn at its new place: the browser's own signal (at 2-3 frames a second in software
+    # WebGL, the 0.3 s this once slept was less than one frame)
+    where.page.evaluate("() => new Promise(done => requestAnimationFrame(() => requestAnimationFrame(done)))")
     boxes = {name: locator.bounding_box() for name, locator in parts.items()}
     viewport = where.page.viewport_size
     left = max(0, min(box["x"] for box in boxes.values()))
