@@ -90,8 +90,10 @@ def test_fit_gives_the_command_lines_values_and_says_fitting_meanwhile(spring):
     for name in ("k", "b"):
         assert result.fitted[name].value == pytest.approx(expected.fitted[name].value, rel=1e-9)
         assert f"{name} = {expected.fitted[name]}".replace(" ± ", "\u00a0±\u00a0") in data.text()
-    # The fitted constants are what the page now runs: comparing them again is not needed.
-    fitted = setup.with_values(**{name: estimate.value for name, estimate in result.fitted.items()})
+    # The fitted constants are what the page now runs (the fitted release too, as its vector):
+    # comparing them again is not needed.
+    assert set(result.fitted) == {"k", "b", "r0"}
+    fitted = setup.with_values(**{name: result.setup.values[name] for name in result.fitted})
     data.compare(fitted, "euler-cromer")
     assert data.working == "" and data.finished() is False
 
