@@ -25,7 +25,7 @@ EXAMPLES = """examples:
   python main.py damped --preset "critical damping"    no overshoot, in the browser
   python main.py vertical --steps 2                   the first two updates, to check by hand
   python main.py regimes --plot regimes.png           the page's damping figure
-  python main.py damped --data examples/data/vernier.csv --fit k,b --set dt=0.001
+  python main.py damped --data examples/data/vernier.csv --fit k,b --set m=0.5
                                                       fit k and b to a motion detector's run
   python main.py damped --mystery spring.csv --seed 12   a mystery spring for class
 

@@ -99,8 +99,8 @@ class Comparison:
         """Which way the data's axis was taken to point, in words."""
         c = self.coordinate
         if self.sign_open:
-            return (f"either way fits alike: with r0 fitted, a reversed axis is the same motion let go on the "
-                    f"other side of equilibrium, so the model's {c} is compared with the data")
+            return (f"either way fits alike: with r0 fitted, a reversed axis is the same swing let go on the "
+                    f"other side; the model's {c} is compared with the data")
         if self.sign > 0:
             return f"the data's axis points the model's way: the model's {c} is compared with the data"
         way = "down" if c == "y" else "the other way"

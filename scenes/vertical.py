@@ -33,3 +33,4 @@ def build(**constants):
 
 
 VIEW = {"support": "ceiling", "plot": "y", "arrows": ("p", "F_net")}
+LAB = {"fit": ("k", "b"), "hidden": ("k", "b")}   # what Fit fits, what a mystery spring hides
