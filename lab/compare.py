@@ -33,8 +33,9 @@ import numpy as np
 from . import outliers as outlier_rows, swing as data_swing
 from .fit import BUDGET, Fitted, _NotScale, descend, finish, moves_at_half_dt
 from .least_squares import MissingScipy, offset_only
-from .model_run import AXES, RELEASE, FitError, ModelRun, Runs, with_fitted, constants_said  # noqa: F401
-from .names import TIED, check_names, with_release  # noqa: F401 (TIED: read by the page's tests)
+from .model_run import (AXES, MAX_STEPS_PER_RUN, RELEASE, FitError, ModelRun, Runs,  # noqa: F401 (ModelRun:
+                        too_long, with_fitted)                                   # the reports' plot reads it)
+from .names import check_names, with_release
 from .problem import Problem, linear_mode
 from .settings import ModelSettings, best_method, choose_dt, order_of, suggest_dt
 from .start import matched, offsets
@@ -178,7 +179,7 @@ def compare(setup, t, y, *, integrator=None, coordinate="y", fit=(), sign=None, 
     _check_points(len(t), names)
     if names:
         try:
-            import scipy.optimize  # noqa: F401   (only the fit needs it)
+            import scipy.optimize  # noqa: F401 (only the fit needs it)
         except ImportError:
             raise FitError(str(MissingScipy())) from None
     axis = AXES[coordinate]
@@ -228,12 +229,14 @@ def _offsets(setup, t, data, kept, first, *, axis, coordinate, integrator, sign,
     tt, y = t[kept] - first, data[kept]
     runs = Runs(setup, integrator=integrator, axis=axis, spacing=_spacing(tt))
     problem = Problem(runs, tt, y, nonlinear=[], mode="offset")
+    period = _period(setup, tt, y)
+    problem.reach = 1.1 * period
+    _check_length(problem, period, float(setup.values["dt"]))
     still = problem.columns((), 0.0, tau=np.linspace(0.0, max(problem.span, 1.0), 200))[0]
     if np.ptp(still) <= 1e-12 * (1.0 + np.max(np.abs(still))):
         raise FitError(f"the model's {coordinate} does not move in scene {setup.name!r}, so there is nothing "
                        f"to compare; choose the coordinate that moves with --coordinate")
-    period = _period(setup, tt, y)
-    starts = offsets(problem, (), period=period, sign=sign)
+    starts = offsets(problem, (), period=period, sign=sign, longest=MAX_STEPS_PER_RUN * float(setup.values["dt"]))
     by_sign = {start.sign: start for start in starts}
     chosen = sign if sign is not None else (
         -1 if by_sign[-1].cost < SIGN_MARGIN * by_sign[1].cost else 1)
@@ -360,11 +363,12 @@ def _samples_per_period(setup, values, axis, t) -> float:
 
 
 def _check_length(problem, period, dt) -> None:
-    """The data's span (and a period before them) must be a run the engine may take (one line if not)."""
-    from .model_run import MAX_STEPS_PER_RUN, too_long
-
-    if (1.05 * problem.span + period) / dt > MAX_STEPS_PER_RUN:
-        raise FitError(too_long(problem.span, dt, "the data span"))
+    """The data's span (and a period before them) must be a run the engine may take (one line if not,
+    whose suggested Δt is one this check accepts)."""
+    needed = 1.05 * problem.span + 1.1 * period + 0.05 * problem.span
+    if needed / dt > MAX_STEPS_PER_RUN:
+        raise FitError(too_long(needed, dt, f"the data span {problem.span:.4g} s: a run of the model over "
+                                            f"them and a period before is"))
 
 
 def _descend_from_starts(problem, start_constants, *, period, sign):
@@ -372,8 +376,9 @@ def _descend_from_starts(problem, start_constants, *, period, sign):
     sign not clearly worse than the other, never ending worse than any start (lab/start.py)."""
     tried = []
     longest = None
+    longest = MAX_STEPS_PER_RUN * problem.dt
     for constants in start_constants:
-        for start in offsets(problem, constants, period=period, sign=sign):
+        for start in offsets(problem, constants, period=period, sign=sign, longest=longest):
             residual = problem.solve(constants, start.t_offset, start.sign)[0]
             tried.append((float(residual @ residual), start))
     tried.sort(key=lambda pair: pair[0])
@@ -453,9 +458,12 @@ def _moved(fitted, moves, *, dt) -> Fitted:
 
 def _moves(fitted, settings):
     """Each value's move at Δt/2, and the largest move of a fitted constant in its σ (0 where the data
-    are the program's own run: its model error is in the data too)."""
+    are the program's own run: its model error is in the data too; NaN where a run at Δt/2 would be
+    longer than a run may be)."""
     if settings.chosen_by == "data":
         return {name: 0.0 for name in fitted.names}, 0.0
+    if (1.05 * fitted.problem.span + fitted.problem.reach) / (settings.dt / 2) > MAX_STEPS_PER_RUN:
+        return {name: math.nan for name in fitted.names}, math.nan
     moves = moves_at_half_dt(fitted, settings.dt)
     ratios = [abs(moves[name]) / fitted.uncertainty(name) for name in fitted.problem.nonlinear + fitted.problem.linear
               if fitted.uncertainty(name) > 0]
@@ -468,7 +476,7 @@ def _noise_of(fitted) -> float:
 
 def _advice(settings, moves, sigma) -> str:
     """What Δt would do, for a model whose Δt moves the answer by more than σ."""
-    ratios = [abs(moves[name]) / sigma[name] for name in sigma if sigma[name] > 0]
+    ratios = [abs(moves[name]) / sigma[name] for name in sigma if sigma[name] > 0 and math.isfinite(moves[name])]
     worst = max(ratios, default=0.0)
     if worst <= 1:
         return ""
@@ -493,8 +501,9 @@ def _settings_note(settings, *, noise, ratio) -> str:
     if settings.chosen_by == "data":
         return (f"note: the data are this program's own run at dt = {settings.dt:.6g} s, so the model runs the "
                 f"same way ({method}); --integrator or --set dt chooses another")
-    moved = f"halving it moves no fitted value by more than {ratio:.2g}σ" if ratio <= 1 else \
-        f"halving it moves a fitted value by {ratio:.2g}σ"
+    moved = (f"halving it moves no fitted value by more than {ratio:.2g}σ" if ratio <= 1 else
+             f"halving it moves a fitted value by {ratio:.2g}σ" if ratio > 1 else
+             "a run at half that Δt would be too long to check how far halving it moves the values")
     if settings.chosen_by == "fit":
         return (f"note: the fit chose {method} at dt = {settings.dt:.3g} s: its own error, about "
                 f"{_length(settings.error)}, is under a tenth of the data's noise ({_length(noise)}); {moved}")

@@ -81,11 +81,18 @@ def choose(setup, *, seed: int, given=()) -> dict:
     free = [name for name in names if name not in given]
     if not free:
         return {name: float(setup.values[name]) for name in names}
-    decay = zeta * omega0
     start = tuple(float(setup.values[name]) for name in free)
-    found = matched(setup, free, start, omega=omega0 * math.sqrt(1 - zeta ** 2), decay=decay, axis=0)
+    if not any(_natural(setup, {name: value * 1.01 + 1e-6})[0] != _natural(setup)[0]
+               for name, value in zip(free, start)):
+        omega0 = _natural(setup)[0]      # the teacher set what makes the swing's pace: only ζ is drawn
+    decay = zeta * omega0
+    try:
+        found = matched(setup, free, start, omega=omega0 * math.sqrt(1 - zeta ** 2), decay=decay, axis=0)
+    except FitError:
+        found = None
     if found is None:
-        raise FitError(f"scene {setup.name!r}: no values of {', '.join(free)} give the spring a swing to find")
+        raise FitError(f"scene {setup.name!r}: no values of {', '.join(free)} give this spring a swing of "
+                       f"ω₀ = {omega0:.3g} rad/s damped at {zeta:.0%} of critical; set them with --set")
     chosen = {name: _round(value) for name, value in zip(free, found)}
     return {name: chosen.get(name, float(setup.values[name])) for name in names}
 

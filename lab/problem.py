@@ -26,7 +26,7 @@ import math
 
 import numpy as np
 
-from .model_run import FitError, RELEASE
+from .model_run import FitError
 
 LINEAR_CHECK = 1e-7          # relative departure from a straight line in r0 still counted as linear
 
@@ -142,7 +142,7 @@ class Problem:
 
     # ---- the start: many time offsets at once, each with its linear unknowns solved ----
 
-    def costs(self, constants, t_offsets, *, points: int = 2000):
+    def costs(self, constants, t_offsets, *, points: int = 600):
         """Σ residual² for each t_offset in `t_offsets` (on at most `points` of the data, evenly
         spread) with each sign: {sign: array}. One set of runs serves them all."""
         t_offsets = np.asarray(t_offsets, dtype=float)
@@ -158,8 +158,8 @@ class Problem:
             parts = []
             for start in range(0, len(t_offsets), block):
                 tau = t[None, :] - t_offsets[start:start + block, None]
-                m0 = runs[0].at(tau)[0]
-                changes = [(run.at(tau)[0] - m0) / self.step[name] for run, name in zip(runs[1:], self.linear)]
+                m0 = runs[0].roughly(tau)
+                changes = [(run.roughly(tau) - m0) / self.step[name] for run, name in zip(runs[1:], self.linear)]
                 ones = np.ones_like(m0)
                 if self.mode == "scale":
                     X, z = np.stack([m0, ones], axis=-1), np.broadcast_to(y, m0.shape)

@@ -26,8 +26,6 @@ line at fault. Nothing is loaded from a bad file.
 """
 from __future__ import annotations
 
-import csv
-import math
 import os
 import re
 import stat
@@ -316,7 +314,7 @@ def _check_values(path, t, x, names, chosen, table, t_unit, x_unit, start, line_
     spacing = float(np.median(np.diff(t)))
     if not SPACING[0] <= spacing <= SPACING[1]:
         unit = t_unit or "s"
-        hint = (f"if the times are not in seconds, name their unit in the header, like Time (ms)" if not t_unit
+        hint = ("if the times are not in seconds, name their unit in the header, like Time (ms)" if not t_unit
                 else f"check the time column's unit (the header says {unit})")
         _fail(path, start + 1, f"the rows are {spacing / TIME_UNITS[unit]:.3g} {unit} apart (the median), and "
                                f"no motion detector or video records a spring "
@@ -361,14 +359,14 @@ def _header(header_lines, width, path, start):
                                "columns (time and position, e.g. t,x or Time (s),Position (m))")
     names = [""] * width
     units = [""] * width
-    for number, cells in reversed(header_lines):     # the line nearest the numbers names best
-        cells = (cells + [""] * width)[:width]
-        if all(cell in TIME_UNITS or cell in LENGTH_UNITS or cell == "" or "/" in cell for cell in cells) \
-                and any(cells) and number == header_lines[-1][0] and len(header_lines) > 1:
+    for number, found in reversed(header_lines):     # the line nearest the numbers names best
+        found = (found + [""] * width)[:width]
+        if all(cell in TIME_UNITS or cell in LENGTH_UNITS or cell == "" or "/" in cell for cell in found) \
+                and any(found) and number == header_lines[-1][0] and len(header_lines) > 1:
             units = [cell if cell in TIME_UNITS or cell in LENGTH_UNITS else "?" + cell if cell else ""
-                     for cell in cells]
+                     for cell in found]
             continue
-        for place, cell in enumerate(cells):
+        for place, cell in enumerate(found):
             if cell and not names[place]:
                 names[place] = cell
     for place, name in enumerate(names):

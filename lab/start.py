@@ -26,7 +26,7 @@ from scenes._constants import DECLARED
 from .model_run import FitError, with_fitted
 
 CLEARLY = 4.0            # χ² units by which a valley outside the first period must be lower to be taken
-PRECISION = 1e-7         # of a grid step: how closely each valley's t_offset is found
+PRECISION = 1e-5         # of a grid step: how closely each valley's t_offset is found
 
 
 @dataclass(frozen=True)
@@ -61,16 +61,20 @@ def matched(setup, names, constants, *, omega: float, decay: float, axis: int):
     def values_of(x):
         return np.where(logged, np.exp(np.clip(x, -700, 700)), x)
 
-    def misses(x):       # ω₀ on a log scale: a power of each constant is then a straight line
+    def misses(x):       # on a log scale where both start positive: a power of each constant is then a line
         omega0, damping = _rates(setup, names, values_of(x), axis)
-        return np.array([math.log(omega0 / target[0]) if omega0 > 0 else -50.0, (damping - target[1]) / target[0]])
+        return np.array([math.log(omega0 / target[0]) if omega0 > 0 else -50.0,
+                         (math.log(damping / target[1]) if damping > 0 else -50.0) if log_damping
+                         else (damping - target[1]) / target[0]])
 
     x = np.where(logged, np.log(np.where(logged, start, 1.0)), start)
     try:
-        if not _rates(setup, names, start, axis)[0] > 0:
-            return None
+        omega_start, damping_start = _rates(setup, names, start, axis)
     except (ValueError, ZeroDivisionError, OverflowError):
         return None
+    if not omega_start > 0:
+        return None
+    log_damping = damping_start > 0 and target[1] > 0
     for _ in range(12):
         try:
             miss = misses(x)
@@ -98,13 +102,15 @@ def matched(setup, names, constants, *, omega: float, decay: float, axis: int):
     return tuple(float(v) for v in values)
 
 
-def offsets(problem, constants, *, period: float, sign=None, wide: bool = True) -> list[Start]:
+def offsets(problem, constants, *, period: float, sign=None, wide: bool = True, longest=np.inf) -> list[Start]:
     """The best (t_offset, sign) for these constants, one per sign tried, each refined (see the
     module's docstring). t_offset runs over the first period of the record (a period before its
-    first point to one after), and with `wide` over half the record before and after it."""
+    first point to one after), and with `wide` over half the record before and after it, as far
+    as a run of the model no longer than `longest` s reaches."""
     span = problem.span
     near = (-period, period)
-    far = (-min(0.5 * span, 50 * period) - period, min(0.5 * span, 50 * period)) if wide else near
+    earliest = max(-min(0.5 * span, 50 * period) - period, -(0.95 * longest - 1.1 * span - problem.reach))
+    far = (min(earliest, near[0]), min(0.5 * span, 50 * period)) if wide else near
     step = period / 50
     count = int((far[1] - far[0]) / step) + 1
     if count > 6000:                               # a long record: a coarser grid beyond the first period

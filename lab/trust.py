@@ -21,7 +21,7 @@ The command line prints the sentence first, before the figures, and ends with ex
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 
 import numpy as np
 
