@@ -189,27 +189,39 @@ class MeasuredData:
         elif result is not None:
             c = result.coordinate
             shown = f"{c} − {c}₀" if result.sign > 0 else f"−({c} − {c}₀)"
+            t0, c0 = result.t_offset, result.position_offset
+            if result.trust is not None and not result.trust.trusted:
+                t0, c0 = t0.plain, c0.plain
             lines.append(f"<b>RMS residual = {length_text(result.rms)}</b>; blue dots: the data at t − t₀, {shown} "
-                         f"with t₀ = {result.t_offset}, {c}₀ = {result.position_offset} (fitted offsets)")
+                         f"with t₀ = {t0}, {c}₀ = {c0} (fitted offsets)")
             if result.sign < 0:
                 lines.append(html.escape(result.sign_said, quote=False))
             untrusted = result.trust is not None and not result.trust.trusted
             if result.fitted and untrusted:      # the values without ± figures, and why in their place
                 lines.append("<b>Fit:</b> <span class='sm-fit'>" + ", ".join(
                     f"{symbol(name)} = {estimate.plain}" for name, estimate in result.fitted.items()) + "</span>")
-                sentence = result.trust.sentence
-                lines.append("<b class='sm-untrusted'>" + html.escape(sentence[0].upper() + sentence[1:], quote=False)
-                             + ".</b>")
+                lines.append("<b class='sm-untrusted'>" + html.escape(_untrusted_said(result.trust, dt_slider),
+                                                                      quote=False) + "</b>")
             elif result.fitted:
                 lines.append("<b>Fit:</b> <span class='sm-fit'>" + ", ".join(
                     f"{symbol(name)} = {estimate}" for name, estimate in result.fitted.items()) + "</span>")
-            if result.slow_dt:
+            if result.slow_dt and not untrusted:
                 lines.append(_slow_dt_note(*result.slow_dt, dt_slider=dt_slider))
             if result.misfit and not untrusted:
                 lines.append(html.escape("Note: " + result.misfit, quote=False))
         elif measured is None and not self.problem:
             return ""
         return "\n".join(line.replace(" ± ", "\u00a0±\u00a0") for line in lines)
+
+
+def _untrusted_said(trust, dt_slider: bool) -> str:
+    """The fit's verdict as the page says it: the reasons, then what the page offers where its Δt
+    moved the answer (the command line's advice names flags the page has none of)."""
+    said = trust.said[0].upper() + trust.said[1:]
+    if trust.smaller_dt == trust.smaller_dt:      # not NaN: the page's Δt moved the answer
+        said += ("; move the Δt slider to " + f"{trust.smaller_dt:.3g} s or choose rk4 in the integrator menu"
+                 if dt_slider else "; choose rk4 in the integrator menu")
+    return said + "."
 
 
 def _slow_dt_note(dt: float, interval: float, smaller: str, *, dt_slider: bool) -> str:

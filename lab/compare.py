@@ -332,12 +332,12 @@ def _fit(setup, t, data, kept, first, *, names, added, axis, coordinate, integra
     constants = [name for name in fitted.names if name in names]
     sigma = {name: fitted.uncertainty(name) for name in constants}
     move_said = {name: moves[name] for name in constants} if settings.chosen_by != "data" else {}
-    advice = _advice(settings, moves, sigma)
+    advice, smaller_dt = _advice(settings, moves, sigma)
     values = {name: fitted.value(name) for name in constants}
     trust = judge(residual=fitted.residual, data=fitted.problem.y, model=fitted.model,
                   samples_per_period=_samples_per_period(setup, values, axis, fitted.problem.t),
                   at_edge=fitted.at_edge, sign_open=sign_said, moves=move_said, sigma=sigma, dt=settings.dt,
-                  advice=advice)
+                  advice=advice, smaller_dt=smaller_dt)
     final = with_fitted(setup, values, axis).with_values(dt=settings.dt)
     left = np.setdiff1d(np.arange(len(t)), kept)
     notes = _left_out_note(t, data, left, lines) + [_settings_note(settings, noise=_noise_of(fitted),
@@ -474,17 +474,18 @@ def _noise_of(fitted) -> float:
     return float(np.sqrt(np.mean(fitted.residual ** 2)))
 
 
-def _advice(settings, moves, sigma) -> str:
-    """What Δt would do, for a model whose Δt moves the answer by more than σ."""
+def _advice(settings, moves, sigma) -> tuple[str, float]:
+    """(what the command line would set instead, a Δt that would do, s), for a model whose Δt moves
+    the answer by more than σ."""
     ratios = [abs(moves[name]) / sigma[name] for name in sigma if sigma[name] > 0 and math.isfinite(moves[name])]
     worst = max(ratios, default=0.0)
     if worst <= 1:
-        return ""
+        return "", math.nan
     smaller = suggest_dt(settings.dt, worst, order_of(settings.integrator, DEFAULT_INTEGRATOR))
     if settings.chosen_by == "fit":
-        return f"the finest Δt tried was {settings.dt:.3g} s"
-    return (f"Δt = {smaller:.3g} s or the rk4 method would do; on the command line, leaving out --set dt "
-            f"and --integrator lets the fit choose")
+        return f"the finest Δt tried was {settings.dt:.3g} s", smaller
+    return (f"Δt = {smaller:.3g} s or the rk4 method would do; leave out --set dt and --integrator and the "
+            f"fit chooses", smaller)
 
 
 def _length(metres: float) -> str:

@@ -34,15 +34,24 @@ SWING_SEEN = 20.0        # the model's swing over the data, in units of the nois
 
 @dataclass(frozen=True)
 class Trust:
-    """trusted, and the reasons it is not (each a few words, joined into one sentence)."""
+    """trusted, the reasons it is not (each a few words, joined into one sentence), and where the
+    model's Δt moves the answer, what the command line would set instead (advice) and a Δt that
+    would do (smaller_dt, s; the page offers its own controls for it)."""
 
     trusted: bool = True
     reasons: tuple = ()
+    advice: str = ""
+    smaller_dt: float = math.nan
+
+    @property
+    def said(self) -> str:
+        """`these numbers cannot be trusted: halving Δt = 0.1 s moves k by 12σ, ...` (no advice)"""
+        return "" if self.trusted else "these numbers cannot be trusted: " + "; ".join(self.reasons)
 
     @property
     def sentence(self) -> str:
-        """`these numbers cannot be trusted: halving Δt = 0.1 s moves k by 12σ; set ...`"""
-        return "" if self.trusted else "these numbers cannot be trusted: " + "; ".join(self.reasons)
+        """said, with the command line's advice in brackets at the end."""
+        return self.said + (f" ({self.advice})" if self.said and self.advice else "")
 
 
 def scatter(residual) -> float:
@@ -92,7 +101,7 @@ def swing_said(model, residual, samples_per_period: float) -> str:
 
 def judge(*, residual, data, model=None, samples_per_period: float = math.inf, at_edge=(),
           sign_open: str = "", moves: dict | None = None, sigma: dict | None = None, dt: float = math.nan,
-          advice: str = "") -> Trust:
+          advice: str = "", smaller_dt: float = math.nan) -> Trust:
     """The verdict on a fit (see the module's docstring). model: the model at the data's times;
     samples_per_period: of the fitted spring's swing; moves and sigma: each fitted constant's move at
     Δt/2 and its σ; advice: what to set instead."""
@@ -111,6 +120,7 @@ def judge(*, residual, data, model=None, samples_per_period: float = math.inf, a
            if sigma and sigma.get(name, 0) > 0 and abs(move) > sigma[name]}
     if far:
         moved = ", ".join(f"{name} by {ratio:.2g}σ" for name, ratio in far.items())
-        reasons.append(f"halving Δt = {dt:.3g} s moves {moved}, so the model's own error is in them"
-                       + (f" ({advice})" if advice else ""))
-    return Trust(trusted=not reasons, reasons=tuple(reasons))
+        reasons.append(f"halving Δt = {dt:.3g} s moves {moved}, so the model's own error is in them")
+    else:
+        advice, smaller_dt = "", math.nan
+    return Trust(trusted=not reasons, reasons=tuple(reasons), advice=advice, smaller_dt=smaller_dt)
