@@ -14,6 +14,7 @@ from physics.integrators import INTEGRATORS
 
 from export.numbers import time_decimals as file_time_decimals
 from scenes import catalog, format_value
+from scenes._constants import idle as idle_constants
 from scenes._sliders import round_slider_values, slider_names, slider_range, symbol
 
 from .axes import PLAIN_TICKS
@@ -261,11 +262,10 @@ def time_decimals(dt: float) -> int:
 def constants_text(setup) -> str:
     """The scene's constants that are switched on, with units: `m = 10 kg, k = 40 N/m, ...`."""
     parts = []
+    idle = idle_constants(setup.values)     # drive_axis where F0 = 0: its force is off
     for name, constant in setup.constants.items():
         value = setup.values[name]
-        if name == "until" or value is None or (not isinstance(value, tuple) and value == 0):
-            continue
-        if name == "drive_axis" and not setup.values.get("F0"):
+        if name == "until" or value is None or (not isinstance(value, tuple) and value == 0) or name in idle:
             continue
         parts.append(f"{symbol(name)} = {format_value(value, constant.unit)}")
     lines, line = [], ""

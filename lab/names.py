@@ -1,9 +1,8 @@
 """Which constants --fit may fit, and whether the release point is fitted with them.
 
 A position record fixes some constants only in combinations: x(t) depends on k/m, not on k and m
-apart. TIED lists those pairs, refused with one line. (It names force constants: the forces branch
-gives each force a declaration of the combinations it depends on, and this table is to read that
-declaration once it is merged; see the report of the fits branch.)
+apart. Each force declares the groups of its constants that enter only so (TIED in physics/forces/),
+and a fit of two of a group is refused with one line.
 
 A real record's release point is unknown, so `--fit NAMES` fits it too (r0's component along the
 compared coordinate) unless the user gave it: --set r0, or --set of a constant that only moves the
@@ -12,22 +11,17 @@ start (driven's x0), found by building the scene with it changed: the start move
 from __future__ import annotations
 
 import dataclasses
+from itertools import combinations
 
 import numpy as np
 
+from physics.forces import FORCES
 from scenes._constants import DECLARED
 
 from .model_run import RELEASE, FitError
 
-# Constants that enter the motion only in a combination: fitting two of a group is meaningless.
-TIED = [
-    ({"m", "k"}, "the motion depends on k/m, not on k and m apart (gravity gives every mass the same g)"),
-    ({"m", "b"}, "the motion depends on b/m, not on b and m apart"),
-    ({"m", "F0"}, "the motion depends on F0/m, not on F0 and m apart"),
-    ({"C", "A"}, "drag depends on the product C·A·ρ only"),
-    ({"C", "rho"}, "drag depends on the product C·A·ρ only"),
-    ({"A", "rho"}, "drag depends on the product C·A·ρ only"),
-]
+# Constants that enter the motion only in a combination, as each force declares them: pairs of a group.
+TIED = [(set(pair), why) for force in FORCES for names, why in force.TIED for pair in combinations(names, 2)]
 
 
 def check_names(setup, names) -> list[str]:

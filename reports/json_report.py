@@ -44,7 +44,8 @@ def as_json(result: Result) -> dict:
     closed form at the final time and the size of the error, where a closed form exists. Where
     it stopped holding before the final time, "exact" is left out and "exact_note" says why, with
     "exact_valid_until" the time it stopped holding, s (null, with a line in "notes", where it
-    holds to the end or there is no closed form). F_net is the net force at the final time. In a row each mass is judged on its own:
+    holds to the end or there is no closed form). Where a force present has no closed form
+    (friction, drag), "exact" is null and that line names the force: "no closed form with drag". F_net is the net force at the final time. In a row each mass is judged on its own:
     a body whose closed form stopped holding has no "exact" but its own "exact_note" and
     "exact_valid_until", and the top-level ones count such masses and give the first time. A scene
     may add its own keys with a function extra_json(result) -> dict (scenes/_hooks.py).
@@ -62,8 +63,8 @@ def as_json(result: Result) -> dict:
         **{key: pick(state[key]) for key in ("r", "p", "v", "F_net")},
     }
     entries = _exact_entries(result)
-    if single and entries[0] is not None:
-        out["exact"] = entries[0]
+    if single and (entries[0] is not None or model.no_closed_form):
+        out["exact"] = entries[0]          # null where a force present has no closed form
     _exact_validity(out, result)
     bodies = None if single else _bodies(result, state, entries)   # cleaned already, array by array
     if bodies is not None:
@@ -102,9 +103,10 @@ def _exact_validity(out: dict, result: Result) -> None:
         out["exact_valid_until"] = result.exact_valid_until()
     else:
         out["exact_valid_until"] = None
+        model = result.model
         out.setdefault("notes", []).append(
-            "exact_valid_until: null, " + ("the closed form holds up to the final time"
-                                           if result.model.exact is not None else "this scene has no closed form"))
+            "exact_valid_until: null, " + ("the closed form holds up to the final time" if model.exact is not None
+                                           else model.no_closed_form or "this scene has no closed form"))
 
 
 def _bodies(result: Result, state: dict, entries: list) -> list[dict]:

@@ -40,6 +40,8 @@ def final_report(result: Result) -> str:
     lines += _masses(result)
     if len(m) == 1 and result.exact_note():
         lines.append(f"exact: none at t = {number(t)} s: {result.exact_note()}")
+    elif len(m) == 1 and model.no_closed_form:
+        lines.append(f"exact: none ({model.no_closed_form})")
     energy = traj.energy_at([0, -1])                # the start's and the end's alone
     if energy is not None:
         e = {key: values[-1] for key, values in energy.items()}

@@ -23,7 +23,7 @@ from collections.abc import Mapping
 from dataclasses import dataclass
 
 from physics.declared import NONZERO, SMALLEST, Declared, _short  # noqa: F401  (scenes import them from here)
-from physics.forces import declared_constants
+from physics.forces import FORCES, declared_constants
 
 
 class ConstantError(ValueError):
@@ -76,6 +76,20 @@ class _Declarations(Mapping):
 
 
 DECLARED = _Declarations()
+
+
+def idle(values: dict) -> set[str]:
+    """The constants of the forces these values switch off, which then do nothing (drive_axis and
+    ω where F0 = 0): a caption leaves them out. A constant another force that is on uses (g for
+    friction) is not idle."""
+    off, used = set(), set()
+    for cls in FORCES:
+        declared = {name: d for name, d in cls.CONSTANTS.items() if name in values}
+        if not declared:
+            continue
+        is_off = any(d.switch and values[name] == d.default for name, d in declared.items())
+        (off if is_off else used).update(declared)
+    return off - used
 
 
 @dataclass(frozen=True)

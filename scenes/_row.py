@@ -185,23 +185,29 @@ class EachMassValidity:
         return float(self.each(T).min())
 
 
-def exact_row(*, anchors, r0, m, k, L0, g, b=0.0, C=0.0, F0=0.0, omega=0.0, drive_axis=DOWN) -> dict:
+def exact_row(*, forces, anchors, r0, m, k, L0, g, b=0.0, F0=0.0, omega=0.0, drive_axis=DOWN) -> dict:
     """The row's closed form, as the Model takes it: exact, exact_valid_until and exact_limit.
 
     exact is t -> (r, v) of shape (len(t), N, 3), the single-mass closed form of every mass at once
-    (physics.exact.row_motion), NaN ("not known") for a mass that has none (quadratic drag, C ≠ 0);
-    None if no mass has one.
+    (physics.exact.row_motion), NaN ("not known") for a mass that has none: one on which a force
+    acts that the closed form does not cover (quadratic drag; each force's closed_form() and
+    acts_on() say); None if no mass has one, with no_closed_form naming such a force.
     Every parameter but m, k, L0 and g may be one number or one value per mass. The masses start
     at rest at r0. With L0 > 0 each mass's closed form holds until it reaches its anchor
     (:class:`EachMassValidity`); with L0 = 0 the spring is linear in 3-D and it always holds.
     """
     anchors, r0 = np.asarray(anchors, dtype=float), np.asarray(r0, dtype=float)
     count = len(anchors)
-    b, C, F0, omega = (np.broadcast_to(np.asarray(x, dtype=float), (count,)) for x in (b, C, F0, omega))
+    b, F0, omega = (np.broadcast_to(np.asarray(x, dtype=float), (count,)) for x in (b, F0, omega))
+    C = np.zeros(count)
+    uncovered = [force for force in forces if force.closed_form() is None]
+    covered = ~np.any([force.acts_on(count) for force in uncovered], axis=0) if uncovered else np.ones(count, bool)
     known, exact = row_motion(m=m, k=k, L0=L0, g=g, b=b, C=C, F0=F0, omega=omega, drive_axis=drive_axis,
-                              anchors=anchors, r0=r0, v0=(0.0, 0.0, 0.0))
-    if not known.any():
-        return {"exact": None}
+                              anchors=anchors, r0=r0, v0=(0.0, 0.0, 0.0), covered=covered)
+    if not known.any():    # named only where such a force acts on every mass (not drag on one ball of two)
+        why = next((f"no closed form with {force.LABEL or type(force).__name__}" for force in uncovered
+                    if force.acts_on(count).all()), "")
+        return {"exact": None, "no_closed_form": why}
 
     if L0 == 0:
         return {"exact": exact}

@@ -288,7 +288,7 @@ def check_drawing(drawn, expected, final_r):
         assert curve["points"][-1][0] == answers[0][0]
     view = getattr(catalog.load(expected["scene"]), "VIEW", {})
     axis = "xyz".index(view.get("plot", "y")[0])
-    known = [body["exact"]["r"] for body in (expected.get("bodies") or [expected]) if "exact" in body]
+    known = [body["exact"]["r"] for body in (expected.get("bodies") or [expected]) if body.get("exact")]
     if expected["scene"] in EXACT_CURVES and len(known) == count:
         assert len(exact) == count, "an exact curve for each mass"
     for curve, r_exact in zip(exact, known):
