@@ -4,9 +4,11 @@
     gross        before anything is fitted: a point further from the median of its ten neighbours
                  than three times their middle spread plus twelve times the noise, and than half the
                  data's swing (a smooth swing never gets that far from its own neighbours)
-    in_residual  after the fit: a point whose residual is more than 6 times the residual's robust
-                 scatter (1.4826 × the median absolute residual), which white noise passes once in
-                 five hundred million points
+    in_residual  after the fit: a point whose residual stands more than 6 times the residual's robust
+                 scatter (1.4826 × the median absolute deviation) from the median of its six
+                 neighbours' residuals, which white noise passes once in five hundred million points;
+                 a model that misses leaves a smooth residual, whose points stand with their
+                 neighbours, so a misfit is never taken for drop-outs
 
 More than MOST of the points (or more than 20) far off their neighbours is a file to check, not
 drop-outs: refused; as many far off the fit is a fit that misses, which its verdict says (lab/trust.py).
@@ -48,9 +50,14 @@ def gross(t, y) -> np.ndarray:
 def in_residual(residual) -> np.ndarray:
     """Indices of the points whose residual is more than 6 robust σ (see the module's docstring)."""
     residual = np.asarray(residual, dtype=float)
-    scale = 1.4826 * float(np.median(np.abs(residual - np.median(residual))))
+    if len(residual) < 12:
+        return np.array([], dtype=int)
+    windows = np.lib.stride_tricks.sliding_window_view(np.pad(residual, 3, mode="reflect"), 7)
+    apart = residual - np.median(np.delete(windows, 3, axis=1), axis=1)
+    scale = 1.4826 * float(np.median(np.abs(apart - np.median(apart))))
     if not scale > 0:
         return np.array([], dtype=int)
-    found = np.flatnonzero(np.abs(residual - np.median(residual)) > 6 * scale)
+    found = np.flatnonzero((np.abs(apart) > 6 * scale * 1.08)        # 1.08: the neighbours' median's own scatter
+                           & (np.abs(residual - np.median(residual)) > 6 * scale))
     many = len(found) > max(MOST * len(residual), 1) and len(found) > 3 or len(found) > 20
     return np.array([], dtype=int) if many else found     # many: a misfit, which the verdict names

@@ -143,8 +143,10 @@ def plot(result, measured, path: str) -> None:
     ax.plot(result.t, result.data, "o", ms=3, color=DATA_COLOUR, label=f"measured ({os.path.basename(measured.path)})")
     ax.plot(smooth, curve, "-", lw=1.5, color=MODEL_COLOUR, label="model")
     fitted = ", ".join(f"{n} = {e.value:.4g} {e.unit}" for n, e in result.fitted.items())
-    ax.set_title(f"{result.setup.name}{': ' + fitted if fitted else ''}; RMS residual "
-                 f"{result.rms:.3g} m over {result.points} points")
+    untrusted = ("\nthese numbers cannot be trusted (the report says why)"
+                 if result.trust is not None and not result.trust.trusted else "")
+    ax.set_title(f"{result.setup.name}{': ' + fitted if fitted else ''}\nRMS residual {result.rms:.3g} m over "
+                 f"{result.points} points{untrusted}", fontsize="medium")
     ax.set_ylabel(f"position {result.coordinate} (m, the data's zero)")
     ax.legend(loc="best", fontsize="small")
     ax.grid(alpha=0.3)
