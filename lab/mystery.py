@@ -53,7 +53,12 @@ def _round(x: float, digits: int = 3) -> float:
 
 
 def hidden_names(setup) -> tuple:
-    """The constants the scene hides in a mystery (its LAB["hidden"]); FitError if it hides none."""
+    """The constants the scene hides in a mystery (its LAB["hidden"]); FitError for a scene of more
+    than one mass, or one that hides none."""
+    count = setup.build().state.count
+    if count != 1:
+        raise FitError(f"scene {setup.name!r} has {count} masses; a mystery spring is a scene of one mass "
+                       f"(vertical, damped, driven)")
     names = tuple(setup.hooks.lab.get("hidden", ()))
     if not names or any(name not in setup.constants for name in names):
         raise FitError(f"scene {setup.name!r} declares no constants to hide (LAB = {{\"hidden\": ...}} in its "
