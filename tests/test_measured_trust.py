@@ -74,7 +74,7 @@ def test_a_fit_to_the_programs_own_output_returns_its_constants(tmp_path, scene,
     for name, value in truth.items():
         assert out["fit"][name]["value"] == pytest.approx(value, rel=1e-6, abs=1e-9), (name, out["fit"])
     compared, _ = fitted_json(*scene, "--data", str(path))
-    assert out["rms_residual"] <= compared["rms_residual"] + 1e-12
+    assert out["rms_residual"] <= compared["rms_residual"] + 1e-9      # both round-off where the model is exact
 
 
 def test_a_fit_never_ends_worse_than_the_constants_as_set_on_real_records():
