@@ -1,4 +1,4 @@
-"""Part 9: do the fit's uncertainties cover the truth? Records of a damped spring made from the closed
+"""Part 10: do the fit's uncertainties cover the truth? Records of a damped spring made from the closed
 form (physics/exact.py), fitted as `main.py damped --data FILE --fit k,b --set m=M` fits them (the
 program chooses the model's integrator and Δt, and fits the release point), over the range a class
 meets:
@@ -117,7 +117,7 @@ def summary(outcomes) -> dict:
 
 def main(settings) -> dict:
     count = settings.pick(400, 60)
-    print(f"Part 9: coverage of the fit's σ on {count} synthetic records from the closed form "
+    print(f"Part 10: coverage of the fit's σ on {count} synthetic records from the closed form "
           f"(fitted in this process, as `--fit k,b --set m=M` fits them)")
     outcomes = []
     began = time.perf_counter()
