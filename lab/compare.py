@@ -286,15 +286,23 @@ def _fit(setup, t, data, kept, first, *, names, added, axis, coordinate, integra
     settings = _settings(setup, integrator=integrator, choose=choose, own_step=own_step)
     tt, y = t[kept] - first, data[kept]
     noise = data_swing.noise(y)
-    swing = data_swing.damped(tt, y, start=data_swing.held(tt, y, noise))
+    held = data_swing.held(tt, y, noise)         # where a record that starts with the mass held lets it go
+    swing = data_swing.damped(tt, y, start=held)
     period = 2 * math.pi / swing.omega if swing else _period(setup, tt, y)
     runs = Runs(setup, integrator=settings.integrator, axis=axis, spacing=_spacing(tt), progress=progress)
     release = RELEASE in names
     nonlinear = [name for name in names if name != RELEASE]
     as_set = tuple(_value(setup, name, axis) for name in nonlinear)
-    found = matched(setup, nonlinear, as_set, omega=swing.omega, decay=swing.decay, axis=axis) \
-        if swing and nonlinear else None
-    start_constants = [as_set] + ([found] if found and found != as_set else [])
+    start_constants = [as_set]
+    if swing and nonlinear:    # the swing's own frequency and decay, then the spectrum's other peaks (a
+        # drive's and the free swing's), whose decay is not known: damped at 2 and at 10 % of critical
+        others = [omega for omega in data_swing.frequencies(tt[tt >= held], y[tt >= held])
+                  if abs(omega - swing.omega) > 0.05 * swing.omega][:1]
+        for omega, decay in [(swing.omega, swing.decay)] + [(omega, ratio * omega) for omega in others
+                                                             for ratio in (0.02, 0.1)]:
+            found = matched(setup, nonlinear, as_set, omega=omega, decay=decay, axis=axis)
+            if found and all(not np.allclose(found, other, rtol=0.02) for other in start_constants):
+                start_constants.append(found)
     base = {RELEASE: _value(setup, RELEASE, axis)} if release else {}
     step = {RELEASE: max(float(np.ptp(y)) / 100, 1e-4)} if release else {}
     problem = Problem(runs, tt, y, nonlinear=nonlinear, linear=list(base), base=base, step=step, mode="offset")
@@ -302,19 +310,21 @@ def _fit(setup, t, data, kept, first, *, names, added, axis, coordinate, integra
     scene_dt = float(setup.values["dt"])
     if settings.chosen_by == "fit":
         estimate = min(noise, swing.rms) if swing else noise
-        chosen = choose_dt(problem, start_constants[-1], order=order_of(settings.integrator, DEFAULT_INTEGRATOR),
+        chosen = choose_dt(problem, max(start_constants, key=lambda c: _stiffest(setup, nonlinear, c, axis)),
+                           order=order_of(settings.integrator, DEFAULT_INTEGRATOR),
                            period=period, noise=estimate, scene_dt=scene_dt)
         settings.dt, settings.error, settings.target = chosen.dt, chosen.error, chosen.target
     problem.dt = settings.dt
     _check_length(problem, period, settings.dt)
     if release:
-        mode = linear_mode(problem, start_constants[-1], RELEASE)
+        mode = linear_mode(problem, start_constants[-1 if len(start_constants) < 2 else 1], RELEASE)
         if mode:
             problem.mode = mode
         else:          # the motion is not linear in the release: least squares fits it with the rest
             problem = problem.copy(nonlinear=[*nonlinear, RELEASE], linear=[], base={}, step={})
             start_constants = [(*constants, base[RELEASE]) for constants in start_constants]
-    fitted, sign_open, sign_said = _descend_from_starts(problem, start_constants, period=period, sign=sign)
+    fitted, sign_open, sign_said = _descend_from_starts(problem, start_constants, period=period, sign=sign,
+                                                        held=held)
     problem = fitted.problem
     moves, ratio = _moves(fitted, settings)
     halvings = 0
@@ -337,7 +347,7 @@ def _fit(setup, t, data, kept, first, *, names, added, axis, coordinate, integra
     trust = judge(residual=fitted.residual, data=fitted.problem.y, model=fitted.model,
                   samples_per_period=_samples_per_period(setup, values, axis, fitted.problem.t),
                   at_edge=fitted.at_edge, sign_open=sign_said, moves=move_said, sigma=sigma, dt=settings.dt,
-                  advice=advice, smaller_dt=smaller_dt)
+                  advice=advice, smaller_dt=smaller_dt, settled=fitted.settled, runs=runs.count)
     final = with_fitted(setup, values, axis).with_values(dt=settings.dt)
     left = np.setdiff1d(np.arange(len(t)), kept)
     notes = _left_out_note(t, data, left, lines) + [_settings_note(settings, noise=_noise_of(fitted),
@@ -352,6 +362,16 @@ def _fit(setup, t, data, kept, first, *, names, added, axis, coordinate, integra
                       trust=trust, settings=settings, moves={name: moves[name] for name in constants},
                       runs=runs.count, release_fitted=added, sign_open=sign_open,
                       left_out=tuple(int(i) for i in left))
+
+
+def _stiffest(setup, names, constants, axis) -> float:
+    """The natural ω₀ of the model with these constants (declared rates), rad/s: Δt is chosen for the
+    fastest of the starts."""
+    try:
+        model = with_fitted(setup, dict(zip(names, constants)), axis).build()
+    except ValueError:
+        return 0.0
+    return float(rates(model.forces, model.state.m).omega[0])
 
 
 def _samples_per_period(setup, values, axis, t) -> float:
@@ -371,14 +391,13 @@ def _check_length(problem, period, dt) -> None:
                                             f"them and a period before is"))
 
 
-def _descend_from_starts(problem, start_constants, *, period, sign):
+def _descend_from_starts(problem, start_constants, *, period, sign, held=0.0):
     """(Fitted, sign_open, why the sign is open or ""): least squares from the best start of each
     sign not clearly worse than the other, never ending worse than any start (lab/start.py)."""
     tried = []
-    longest = None
     longest = MAX_STEPS_PER_RUN * problem.dt
     for constants in start_constants:
-        for start in offsets(problem, constants, period=period, sign=sign, longest=longest):
+        for start in offsets(problem, constants, period=period, sign=sign, longest=longest, held=held):
             residual = problem.solve(constants, start.t_offset, start.sign)[0]
             tried.append((float(residual @ residual), start))
     tried.sort(key=lambda pair: pair[0])
@@ -390,17 +409,21 @@ def _descend_from_starts(problem, start_constants, *, period, sign):
               if by_sign[way][0] <= lowest / SIGN_MARGIN or by_sign[way][0] == lowest]
     if problem.mode == "scale":
         chosen = chosen[:1]
-    ends = {}
+    results = {}
     for cost, start in chosen:
+        if results:      # the other way of the axis: only where its start is as low as the fit's end
+            done = min(found.cost for found in results.values())
+            points = len(problem.t)
+            if cost > done + SIGN_TIE * done / max(points - len(problem.nonlinear) - 3, 1):
+                continue
         way = problem.copy(sign=start.sign)
-        budget = max(BUDGET - problem.runs.count - 6, 12) // len(chosen)
-        constants, t_offset, found, _ = descend(way, start.constants, start.t_offset, budget=budget)
+        # two runs a candidate where the release does not only scale the swing: a budget that allows it
+        budget = max(BUDGET * (1 if problem.mode == "scale" else 2) - problem.runs.count - 6, 24)
+        constants, t_offset, found, converged = descend(way, start.constants, start.t_offset, budget=budget)
         best = min([(found, constants, t_offset)] +
                    [(c, s.constants, s.t_offset) for c, s in tried if s.sign == start.sign])
-        ends[start.sign] = best
-    results = {}
-    for way, (cost, constants, t_offset) in ends.items():
-        results[way] = _finish(problem.copy(sign=way), constants, t_offset, way)
+        results[start.sign] = _finish(way, best[1], best[2], start.sign)
+        results[start.sign].settled = converged or best[0] < found
     order = sorted(results, key=lambda way: results[way].cost)
     fitted = results[order[0]]
     if problem.mode == "scale":
@@ -441,10 +464,12 @@ def _again(fitted, *, dt=None, keep=None) -> Fitted:
         changes.update(t=problem.t[keep], y=problem.y[keep])
     problem = problem.copy(**changes)
     p = len(problem.nonlinear)
-    constants, t_offset = tuple(fitted.values[:p]), fitted.value("t_offset")
+    constants, t_offset, settled = tuple(fitted.values[:p]), fitted.value("t_offset"), True
     if problem.nonlinear:
-        constants, t_offset, _, _ = descend(problem, constants, t_offset, budget=12)
-    return _finish(problem, constants, t_offset, fitted.sign)
+        constants, t_offset, _, settled = descend(problem, constants, t_offset, budget=12)
+    again = _finish(problem, constants, t_offset, fitted.sign)
+    again.settled = settled and fitted.settled
+    return again
 
 
 def _moved(fitted, moves, *, dt) -> Fitted:
@@ -453,7 +478,9 @@ def _moved(fitted, moves, *, dt) -> Fitted:
     problem = fitted.problem.copy(dt=dt)
     p = len(problem.nonlinear)
     constants = tuple(fitted.values[j] + moves[name] for j, name in enumerate(fitted.names[:p]))
-    return _finish(problem, constants, fitted.value("t_offset") + moves["t_offset"], fitted.sign)
+    moved = _finish(problem, constants, fitted.value("t_offset") + moves["t_offset"], fitted.sign)
+    moved.settled = fitted.settled
+    return moved
 
 
 def _moves(fitted, settings):

@@ -41,6 +41,7 @@ class Fitted:
     sign: int
     problem: object
     at_edge: list = field(default_factory=list)
+    settled: bool = True            # least squares stopped because it converged, not for its budget
 
     @property
     def cost(self) -> float:

@@ -102,13 +102,15 @@ def matched(setup, names, constants, *, omega: float, decay: float, axis: int):
     return tuple(float(v) for v in values)
 
 
-def offsets(problem, constants, *, period: float, sign=None, wide: bool = True, longest=np.inf) -> list[Start]:
+def offsets(problem, constants, *, period: float, sign=None, wide: bool = True, longest=np.inf,
+            held: float = 0.0) -> list[Start]:
     """The best (t_offset, sign) for these constants, one per sign tried, each refined (see the
     module's docstring). t_offset runs over the first period of the record (a period before its
-    first point to one after), and with `wide` over half the record before and after it, as far
-    as a run of the model no longer than `longest` s reaches."""
+    first point to one after; where the record starts with the mass held still, a quarter period
+    about the time `held` it is let go), and with `wide` over half the record before and after it,
+    as far as a run of the model no longer than `longest` s reaches."""
     span = problem.span
-    near = (-period, period)
+    near = (held - period / 4, held + period / 4) if held > 0 else (-period, period)
     earliest = max(-min(0.5 * span, 50 * period) - period, -(0.95 * longest - 1.1 * span - problem.reach))
     far = (min(earliest, near[0]), min(0.5 * span, 50 * period)) if wide else near
     step = period / 50
@@ -130,7 +132,7 @@ def offsets(problem, constants, *, period: float, sign=None, wide: bool = True, 
         # what the refining leaves: a t_offset off by PRECISION of a step, at the swing's speed
         speed = 2 * math.pi / period * problem.scale
         allowed = lowest + max(CLEARLY * lowest / max(points - 3, 1), points * (speed * PRECISION * step) ** 2)
-        inside = [(abs(t_offset), cost, t_offset) for cost, t_offset in refined
+        inside = [(abs(t_offset - held), cost, t_offset) for cost, t_offset in refined
                   if cost <= allowed and near[0] <= t_offset <= near[1]]
         # of valleys the data cannot tell apart, the release nearest the record's first point
         cost, t_offset = min(inside)[1:] if inside else min(refined)

@@ -13,6 +13,7 @@ A fit is flagged when
                                SWING_SEEN times the noise (the data hardly show a swing), or the
                                fitted spring swings with fewer than 4 samples a period
     a constant at an edge      it ended at the edge of its declared range and would go beyond it
+    the fit did not settle     least squares stopped for its budget of engine runs, still moving
     Δt moves the answer        halving the model's Δt moves a fitted constant by more than its σ
 
 The command line prints the sentence first, before the figures, and ends with exit status 3; JSON has
@@ -101,7 +102,7 @@ def swing_said(model, residual, samples_per_period: float) -> str:
 
 def judge(*, residual, data, model=None, samples_per_period: float = math.inf, at_edge=(),
           sign_open: str = "", moves: dict | None = None, sigma: dict | None = None, dt: float = math.nan,
-          advice: str = "", smaller_dt: float = math.nan) -> Trust:
+          advice: str = "", smaller_dt: float = math.nan, settled: bool = True, runs: int = 0) -> Trust:
     """The verdict on a fit (see the module's docstring). model: the model at the data's times;
     samples_per_period: of the fitted spring's swing; moves and sigma: each fitted constant's move at
     Δt/2 and its σ; advice: what to set instead."""
@@ -116,6 +117,8 @@ def judge(*, residual, data, model=None, samples_per_period: float = math.inf, a
         reasons.append(sign_open)
     for name in at_edge:
         reasons.append(f"{name} ended at the edge of its range")
+    if not settled:
+        reasons.append(f"the fit had not settled after {runs} runs of the model")
     far = {name: abs(move) / sigma[name] for name, move in (moves or {}).items()
            if sigma and sigma.get(name, 0) > 0 and abs(move) > sigma[name]}
     if far:
