@@ -34,7 +34,7 @@ from . import outliers as outlier_rows, swing as data_swing
 from .fit import BUDGET, Fitted, _NotScale, descend, finish, moves_at_half_dt
 from .least_squares import MissingScipy, offset_only
 from .model_run import (AXES, MAX_STEPS_PER_RUN, RELEASE, FitError, ModelRun, Runs,  # noqa: F401 (ModelRun:
-                        too_long, with_fitted)                                   # the reports' plot reads it)
+                        constants_said, too_long, with_fitted)                   # the reports' plot reads it)
 from .names import check_names, with_release
 from .problem import Problem, linear_mode
 from .settings import ModelSettings, best_method, choose_dt, order_of, suggest_dt
@@ -310,8 +310,8 @@ def _fit(setup, t, data, kept, first, *, names, added, axis, coordinate, integra
     scene_dt = float(setup.values["dt"])
     if settings.chosen_by == "fit":
         estimate = min(noise, swing.rms) if swing else noise
-        chosen = choose_dt(problem, max(start_constants, key=lambda c: _stiffest(setup, nonlinear, c, axis)),
-                           order=order_of(settings.integrator, DEFAULT_INTEGRATOR),
+        main = start_constants[1] if len(start_constants) > 1 else start_constants[0]   # the swing's own
+        chosen = choose_dt(problem, main, order=order_of(settings.integrator, DEFAULT_INTEGRATOR),
                            period=period, noise=estimate, scene_dt=scene_dt)
         settings.dt, settings.error, settings.target = chosen.dt, chosen.error, chosen.target
     problem.dt = settings.dt
@@ -364,16 +364,6 @@ def _fit(setup, t, data, kept, first, *, names, added, axis, coordinate, integra
                       left_out=tuple(int(i) for i in left))
 
 
-def _stiffest(setup, names, constants, axis) -> float:
-    """The natural ω₀ of the model with these constants (declared rates), rad/s: Δt is chosen for the
-    fastest of the starts."""
-    try:
-        model = with_fitted(setup, dict(zip(names, constants)), axis).build()
-    except ValueError:
-        return 0.0
-    return float(rates(model.forces, model.state.m).omega[0])
-
-
 def _samples_per_period(setup, values, axis, t) -> float:
     """How many of the data's samples the fitted spring's natural period spans (declared rates)."""
     model = with_fitted(setup, values, axis).build()
@@ -397,9 +387,16 @@ def _descend_from_starts(problem, start_constants, *, period, sign, held=0.0):
     tried = []
     longest = MAX_STEPS_PER_RUN * problem.dt
     for constants in start_constants:
-        for start in offsets(problem, constants, period=period, sign=sign, longest=longest, held=held):
+        try:
+            found = offsets(problem, constants, period=period, sign=sign, longest=longest, held=held)
+        except FitError:     # a start the model cannot run at this Δt (it blows up): not a start
+            continue
+        for start in found:
             residual = problem.solve(constants, start.t_offset, start.sign)[0]
             tried.append((float(residual @ residual), start))
+    if not tried:
+        raise FitError(f"the model blew up from every start the fit tried ({constants_said(problem.runs.setup)}); "
+                       f"set a smaller dt, or the constants not fitted with --set")
     tried.sort(key=lambda pair: pair[0])
     lowest = tried[0][0]
     by_sign = {}

@@ -31,8 +31,8 @@ class FitError(LabError):
 
 def constants_said(setup, names=None) -> str:
     """`k = 40 N/m, b = 1 kg/s, m = 10 kg`: the constants a run was made with (a blow-up says them)."""
-    names = names or [name for name, value in setup.values.items()
-                      if isinstance(value, (int, float)) and setup.constants[name].unit not in ("1", "s")][:4]
+    names = names or [name for name, value in setup.values.items() if isinstance(value, (int, float))
+                      and name in setup.constants and setup.constants[name].unit not in ("1", "s")][:4]
     return ", ".join(f"{n} = {setup.values[n]:.4g} {setup.constants[n].unit}" for n in names
                      if n in setup.values and isinstance(setup.values[n], (int, float)))
 

@@ -27,7 +27,7 @@ import numpy as np
 from physics.integrators import INTEGRATORS
 from physics.rounding import round_down, round_up
 
-from .model_run import MAX_STEPS_PER_RUN
+from .model_run import MAX_STEPS_PER_RUN, FitError
 
 MOST_STEPS = 400_000       # steps of a chosen Δt per run of the model at most (a fit takes dozens)
 TRIES = 3                  # Δt's tried by step doubling before the finest allowed is taken
@@ -75,7 +75,11 @@ def choose_dt(problem, constants, *, order: int, period: float, noise: float, sc
     dt = max(round_down(min(scene_dt, period / 20)), finest)
     error = math.nan
     for _ in range(TRIES):
-        error = error_at(problem, constants, dt, order)
+        try:
+            error = error_at(problem, constants, dt, order)
+        except FitError:       # it blew up at this Δt: a quarter of it
+            dt = max(round_down(dt / 4), finest)
+            continue
         if error <= target or dt <= finest:
             break
         wanted = dt * (0.7 * target / error) ** (1.0 / order) if error > 0 else dt

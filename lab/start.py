@@ -106,11 +106,13 @@ def offsets(problem, constants, *, period: float, sign=None, wide: bool = True, 
             held: float = 0.0) -> list[Start]:
     """The best (t_offset, sign) for these constants, one per sign tried, each refined (see the
     module's docstring). t_offset runs over the first period of the record (a period before its
-    first point to one after; where the record starts with the mass held still, a quarter period
-    about the time `held` it is let go), and with `wide` over half the record before and after it,
-    as far as a run of the model no longer than `longest` s reaches."""
+    first point to one after, and a quarter period about the time `held` the data leave the value
+    they start at, where the record starts with the mass held still), and with `wide` over half the
+    record before and after it, as far as a run of the model no longer than `longest` s reaches. Of
+    valleys the data cannot tell apart, the one nearest `held` (the record's first point, where
+    nothing was held)."""
     span = problem.span
-    near = (held - period / 4, held + period / 4) if held > 0 else (-period, period)
+    near = (min(-period, held - period / 4), max(period, held + period / 4))
     earliest = max(-min(0.5 * span, 50 * period) - period, -(0.95 * longest - 1.1 * span - problem.reach))
     far = (min(earliest, near[0]), min(0.5 * span, 50 * period)) if wide else near
     step = period / 50
