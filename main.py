@@ -21,7 +21,9 @@ and in the program --vpython and --webvpython write (default: the scene's VIEW).
 lists them) in the browser and headless alike, after --scenario and before --set.
 --steps and --plot always run headless, so they need no --headless. --json and --csv describe a
 headless run and are an error without --headless. Bad input gives one line `error: ...` and exit
-status 2; a run that blows up gives its reason (Δt and the stability limit) and exit status 1.
+status 2; a run that blows up gives its reason (Δt and the stability limit) and exit status 1; a fit
+(--data --fit) whose numbers cannot be trusted prints why on its first line, then the figures, and
+exits with status 3.
 """
 from __future__ import annotations
 

@@ -20,7 +20,7 @@ import subprocess
 import sys
 import time
 
-from . import accuracy, batches, fit, friction, resonance_sweep, single_mass, startup, where_the_work_is
+from . import accuracy, batches, fit, fit_coverage, friction, resonance_sweep, single_mass, startup, where_the_work_is
 from .common import Settings, load_average
 
 BENCHMARKS = {
@@ -32,8 +32,11 @@ BENCHMARKS = {
     "startup": (startup, "part 6: wall time of `python main.py vertical --headless`"),
     "csv-batch": (where_the_work_is, "part 7: --csv of 10⁶ rows against the page's loop, and "
                                      "`main.py resonance` at 10⁴ masses in rk4 mass-steps/s"),
-    "fit": (fit, "part 8: `main.py damped --data FILE --fit k,b` on 1,000 points, as processes"),
+    "fit": (fit, "part 8: `main.py damped --data FILE --fit k,b --set m=M` on 10³, 10⁴ and 2·10⁵ points, "
+                 "as processes: time and engine runs"),
     "friction": (friction, "part 9: `main.py friction` 10⁶ steps against `main.py damped` 10⁶ steps, as processes"),
+    "fit-coverage": (fit_coverage, "part 10: the fit's σ against the truth on 400 closed-form records over the "
+                                   "whole range (in this process)"),
 }
 # Not in the full run: minutes of wall time in headless Chromium. Run it as its own command.
 SEPARATE = {

@@ -25,9 +25,12 @@ EXAMPLES = """examples:
   python main.py damped --preset "critical damping"    no overshoot, in the browser
   python main.py vertical --steps 2                   the first two updates, to check by hand
   python main.py regimes --plot regimes.png           the page's damping figure
-  python main.py damped --data examples/data/vernier.csv --fit k,b --set dt=0.001
+  python main.py damped --data examples/data/vernier.csv --fit k,b --set m=0.5
                                                       fit k and b to a motion detector's run
   python main.py damped --mystery spring.csv --seed 12   a mystery spring for class
+
+exit status: 0 done; 2 bad input (one line says what); 1 a run that blew up, or a bug of ours;
+3 a fit whose numbers cannot be trusted (--data --fit): its first line says why, the figures follow
 """
 
 
@@ -112,7 +115,11 @@ def _add_lab_options(parser: argparse.ArgumentParser) -> None:
                       help="compare the model with a measured position against time (Tracker, Vernier, "
                            "PASCO, Logger Pro or --csv file): fits a time and a position offset, prints "
                            "the RMS residual; with --plot, draws both")
-    data.add_argument("--fit", metavar="NAMES", help="with --data: also fit these constants, e.g. k,b")
+    data.add_argument("--fit", metavar="NAMES",
+                      help="with --data: also fit these constants, e.g. k,b (and where the mass was let go, "
+                           "r0, unless --set r0 gives it); the fit chooses the model's integrator and dt "
+                           "unless --integrator or --set dt does; exit status 3 if its numbers cannot be "
+                           "trusted")
     data.add_argument("--data-column", metavar="NAME",
                       help="with --data: the position column to read (a unique part of its header, or "
                            "its number from 1)")

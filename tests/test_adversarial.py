@@ -209,7 +209,7 @@ BAD = [
     ("damped --show-answer", 2, "--show-answer needs --seed"),
     ("damped --mystery m.csv --json", 2, "--json does nothing with --mystery"),
     ("regimes --mystery m.csv --seed 1", 2, "has 3 masses"),
-    ("integrators --show-answer --seed 1", 2, "has no b"),
+    ("integrators --show-answer --seed 1", 2, "has 4 masses"),
     ("vertical --arrows p,momentum", 2, "--arrows knows p, F_net, forces, split (got 'momentum')"),
     ("vertical --headless --no-arrows", 2, "--arrows (and --no-arrows) is for the page and the program"),
     ("vertical --headless --projector", 2, "--projector is for the browser page"),
