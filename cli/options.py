@@ -11,6 +11,7 @@ import argparse
 
 from export import files
 from export.arrows import parse_arrows
+from export.lines import one_line  # noqa: F401  (main.py and the parser write every message through it)
 from physics.integrators import DEFAULT_INTEGRATOR, INTEGRATORS
 from scenes import ConstantError, catalog, check_value
 
@@ -39,17 +40,6 @@ class UsageError(ValueError):
 
 
 # What str.splitlines() breaks a line at, and the other control characters a terminal acts on.
-LINE_BREAKS = set("\n\r\x0b\x0c\x1c\x1d\x1e\x85\u2028\u2029")
-
-
-def one_line(message: str) -> str:
-    """`message` as one line: a line break or control character in it (a file name, a --fit
-    value) written as Python writes it in a string, \\n, so the message stays one line and still
-    names the value exactly. Tabs stay."""
-    return "".join(repr(c)[1:-1] if c in LINE_BREAKS or (c < " " and c != "\t") or c == "\x7f" else c
-                   for c in message)
-
-
 class Parser(argparse.ArgumentParser):
     """argparse, but a bad option is one line on stderr (no usage block), with exit status 2."""
 

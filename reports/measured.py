@@ -11,6 +11,7 @@ import sys
 import numpy as np
 
 from export.files import OutputError, check_writable, write_text
+from export.lines import one_line
 from export.numbers import clean
 from lab import compare, mystery, readers
 from export.palette import BLUE as DATA_COLOUR, VERMILION as MODEL_COLOUR
@@ -71,7 +72,7 @@ def run_data(args, setup) -> int:
         progress.end()
     misfit = [f"note: {result.misfit}"] if result.misfit and result.trust is None else []
     for note in result.notes + misfit:
-        print(note, file=sys.stderr)
+        print(one_line(note), file=sys.stderr)
     if args.plot is not None:
         plot(result, measured, args.plot)
     if args.json:
@@ -84,7 +85,7 @@ def run_data(args, setup) -> int:
 def text(result, measured) -> str:
     """One line each: the file and what was read, every fitted value, the offsets, the RMS residual,
     and which way the data's axis was taken; first of all, for a fit that cannot be trusted, why."""
-    lines = [f"data: {measured.path}: {measured.choice}"]
+    lines = [one_line(f"data: {measured.path}: {measured.choice}")]
     if result.trust is not None and not result.trust.trusted:
         lines.insert(0, result.trust.sentence)
     for name, estimate in result.fitted.items():

@@ -214,3 +214,16 @@ def test_too_few_points_says_how_many_are_needed(tmp_path):
     assert "the data have 3 points, too few to fix the two offsets: at least 8 are needed" in said
     said = one_line(cli("damped", "--data", str(path), "--fit", "k,b"))
     assert "too few to fix k, b, r0 and the two offsets: at least 11 are needed" in said
+
+
+def test_a_line_break_in_the_data_files_name_keeps_the_report_one_line(tmp_path):
+    """The report's first line names the file; a name with a line break in it split that line in
+    two (`data: we` / `ird.csv: read ...`), so a script reading `data:` lines lost the rest. It is
+    written as \\n, as every error naming a path is."""
+    path = tmp_path / "we\nird.csv"
+    path.write_bytes((ROOT / "examples" / "data" / "vernier.csv").read_bytes())
+    done = cli("damped", "--data", str(path), "--set", "m=0.5", "--set", "k=20", "--set", "b=0.1")
+    assert done.returncode == 0, done.stderr
+    first = done.stdout.splitlines()[0]
+    assert first.startswith("data: ") and first.endswith("' against 'Latest: Time (s)'") and "we\\nird.csv" in first
+    assert all(line.startswith("note: ") for line in done.stderr.splitlines())
