@@ -7,6 +7,7 @@ page has its own queue, so a click on a control of a page already taken down is 
 """
 from __future__ import annotations
 
+import html
 import queue
 from urllib.parse import quote
 
@@ -17,6 +18,8 @@ from scenes import catalog, format_value
 from scenes._sliders import round_slider_values, slider_names, slider_range, symbol
 
 from .axes import PLAIN_TICKS
+from .graph_reading import GRAPH_READING
+from .measure_panel import MeasurePanel
 from .arrows3d import arrow_checkboxes
 from .messages import (ChooseIntegrator, ChoosePreset, ChooseScene, ChooseSpeed, DownloadCsv, DownloadProgram,
                        FitData, Reset, RunOrPause, SetConstant, Step)
@@ -59,6 +62,7 @@ class Controls:
 
     vp           the vpython module
     setup        the scene as configured (name, constants and their values)
+    measure      the Measure panel's state to show (browser/measure_panel.py): period, lines, graph
     view         the scene's VIEW merged with the defaults (sliders)
     integrators  the model's one integrator per mass, if it has them (then no integrator menu)
     integrator   the integrator chosen now; speed: the speed chosen now (a key of SPEEDS)
@@ -68,7 +72,7 @@ class Controls:
     """
 
     def __init__(self, vp, *, setup, view: dict, integrators, integrator: str, speed: str,
-                 preset: str | None = None, arrows=(), load_button: str = ""):
+                 preset: str | None = None, arrows=(), load_button: str = "", measure: dict | None = None):
         self.vp = vp
         self.commands: queue.SimpleQueue = queue.SimpleQueue()
         self.downloads = 0  # links offered so far: each gets its own id
@@ -89,9 +93,22 @@ class Controls:
                     bind=lambda menu: put(ChooseIntegrator(menu.selected)))
         caption("    speed ")
         vp.menu(choices=list(SPEEDS), selected=speed, bind=lambda menu: put(ChooseSpeed(menu.selected)))
+        caption("\n")
+        self.time_text = vp.wtext(text="t = 0.00 s")
+        caption("    ")
+        self.error_text = vp.wtext(text="")
+        # the status (why the run stopped, a runaway, Δt stable but inaccurate, a file that cannot
+        # open) under the time, where a class looks: at the page's foot it was below a 1280×800 screen
+        self.status_text = _OwnLine(vp.wtext(text=""))
+        self.notice = ""   # a sentence said (say()) that stays until the next run starts
+        caption("\n")
+        # browser/measure_panel.py: its button here, its block (closed at first) under it, by the clock
+        self.measure = MeasurePanel(vp, put, **(measure or {"period": False, "lines": (), "graph": "energy"}))
         caption("\n\nscene ")
         self.scene_menu = vp.menu(choices=scene_menu_choices(), selected=setup.name,
                                   bind=lambda menu: put(ChooseScene(menu.selected)))
+        if catalog.SKIPPED:   # files of a teacher's folder left out of the menu: say why, folded away
+            vp.wtext(text=left_out_html(catalog.SKIPPED))
         caption("    preset ")
         labels = [label for label, _ in catalog.presets(setup)]
         self.preset_menu = None
@@ -114,14 +131,6 @@ class Controls:
         caption("\n")
         self.data_text = vp.wtext(text="")
         caption("\n")
-        self.time_text = vp.wtext(text="t = 0.00 s")
-        caption("    ")
-        self.error_text = vp.wtext(text="")
-        # the status (why the run stopped, a runaway, Δt stable but inaccurate, a file that cannot
-        # open) under the time, where a class looks: at the page's foot it was below a 1280×800 screen
-        self.status_text = _OwnLine(vp.wtext(text=""))
-        self.notice = ""   # a sentence said (say()) that stays until the next run starts
-        caption("\n")
         self.arrow_boxes = arrow_checkboxes(vp, put, arrows)   # browser/arrows3d.py
         self.arrow_legend = vp.wtext(text="")
         caption("\n")
@@ -142,6 +151,7 @@ class Controls:
         if self.sliders:
             vp.wtext(text="").text = PRIME_SLIDERS  # set, not made with it: the setter runs scripts
         vp.wtext(text="").text = PLAIN_TICKS  # every graph's tick labels in plain decimals (browser/axes.py)
+        vp.wtext(text="").text = GRAPH_READING  # a click reads a graph (browser/graph_reading.py)
         caption("\n\n")
         self.constants_text = vp.wtext(text="")
         caption("\n<i>Moving a slider, choosing another integrator or a preset, or loading data restarts "
@@ -254,6 +264,17 @@ def program_href(text: str) -> str:
 def scene_menu_choices() -> list[str]:
     """The scene menu: every scene found (scenes/_catalog.py), in menu order."""
     return list(catalog.SCENE_NAMES)
+
+
+def left_out_html(skipped: dict) -> str:
+    """Why files of the scene folders are not in the scene menu (scenes/_catalog.py's SKIPPED:
+    not a scene, a name the program's code has taken, not a regular file, too big), folded into
+    one line the teacher opens: a file that silently did not appear looked like a bug."""
+    count = len(skipped)
+    reasons = "".join(f"<li>{html.escape(why, quote=False)}</li>" for why in skipped.values())
+    return (f" <details class='sm-left-out' style='display:inline-block; vertical-align:top'><summary>"
+            f"{count} file{'s' if count != 1 else ''} not in the menu: why</summary>"
+            f"<ul style='margin:0; white-space:normal; max-width:40em'>{reasons}</ul></details>")
 
 
 def time_decimals(dt: float) -> int:

@@ -32,6 +32,8 @@ from physics.energy import kinetic, potential, rest_potential
 from physics.state import State, velocity
 
 from .axes import AxisFit, data_window, nice_range, time_axis
+from .energy_bars import EnergyBars
+from .phase_space import PhaseSpace
 from .error_envelope import PeriodMax, periods
 from .clock import Trace, window
 from .page_layout import NOTE_MARK
@@ -44,6 +46,8 @@ NARROW_GRAPH_WIDTH = 440  # px: three graphs side by side fit a 1400-px window (
 GRAPH_CANVAS_HEIGHT = GRAPH_SIZE[1] + 26  # px: vpython adds room for the title; flot spaces ticks by this
 LIVE_EVERY = 0.5          # s of wall time between redraws of a scene graph's live dots
 HELD = ("position", "exact")   # the kinds of curve a time axis held over measured points keeps whole
+ENERGY_KINDS = ("energy", "mass_energy")
+PLACES = ("energy", "phase", "bars")   # what the graph place under the position graph may show
 
 
 @dataclass(frozen=True)
@@ -81,8 +85,8 @@ class Graphs:
     view    the scene's VIEW merged with the defaults (plot, exact, window)
     """
 
-    def __init__(self, vp, *, setup, model, view: dict):
-        self.vp = vp
+    def __init__(self, vp, *, setup, model, view: dict, place: str = "energy", reference=None):
+        self.vp, self.setup = vp, setup
         self.span = float(view["window"])
         self.spacing = max(model.dt, SAMPLE_EVERY)   # s between graph points
         self.axes = ["xyz".index(axis) for axis in view["plot"]]
@@ -122,11 +126,26 @@ class Graphs:
         self.per_mass_energy = bool(model.integrators)
         self.energy_offset = 0.0 if self.per_mass_energy else (rest_potential(model.state, model.forces) or 0.0)
         self.energy_note = view.get("energy_note")  # VIEW["energy_note"]: a line under the energy graph
-        self.energy_graph = self._build_energy_graph(model, setup)
-        self.graphs = [graph for graph in (self.scene_graph, self.position_graph, self.error_graph,
-                                           self.energy_graph) if graph is not None]
+        # The graph place under the position graph (Measure panel): the energy graph, phase
+        # space or energy bars, one at a time.
+        self.place = place if place in PLACES else "energy"
+        self.energy_graph = self._build_energy_graph(model, setup) if self.place == "energy" else None
+        self.phase = self._build_phase(model) if self.place == "phase" else None
+        self.bars = EnergyBars(vp, model=model, reference=reference)
+        self.bars.show(self.place == "bars")
+
+    @property
+    def graphs(self) -> list:
+        """The vpython graphs on the page, in the order they are shown."""
+        return [graph for graph in (self.scene_graph, self.position_graph, self.error_graph, self.energy_graph,
+                                    self.phase.graph if self.phase else None) if graph is not None]
 
     # ---- building ----
+
+    def _build_phase(self, model) -> PhaseSpace:
+        return PhaseSpace(self.vp, model=model, graphed=self.graphed, colours=self.colours, axis=self.axes[0],
+                          span=self.span, size=self.size, canvas_height=GRAPH_CANVAS_HEIGHT,
+                          exact=self.exact_curves)
 
     def _build_scene_graph(self, spec) -> None:
         """The scene's own graph (view_graph): lines and dots, and dots that follow the run."""
@@ -250,11 +269,48 @@ class Graphs:
         for the new constants, and show the exact curves if the new model has a closed form."""
         if self.scene_graph is not None and changes:
             self._fill_scene_graph(setup.hooks.view_graph(setup))
-        if self.energy_note and changes and self.energy_graph.title != self._energy_title(setup):
+        self.setup = setup
+        if self.energy_graph is not None and self.energy_note and changes and \
+                self.energy_graph.title != self._energy_title(setup):
             self.energy_graph.title = self._energy_title(setup)
         self.show_exact = self.exact_curves and model.exact is not None
         self.spacing = max(model.dt, SAMPLE_EVERY)   # s between graph points
         self.error_windows = [PeriodMax(period) for period in periods(model)]   # a new m or k: a new period
+
+    def new_reference(self, model, reference) -> None:
+        """The energy bars of a rebuilt model: its forces and its equilibrium."""
+        shown = self.bars.shown
+        self.bars.forces, self.bars.reference = model.forces, reference
+        self.bars.show(shown)
+
+    def choose(self, place: str, live) -> None:
+        """Show `place` in the graph place ("energy", "phase" or "bars"), filled with the run
+        so far (the samples kept for Download CSV)."""
+        if place not in PLACES or place == self.place:
+            return
+        if self.energy_graph is not None:
+            self.energy_graph.delete()
+            self.energy_graph = None
+            self.curves = [curve for curve in self.curves if curve.series.kind not in ENERGY_KINDS]
+        if self.phase is not None:
+            self.phase.take_down()
+            self.phase = None
+        self.place = place
+        self.bars.show(place == "bars")
+        samples = list(self.recorded)
+        if place == "energy":
+            self.energy_graph = self._build_energy_graph(live.model, self.setup)
+            self.energy_fit.clear()
+            fresh = [curve for curve in self.curves if curve.series.kind in ENERGY_KINDS]
+            energies = self._energies(samples, live)
+            self._plot_curves(fresh, samples, live, energies=energies, redraw=True)
+            self._fit_energy(energies, live, samples)
+        elif place == "phase":
+            self.phase = self._build_phase(live.model)
+            self.phase.plot(samples, live, redraw=True)
+        else:
+            self.bars.clear()
+            self.bars.draw(live)
 
     def clear(self) -> None:
         """Empty every curve and the recorded samples, and show t from 0 again."""
@@ -268,8 +324,12 @@ class Graphs:
         for curve in self.curves:
             curve.trace.clear()
         self.recorded.clear()
+        if self.phase is not None:
+            self.phase.clear()
+        self.bars.clear()
         for graph in (self.position_graph, self.energy_graph):
-            graph.xmin, graph.xmax = time_axis(0.0, span=self.span, dt=self.spacing, pixels=self.size[0])
+            if graph is not None:
+                graph.xmin, graph.xmax = time_axis(0.0, span=self.span, dt=self.spacing, pixels=self.size[0])
         if self.held:
             self.position_graph.xmin, self.position_graph.xmax = self.held
         if self.error_graph is not None:
@@ -281,7 +341,8 @@ class Graphs:
         """Remove the graphs from the page."""
         for graph in self.graphs:
             graph.delete()
-        self.graphs = []
+        self.scene_graph = self.position_graph = self.error_graph = self.energy_graph = self.phase = None
+        self.bars.show(False)
 
     # ---- measured data ----
 
@@ -320,9 +381,41 @@ class Graphs:
         r = np.array([s.r for s in samples]) if samples else np.zeros((0,) + live.state.r.shape)
         # NaN where the closed form no longer describes a mass (past its anchor): no point there
         exact = live.model.exact_where_valid(t)[0] if (self.show_exact and len(t)) else None
-        energies = self._energies(samples, live)
+        energies = self._energies(samples, live) if self.energy_graph is not None else {}
+        errors_shown = self._plot_curves(self.curves, samples, live, energies=energies, exact=exact, redraw=redraw)
+        if exact is not None and np.isfinite(exact[..., self.axes]).any():
+            # the exact motion, and the simulated points near it (within the exact span again), so
+            # a few Steps after Reset show on the axis while a run that strays far runs off it
+            exact_values = exact[..., self.axes].ravel()
+            low = min(self.position_fit.seen[0], float(np.nanmin(exact_values)))
+            high = max(self.position_fit.seen[1], float(np.nanmax(exact_values)))
+            simulated = r[:, matter][..., self.axes].ravel()
+            near = simulated[(simulated >= low - (high - low)) & (simulated <= high + (high - low))]
+            _fit(self.position_graph, self.position_fit, np.concatenate([exact_values, near]))
+        elif len(t):
+            _fit(self.position_graph, self.position_fit, r[:, matter][..., self.axes].ravel())
+        self._fit_energy(energies, live, samples)
+        if self.error_graph is not None:
+            _fit(self.error_graph, self.error_fit, errors_shown)
+        if len(t):
+            start, end = time_axis(float(t[-1]), span=self.span, dt=self.spacing,
+                                   pixels=self.size[0])
+            graph, (low, high) = self.position_graph, self.held or (start, end)
+            if (low, high) != (graph.xmin, graph.xmax):
+                graph.xmin, graph.xmax = low, high
+            if self.error_graph is not None:
+                self.error_graph.xmin, self.error_graph.xmax = time_axis(
+                    float(t[-1]), span=self.error_span, dt=self.spacing, pixels=self.size[0])
+        if self.phase is not None:
+            self.phase.plot(samples, live, redraw=redraw)
+        self._plot_live(live, redraw=redraw)
+
+    def _plot_curves(self, curves, samples, live, *, energies: dict, exact=None, redraw: bool = False) -> list:
+        """Add the samples to these curves; returns the errors shown on the error graph."""
+        t = np.array([s.t for s in samples])
+        r = np.array([s.r for s in samples]) if samples else np.zeros((0,) + live.state.r.shape)
         errors_shown = []
-        for curve in self.curves:
+        for curve in curves:
             series = curve.series
             if series.kind == "position":
                 values = r[:, series.mass, series.axis]
@@ -350,32 +443,18 @@ class Graphs:
                 replace_points(curve.line, list(curve.trace.points))
             elif points:
                 curve.line.plot(points)
-        if exact is not None and np.isfinite(exact[..., self.axes]).any():
-            # the exact motion, and the simulated points near it (within the exact span again), so
-            # a few Steps after Reset show on the axis while a run that strays far runs off it
-            exact_values = exact[..., self.axes].ravel()
-            low = min(self.position_fit.seen[0], float(np.nanmin(exact_values)))
-            high = max(self.position_fit.seen[1], float(np.nanmax(exact_values)))
-            simulated = r[:, matter][..., self.axes].ravel()
-            near = simulated[(simulated >= low - (high - low)) & (simulated <= high + (high - low))]
-            _fit(self.position_graph, self.position_fit, np.concatenate([exact_values, near]))
-        elif len(t):
-            _fit(self.position_graph, self.position_fit, r[:, matter][..., self.axes].ravel())
+        return errors_shown
+
+    def _fit_energy(self, energies: dict, live, samples) -> None:
+        """The energy graph's axes: its values (not the masses that may run away), and time."""
+        if self.energy_graph is None:
+            return
         _fit(self.energy_graph, self.energy_fit,
              [value for key, values in energies.items() if key not in live.may_run_away for value in values])
-        if self.error_graph is not None:
-            _fit(self.error_graph, self.error_fit, errors_shown)
-        if len(t):
-            start, end = time_axis(float(t[-1]), span=self.span, dt=self.spacing,
-                                   pixels=self.size[0])
-            for graph, (low, high) in ((self.position_graph, self.held or (start, end)),
-                                       (self.energy_graph, (start, end))):
-                if (low, high) != (graph.xmin, graph.xmax):
-                    graph.xmin, graph.xmax = low, high
-            if self.error_graph is not None:
-                self.error_graph.xmin, self.error_graph.xmax = time_axis(
-                    float(t[-1]), span=self.error_span, dt=self.spacing, pixels=self.size[0])
-        self._plot_live(live, redraw=redraw)
+        if samples:
+            low, high = time_axis(float(samples[-1].t), span=self.span, dt=self.spacing, pixels=self.size[0])
+            if (low, high) != (self.energy_graph.xmin, self.energy_graph.xmax):
+                self.energy_graph.xmin, self.energy_graph.xmax = low, high
 
     def _energies(self, samples, live) -> dict:
         """What the energy graph plots, per curve key, one value per sample, J.

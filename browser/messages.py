@@ -81,6 +81,51 @@ class ShowArrows:
     shown: bool
 
 
+# ---- measuring (the Measure panel, browser/measure_panel.py) ----
+
+@dataclass(frozen=True)
+class StartStopwatch:
+    """Start the stopwatch, or stop it if it runs (key S)."""
+
+
+@dataclass(frozen=True)
+class LapStopwatch:
+    """Note the stopwatch's reading as a lap (key L)."""
+
+
+@dataclass(frozen=True)
+class ClearStopwatch:
+    """Set the stopwatch back to 0 (key C)."""
+
+
+@dataclass(frozen=True)
+class ShowPeriod:
+    """The check box of the period: measured from the motion, and the formula's."""
+    shown: bool
+
+
+@dataclass(frozen=True)
+class ShowLine:
+    """A check box of a line in the 3-D view: "natural", "equilibrium" or "marker"
+    (browser/reference_lines.py)."""
+    kind: str
+    shown: bool
+
+
+@dataclass(frozen=True)
+class MoveMarker:
+    """The mouse pressed or dragged on the 3-D view at (x, y, z), m: the marker line goes there."""
+    x: float
+    y: float
+    z: float
+
+
+@dataclass(frozen=True)
+class ChooseGraph:
+    """What the graph place under the position graph shows: "energy", "phase" or "bars"."""
+    kind: str
+
+
 # ---- files ----
 
 @dataclass(frozen=True)

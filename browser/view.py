@@ -24,6 +24,7 @@ import time
 import numpy as np
 
 from export.step_update import step_lines, update_force
+from physics.period import CrossingMeter, formula_period
 
 from scenes import catalog
 from scenes._view import DEFAULT_VIEW
@@ -34,8 +35,12 @@ from .controls import (PRESET_PROMPT, SPEEDS, Controls, constants_text, csv_href
 from .arrows3d import MomentumArrows
 from .data_panel import MeasuredData, load_button_html
 from .graphs import SAMPLE_EVERY, Graphs, csv_text
-from .messages import (Batch, ChooseIntegrator, ChoosePreset, ChooseScene, ChooseSpeed, DownloadCsv,
-                       DownloadProgram, FitData, Reset, RunOrPause, SetConstant, ShowArrows, Step)
+from .measure_panel import period_text
+from .messages import (Batch, ChooseGraph, ChooseIntegrator, ChoosePreset, ChooseScene, ChooseSpeed, ClearStopwatch,
+                       DownloadCsv, DownloadProgram, FitData, LapStopwatch, MoveMarker, Reset, RunOrPause,
+                       SetConstant, ShowArrows, ShowLine, ShowPeriod, StartStopwatch, Step)
+from .reference_lines import ReferenceLines
+from .stopwatch import Stopwatch
 from .page_layout import PROJECTOR_BUTTON, page_head
 from .scene3d import Scene3D
 
@@ -44,6 +49,7 @@ __all__ = ["show", "SceneView", "DEFAULT_VIEW", "csv_text", "constants_text", "s
            "slider_names", "slider_range", "symbol", "time_decimals"]
 
 STEP_MASSES = 4           # masses whose Step is written out in the caption
+PERIOD_MASSES = 4         # graphed masses whose period the Measure panel shows
 FRAME_RATE = 50           # frames per second the loop aims for
 
 
@@ -108,6 +114,12 @@ class SceneView:
         self.data = data or MeasuredData()
         self.fresh_file = False     # a file from Load data, not yet compared
         self.live = LiveRun(model, integrator=integrator, sample_every=SAMPLE_EVERY)
+        # the Measure panel's tools, kept across scenes as the arrows are (browser/measure_panel.py)
+        self.stopwatch = Stopwatch()
+        self.t_drawn = 0.0          # the t the page shows: a run restarting from 0 leaves the stopwatch that
+        self.period_shown = False   # the period is hidden until its box is ticked
+        self.lines_shown: set = set()
+        self.graph_place = "energy"
         self.scene, self.controls, self.graphs = self._build_parts(preset=preset)
         self._start_run()
 
@@ -129,14 +141,38 @@ class SceneView:
         controls = Controls(self.vp, setup=setup, view=view, integrators=model.integrators,
                             integrator=self.integrator, speed=self.speed, preset=preset,
                             arrows=self.arrows_shown,
-                            load_button=load_button_html() if hasattr(self.server, "uploaded") else "")
-        graphs = Graphs(self.vp, setup=setup, model=model, view=view)
+                            load_button=load_button_html() if hasattr(self.server, "uploaded") else "",
+                            measure={"period": self.period_shown, "lines": self.lines_shown,
+                                     "graph": self.graph_place})
+        self.view = view
+        self.lines = self._lines(scene, model)
+        self.lines.bind_mouse(controls.commands.put)
+        graphs = Graphs(self.vp, setup=setup, model=model, view=view, place=self.graph_place,
+                        reference=self.lines.at["equilibrium"])
+        self._measure(model, graphs)
         return scene, controls, graphs
+
+    def _lines(self, scene, model) -> ReferenceLines:
+        """The natural-length, equilibrium and marker lines of this model (browser/reference_lines.py)."""
+        return ReferenceLines(self.vp, model=model, view=self.view, radius=scene.radius, centre=scene.centre,
+                              reach=scene.range, shown=self.lines_shown)
+
+    def _measure(self, model, graphs) -> None:
+        """What the period is measured from, for this model: each graphed mass's crossings of its
+        equilibrium along the graphed coordinate, and the formula's 2π/ω_d (physics/period.py)."""
+        self.period_axis = graphs.axes[0]
+        self.period_masses = graphs.graphed[:PERIOD_MASSES]
+        centre = self.lines.at["equilibrium"]
+        self.crossings = CrossingMeter(np.full(model.state.count, np.nan) if centre is None
+                                       else centre[:, self.period_axis])
+        covered = False if model.exact is None else np.isfinite(model.exact_where_valid([0.0])[0][0]).all(axis=-1)
+        self.formula, self.formula_why = formula_period(model.forces, model.state, closed_form=covered)
 
     def _build_page(self, setup, model, *, preset: str | None = None, old_page_gone: bool = False) -> None:
         """Take down the parts shown so far (unless the page they were on is gone), build this
         scene's, and start its run at t = 0."""
         if not old_page_gone:
+            self.lines.take_down()
             self.arrows.take_down()
             self.scene.take_down()
             self.graphs.take_down()
@@ -158,6 +194,9 @@ class SceneView:
 
     def _reset(self) -> None:
         """Back to the exact initial state, with empty graphs and trails (Reset)."""
+        self.stopwatch.run_restarted(self.t_drawn)
+        self.t_drawn = 0.0
+        self.crossings.clear()
         samples = self.live.restart()
         self.arrows.legend_text = self.controls.arrow_legend
         self.arrows.reset()
@@ -330,6 +369,35 @@ class SceneView:
         self._choose(lambda: catalog.configure(message.name), preset=None, batch=batch,
                      refused=lambda: self.controls.show_scene(self.setup.name))
 
+    @carry_out.register
+    def _start_stopwatch(self, message: StartStopwatch, batch: Batch) -> None:
+        self.stopwatch.start_stop(self.live.state.t)
+
+    @carry_out.register
+    def _lap_stopwatch(self, message: LapStopwatch, batch: Batch) -> None:
+        self.stopwatch.lap(self.live.state.t)
+
+    @carry_out.register
+    def _clear_stopwatch(self, message: ClearStopwatch, batch: Batch) -> None:
+        self.stopwatch.clear()
+
+    @carry_out.register
+    def _show_period(self, message: ShowPeriod, batch: Batch) -> None:
+        self.period_shown = bool(message.shown)
+
+    @carry_out.register
+    def _show_line(self, message: ShowLine, batch: Batch) -> None:
+        self.lines.set_shown(message.kind, bool(message.shown))
+
+    @carry_out.register
+    def _move_marker(self, message: MoveMarker, batch: Batch) -> None:
+        self.lines.move_marker((message.x, message.y, message.z))
+
+    @carry_out.register
+    def _choose_graph(self, message: ChooseGraph, batch: Batch) -> None:
+        self.graph_place = message.kind
+        self.graphs.choose(message.kind, self.live)
+
     def _choose(self, configure, *, preset: str | None, batch: Batch, refused) -> None:
         """A scene or preset from a menu: configure() gives its setup, built anew from t = 0 with
         the integrator chosen in this batch; refused() puts the menu back where it cannot be."""
@@ -373,6 +441,11 @@ class SceneView:
         self.live = LiveRun(model, integrator=integrator, sample_every=SAMPLE_EVERY)
         self.arrows.rescale(model, integrator=integrator)
         self.scene.reframe(model)
+        self.lines.take_down()       # the equilibrium and natural length move with the constants
+        self.lines = self._lines(self.scene, model)
+        self.lines.bind_mouse(self.controls.commands.put)
+        self.graphs.new_reference(model, self.lines.at["equilibrium"])
+        self._measure(model, self.graphs)
         self._start_run()
 
     def _step(self) -> None:
@@ -407,6 +480,8 @@ class SceneView:
         if not samples and not redraw:
             return
         self.scene.extend_trails(samples, self.live.runaways)
+        if samples:
+            self.crossings.add([s.t for s in samples], [s.r[:, self.period_axis] for s in samples])
         self.graphs.plot(samples, self.live, matter=self.matter, redraw=redraw)
 
     def _draw(self) -> None:
@@ -416,9 +491,27 @@ class SceneView:
         self.arrows.draw(live)
         self.controls.show_time(live.state.t, decimals=self.decimals, running=self.running,
                                 error=self.graphs.error_readout(live, matter=self.matter))
+        self.t_drawn = float(live.state.t)
+        self.controls.measure.show_stopwatch(reading=self.stopwatch.reading(live.state.t),
+                                             running=self.stopwatch.running, laps=self.stopwatch.lap_times(),
+                                             decimals=self.decimals)
+        self.controls.measure.show_period(self._period_text() if self.period_shown else "")
+        self.graphs.bars.draw(live)
         self.controls.show_status(problem=live.problem, runaways=[reason for _, reason in live.runaways.values()],
                                   slow_dt=live.model.dt if self.clock.dropped > 0.01 else None,
                                   advice=live.advice)
+
+    def _period_text(self) -> str:
+        """The period of each graphed mass (a few), measured and from the formula, for the panel."""
+        lines = []
+        model, axis = self.live.model, "xyz"[self.period_axis]
+        for i in self.period_masses:
+            formula = None if self.formula is None else float(self.formula[i])
+            said = period_text(self.crossings.period(i), crossings=len(self.crossings.times[i]),
+                               formula=formula, why=self.formula_why, axis=axis,
+                               centre=float(self.crossings.centres[i]))
+            lines.append((f"<b>{model.labels[i]}</b>: " if len(self.period_masses) > 1 else "") + said)
+        return "<span class='sm-period'>" + "\n".join(lines) + "</span>"
 
     # ---- measured data (browser/data_panel.py) ----
 
