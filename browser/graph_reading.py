@@ -11,7 +11,9 @@ amplitudes is read:
 
     … then t = 5.5 s, y = −1.93 m: Δt = 3.15 s, Δy = 0.002 m
 
-and a third starts again. The points picked stay marked on the graph (flot's highlight, put back
+and a third starts again. The axes' titles come from the graph itself, or in a notebook (where
+the page's script cannot reach vpython's graphs) from window.smGraphTitles, which
+browser/graphs.py writes, keyed by each graph's first curve's label. The points picked stay marked on the graph (flot's highlight, put back
 each time vpython draws the graph anew) while they are on its axis.
 
 All of it runs in the page (GRAPH_READING, a script the controls add once): every graph is drawn by
@@ -63,10 +65,18 @@ GRAPH_READING = """<script>(function () {
     }
     return read;
   }
+  function titles(el) {  // [xtitle, ytitle]: from the graph, or where Python wrote them (a notebook)
+    var g = graphOf(el);
+    if (g) return [g.xtitle, g.ytitle];
+    var plot = jq(el).data('plot'), data = plot ? plot.getData() : [];
+    var known = window.smGraphTitles || {};
+    for (var i = 0; i < data.length; i++) if (known[data[i].label]) return known[data[i].label];
+    return ['', ''];
+  }
   function show(el) {
-    var g = graphOf(el), picks = el.__smPicks || [];
-    var xname = part(g && g.xtitle, 'name'), xunit = part(g && g.xtitle, 'unit');
-    var yname = part(g && g.ytitle, 'name'), yunit = part(g && g.ytitle, 'unit');
+    var picks = el.__smPicks || [], named = titles(el);
+    var xname = part(named[0], 'name'), xunit = part(named[0], 'unit');
+    var yname = part(named[1], 'name'), yunit = part(named[1], 'unit');
     var u = function (unit) { return unit ? '\\u00a0' + unit : ''; };
     var text = '';
     picks.forEach(function (p, n) {

@@ -133,6 +133,8 @@ class Graphs:
         self.phase = self._build_phase(model) if self.place == "phase" else None
         self.bars = EnergyBars(vp, model=model, reference=reference)
         self.bars.show(self.place == "bars")
+        self.titles_text = vp.wtext(text="")
+        self._publish_titles()
 
     @property
     def graphs(self) -> list:
@@ -311,8 +313,21 @@ class Graphs:
         else:
             self.bars.clear()
             self.bars.draw(live)
+        self._publish_titles()
 
-    def clear(self) -> None:
+    def _publish_titles(self) -> None:
+        """Each graph's axis titles, for reading a graph by clicking it (browser/graph_reading.py),
+        keyed by its first curve's label: in a notebook the page's script cannot reach the graphs."""
+        titles = {}
+        for graph in self.graphs:
+            labels = [curve.line.label for curve in self.curves if _on(curve.line, graph)]
+            if self.phase is not None and graph is self.phase.graph:
+                labels = [line.label for line, *_ in self.phase.curves]
+            if graph is self.scene_graph:
+                labels = [series.label for series in self.scene_series]
+            if labels and labels[0]:
+                titles[labels[0]] = [graph.xtitle, graph.ytitle]
+        self.titles_text.text = graph_titles_script(titles)
         """Empty every curve and the recorded samples, and show t from 0 again."""
         self.position_fit.clear()
         self.energy_fit.clear()
@@ -537,6 +552,20 @@ def csv_text(samples, *, m, labels, dt) -> str:
                    *energy]
             writer.writerow(row + ([] if single else [label]))
     return out.getvalue()
+
+
+def _on(line, graph) -> bool:
+    """Whether a gcurve is drawn on this graph (vpython keeps the graph's index in line.graph)."""
+    where = getattr(line, "graph", None)
+    return where is graph or (where is not None and where == getattr(graph, "idx", None))
+
+
+def graph_titles_script(titles: dict) -> str:
+    """A script adding {first curve's label: [xtitle, ytitle]} to the page's window.smGraphTitles."""
+    import json
+
+    return ("<script>window.smGraphTitles = Object.assign(window.smGraphTitles || {}, "
+            + json.dumps(titles, ensure_ascii=False).replace("</", "<\\/") + ");</script>")
 
 
 def replace_points(series, points) -> None:

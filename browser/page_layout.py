@@ -47,7 +47,7 @@ input[type=checkbox] { width: 1em !important; height: 1em !important; vertical-a
 button { padding: 2px 10px; }
 #glowscript > div { white-space: pre-wrap !important; }
 #glowscript .glowscript-canvas-wrapper { margin-bottom: 4px; }
-#sm-graphs { position: absolute; top: 8px; }
+#sm-graphs { position: absolute; top: 8px; overflow-x: hidden; }
 #sm-graphs .glowscript-graph { float: none !important; display: block; margin: 0 0 6px 0 !important; }
 .glowscript-graph .tickLabels, .glowscript-graph .tickLabel { font-size: %(body)dpx !important; color: #000 !important; }
 .sm-note { font-size: %(body)dpx; margin: 0 0 10px 0; max-width: 760px; }
@@ -263,6 +263,9 @@ SCRIPT = """
     labels.forEach(grow);  // after the canvas has its size: the labels' offsets follow it
     var right = column();
     right.style.left = (8 + left + GAP) + 'px';
+    // Its own width and the room for the last tick, no more: the box flot gives a tick label is
+    // wider than its text, and the last one's reached past the window (regimes, 1920 px)
+    right.style.width = (gw + Math.ceil(TICK_ROOM * px)) + 'px';
     document.querySelectorAll('#glowscript > .glowscript-graph').forEach(function (el) {
       right.appendChild(el);
     });

@@ -90,7 +90,8 @@ _CLEANED = ("r", "p", "v", "F_net", "bodies")
 
 def _periods(out: dict, result: Result) -> None:
     """"period": {"measured", "spread", "cycles", "formula"} (s, s, count, s or null) for one
-    mass, null with a note where the motion gives none; several masses: each body's own."""
+    mass, null with a note where the motion gives none; several masses: each body has its own
+    "period", and "period_note" where it is null or has no formula."""
     reports = periods(result)
     if len(reports) == 1:
         out["period"] = period_json(reports[0])
@@ -99,8 +100,6 @@ def _periods(out: dict, result: Result) -> None:
         elif reports[0].formula is None:
             out.setdefault("notes", []).append(f"period.formula: null, {reports[0].formula_note}")
         return
-    out["period"] = None
-    out.setdefault("notes", []).append("period: null, the scene has several masses: each body has its own")
     for body, report in zip(out["bodies"], reports):
         body["period"] = None if period_json(report) is None else cleaned(period_json(report))
         note = report.measured_note if report.measured is None else report.formula_note if report.formula is None else ""

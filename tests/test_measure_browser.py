@@ -170,6 +170,9 @@ def test_stopwatch_lines_marker_and_reading_the_graph(browser):
         model, engine, first, samples = engine_at(setup, "euler-cromer", 4.0)
         lowest = float(np.min(samples.r[:, 0, 1]))
         box(page, "marker").check()
+        wait_for(lambda: page.evaluate("() => glowObjs.some(o => o && o.text && o.text.startsWith('marker ') && "
+                                       "o.text.indexOf('=') > 0 && o.visible)"), timeout=WAIT,
+                 what="the marker shown (the page has taken the box's click)")
         canvas = page.locator(".glowscript-canvas-wrapper canvas").first.bounding_box()
         x = canvas["x"] + 0.8 * canvas["width"]
 

@@ -344,7 +344,7 @@ def test_the_notebook_shows_the_arrows_and_its_check_boxes_reach_the_kernel(page
     setup = catalog.configure("vertical")
     scales = choose_scales(setup.build(), view={**DEFAULT_VIEW, **setup.hooks.view})
     assert scales.legend() in cell.inner_text()   # an arrow of 1 m = 20 kg·m/s for p, 20 N for forces
-    boxes = cell.locator("input[type=checkbox]")
+    boxes = cell.locator(":not(.sm-measure) > input[type=checkbox]")   # not the Measure panel's
     assert boxes.count() == 4                      # p, F_net, forces, F∥ and F⊥
     assert [boxes.nth(n).is_checked() for n in range(4)] == [True, True, False, False]
     orange = tuple(round(255 * c) for c in mass_colour(0))
