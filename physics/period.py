@@ -83,7 +83,7 @@ def why_no_period(t, x, *, centre: float | None) -> str:
     end = float(np.asarray(t)[-1]) if len(t) else 0.0
     return (f"the motion rises through its equilibrium only {crossings} time{'' if crossings == 1 else 's'} "
             f"by t = {end:.4g} s, and a period needs {MIN_CYCLES} whole cycles ({MIN_CYCLES + 1} crossings): "
-            f"it does not repeat (over- or critically damped, or running away), or the run is too short")
+            f"it does not repeat (damped too strongly to swing, or running away), or the run is too short")
 
 
 class CrossingMeter:
@@ -147,12 +147,12 @@ def formula_period(forces, state, *, closed_form) -> tuple[np.ndarray | None, st
     period = np.full(state.count, np.nan)
     period[swings] = 2.0 * np.pi / np.sqrt(omega_squared[swings])
     if not swings.any():
-        return None, "b² ≥ 4mk: the motion is over- or critically damped and does not swing, so it has no period"
+        return None, "b² ≥ 4mk: the damping is too strong for the motion to swing, so it has no period"
     why = []
     if not covered.all():
         why.append("no closed form covers the forces on some masses")
     if (covered & ~swings).any():
-        why.append("some masses are over- or critically damped (b² ≥ 4mk) and do not swing")
+        why.append("on some masses the damping is too strong to swing (b² ≥ 4mk)")
     return period, "; ".join(why)
 
 

@@ -23,7 +23,7 @@ from .headless import Result
 from .periods import period_json, periods
 
 UNITS = {"t": "s", "dt": "s", "r": "m", "v": "m/s", "p": "kg·m/s", "F_net": "N", "energy": "J",
-         "exact_valid_until": "s", "period": "s"}
+         "exact_valid_until": "s"}
 
 
 def integrator_json(methods):
@@ -45,11 +45,12 @@ def as_json(result: Result) -> dict:
     closed form at the final time and the size of the error, where a closed form exists. Where
     it stopped holding before the final time, "exact" is left out and "exact_note" says why, with
     "exact_valid_until" the time it stopped holding, s (null, with a line in "notes", where it
-    holds to the end or there is no closed form). F_net is the net force at the final time.
-    "period" is the period measured from the motion and the formula's (reports/periods.py). In a row each mass is judged on its own:
-    a body whose closed form stopped holding has no "exact" but its own "exact_note" and
-    "exact_valid_until", and the top-level ones count such masses and give the first time. A scene
-    may add its own keys with a function extra_json(result) -> dict (scenes/_hooks.py).
+    holds to the end or there is no closed form). F_net is the net force at the final time. In a
+    row each mass is judged on its own: a body whose closed form stopped holding has no "exact" but
+    its own "exact_note" and "exact_valid_until", and the top-level ones count such masses and give
+    the first time. "period" is the period measured from the motion and the formula's
+    (reports/periods.py), per body in a row. A scene may add its own keys with a function
+    extra_json(result) -> dict (scenes/_hooks.py).
     """
     traj, model, setup = result.trajectory, result.model, result.setup
     single = len(traj.m) == 1
@@ -76,7 +77,7 @@ def as_json(result: Result) -> dict:
     _periods(out, result)
     out["constants"] = {name: {"value": _plain(setup.values[name]), "unit": c.unit, "meaning": c.meaning}
                         for name, c in setup.constants.items()}
-    out["units"] = UNITS
+    out["units"] = {**UNITS, "period": "s"} if "period" in out else UNITS
     # to 15 digits, all but what is so already: the final state and the bodies, array by array
     out = {key: value if key in _CLEANED else cleaned(value) for key, value in out.items()}
     if setup.hooks.extra_json is not None:  # a scene's own results, e.g. a resonance curve

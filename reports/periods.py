@@ -49,7 +49,7 @@ def periods(result: Result) -> list[PeriodReport]:
             measured=measured, formula=T,
             measured_note="" if measured is not None else why_no_period(traj.t, x, centre=middle),
             formula_note="" if T is not None else why if formula is None else (
-                "b² ≥ 4mk: it is over- or critically damped and does not swing" if covered is not False
+                "b² ≥ 4mk: the damping is too strong for it to swing" if covered is not False
                 and np.broadcast_to(covered, (len(traj.m),))[i] else "no closed form covers this mass's forces"),
             axis="xyz"[axis], centre=middle))
     return reports

@@ -79,7 +79,7 @@ def test_the_formula_reads_k_and_b_over_m_from_the_forces(b):
 def test_the_formula_is_given_only_where_it_describes_the_motion():
     state, forces = hanging(b=40.0)                        # b² = 4mk: critically damped
     assert formula_period(forces, state, closed_form=True) == (None, pytest.approx(
-        "b² ≥ 4mk: the motion is over- or critically damped and does not swing, so it has no period"))
+        "b² ≥ 4mk: the damping is too strong for the motion to swing, so it has no period"))
     state, forces = hanging(F0=5.0)
     T, why = formula_period(forces, state, closed_form=True)
     assert T is None and "drive" in why
