@@ -328,6 +328,8 @@ class Graphs:
             if labels and labels[0]:
                 titles[labels[0]] = [graph.xtitle, graph.ytitle]
         self.titles_text.text = graph_titles_script(titles)
+
+    def clear(self) -> None:
         """Empty every curve and the recorded samples, and show t from 0 again."""
         self.position_fit.clear()
         self.energy_fit.clear()
