@@ -113,3 +113,34 @@ def test_the_stopwatch_runs_on_simulated_time():
     watch.clear()
     assert watch.reading(3.0) == 0.0 and watch.laps == [] and not watch.running
     assert math.isfinite(watch.reading(1e9))
+
+
+def test_the_graph_place_shows_each_choice_filled_with_the_run_so_far(monkeypatch):
+    """Energy graph, phase space and energy bars in turn, then Reset, on stand-ins for vpython."""
+    from browser.clock import LiveRun
+    from browser.graphs import Graphs
+    from scenes._view import DEFAULT_VIEW
+    from test_trail import Shape, stand_in_vpython
+
+    monkeypatch.setattr(Shape, "delete", lambda self: None, raising=False)   # a graph taken down
+    setup = catalog.configure("damped")
+    model = setup.build()
+    vp = stand_in_vpython()
+    graphs = Graphs(vp, setup=setup, model=model, view={**DEFAULT_VIEW, **setup.module.VIEW},
+                    reference=equilibrium(model.forces, model.state))
+    live = LiveRun(model, integrator="euler-cromer", sample_every=0.05)
+    graphs.plot(live.restart(), live, matter=[0], redraw=True)
+    graphs.plot(live.advance(40), live, matter=[0])
+    assert graphs.energy_graph is not None and "smGraphTitles" in graphs.titles_text.text
+    graphs.choose("phase", live)
+    assert graphs.energy_graph is None and graphs.phase is not None
+    (mass, exact, x, v), _ = graphs.phase.latest()
+    assert (x, v) == (live.state.r[0, 1], live.state.p[0, 1] / live.state.m[0]) and not exact
+    assert "v_y (simulation)" in graphs.titles_text.text
+    graphs.choose("bars", live)
+    graphs.bars.draw(live)
+    assert graphs.phase is None and "sm-bar-value" in graphs.bars.text.text
+    graphs.choose("energy", live)
+    assert graphs.energy_graph is not None and not graphs.bars.text.text
+    graphs.clear()
+    assert not graphs.recorded
