@@ -488,8 +488,8 @@ def test_the_measure_panel_works_in_the_notebook(page):
     place = overlay.bounding_box()
     overlay.click(position={"x": 0.4 * place["width"], "y": 0.5 * place["height"]})
     read = wait_for(lambda: cell.locator(".sm-read").count() and cell.locator(".sm-read").first.inner_text(),
-                    timeout=120.0, what="the graph's reading")
-    assert read.startswith("Read: t = ") and " m" in read
+                    timeout=120.0, what="the graph's reading").replace("\u00a0", " ")
+    assert read.startswith("Read: t = ") and " s, y (" in read and read.endswith(" m")
     look(cell, cell=cell)["cell"].save(SCREENSHOT.parent / "notebook-measure.png")
     panel.locator("select").select_option("energy graph")
     cell.locator(".sm-measure-toggle").click()
