@@ -46,10 +46,16 @@ def require_browser():
 
 
 @contextlib.contextmanager
-def launched(sync_api, *extra_args):
-    """Headless Chromium with the arguments that make its 3-D canvas draw, closed afterwards."""
+def launched(sync_api, *extra_args, scrollbars: bool = False):
+    """Headless Chromium with the arguments that make its 3-D canvas draw, closed afterwards.
+
+    scrollbars  draw scrollbars that take room, as a desktop browser does (Playwright hides them
+                by default, and so hid that the page scrolled sideways at 1280 × 800)
+    """
+    hidden = ["--hide-scrollbars"] if scrollbars else []
     with sync_api.sync_playwright() as playwright:
-        chromium = playwright.chromium.launch(executable_path=CHROMIUM, args=CHROMIUM_ARGS + list(extra_args))
+        chromium = playwright.chromium.launch(executable_path=CHROMIUM, args=CHROMIUM_ARGS + list(extra_args),
+                                              ignore_default_args=hidden)
         try:
             yield patient(chromium)
         finally:
