@@ -75,6 +75,9 @@ def build_parser() -> argparse.ArgumentParser:
                         help="write the scene as a standalone VPython program to hand out ('-': print it)")
     parser.add_argument("--webvpython", metavar="FILE.py",
                         help="the same program for Web VPython (glowscript.org, trinket)")
+    parser.add_argument("--html", metavar="FILE.html",
+                        help="the scene as one HTML file that runs offline in any browser (GlowScript inside: "
+                             "no install, no network), with the page's controls")
     parser.add_argument("--overwrite", action="store_true",
                         help="let --csv, --plot, --vpython or --webvpython replace an existing Python file "
                              "this program did not write (its own files are never replaced)")
@@ -123,7 +126,7 @@ def _add_lab_options(parser: argparse.ArgumentParser) -> None:
 BROWSER_ONLY = (("--port", "port"), ("--no-browser", "no_browser"), ("--projector", "projector"))
 RUN_OPTIONS = (("--headless", "headless"), ("--json", "json"), ("--csv", "csv"), ("--plot", "plot"),
                ("--steps", "steps"), ("--until", "until"), ("--integrator", "integrator"))
-PROGRAM_OPTIONS = (("--vpython", "vpython"), ("--webvpython", "webvpython"))
+PROGRAM_OPTIONS = (("--vpython", "vpython"), ("--webvpython", "webvpython"), ("--html", "html"))
 OUTPUT_FILES = (("--csv", "csv"), ("--plot", "plot"), *PROGRAM_OPTIONS)
 
 
