@@ -177,27 +177,46 @@ window.offlineProgram = function (compiled, rate, GSprint, offline_page, canvas,
 
   // ---- one run of the program ----
 
-  var glowRate = window.rate;
   var current = null;              // the run now; a run replaced stops at its next rate()
-  var paused = false, steps = 0, release = null;
+  var paused = false, steps = 0, release = null, speed = 1;
   var compiled = {};               // program text -> GlowScript's JavaScript
 
   function holdUntilAsked() { return new Promise(function (resolve) { release = resolve; }); }
   function letGo() { if (release) { var r = release; release = null; r(); } }
 
-  // What the program's rate() is in one run: GlowScript's, held while paused, and never again
-  // once the run has been replaced (its promise never settles, so that run ends there).
+  // What the program's rate(1/dt) is in one run: the page's clock. Simulated time runs at speed ×
+  // wall time: a step not yet due waits; behind, the program steps on, letting the page draw every
+  // YIELD_MS (GlowScript's own rate waits for every drawing, so a slow graphics card slowed the
+  // physics down with it); more than LAG_S behind (a tab the browser froze), the clock slips
+  // instead of racing to catch up. Paused, it holds the program here until Run or Step; a replaced
+  // run is held for good (its promise never settles, so that run ends here).
+  var YIELD_MS = 30, LAG_S = 0.25;
+  function wait(ms) { return new Promise(function (resolve) { setTimeout(resolve, ms); }); }
+
   function rateFor(run) {
-    return async function () {
-      var args = arguments;
+    return async function (perSecond) {
       while (run === current && paused && steps === 0) {
         if (run.stepped) { showStep(run); run.stepped = false; }
+        run.clock = null;
         await holdUntilAsked();
       }
       if (run !== current) return new Promise(function () {});
-      if (paused) steps -= 1;
-      run.stepped = paused;
-      return glowRate.apply(this, args);
+      if (paused) {                  // Step: this one step, then back to the hold above
+        steps -= 1;
+        run.stepped = true;
+        return;
+      }
+      var now = performance.now(), rate = perSecond * speed;
+      var clock = run.clock || (run.clock = {wall: now, steps: 0, drawn: now});
+      clock.steps += 1;
+      var due = (now - clock.wall) / 1000 * rate;
+      if (due < clock.steps - 1) await wait((clock.steps - 1 - due) / rate * 1000);
+      else if (now - clock.drawn > YIELD_MS) await wait(0);
+      else return;
+      clock.drawn = performance.now();
+      if ((clock.drawn - clock.wall) / 1000 * rate - clock.steps > LAG_S * rate)
+        clock.wall = clock.drawn - clock.steps / rate * 1000;
+      if (run !== current) return new Promise(function () {});
     };
   }
 
@@ -216,7 +235,12 @@ window.offlineProgram = function (compiled, rate, GSprint, offline_page, canvas,
   }
 
   function pageFor(run) {          // the object the program asks for: `page = offline_page()`
-    run.scene = window.canvas.selected;
+    var scene = run.scene = window.canvas.selected, camera = DATA.camera, centre = camera.centre;
+    scene.autoscale = false;         // the local page's framing (export/framing.py), not GlowScript's zoom to fit
+    scene.fov = camera.fov;
+    scene.forward = window.vector(0, -camera.pitch, -1);
+    scene.center = window.vector(centre[0], centre[1], centre[2]);
+    scene.range = camera.range;
     return {
       drawn: function (balls, pos, p, arrows) {
         if (run !== current) return;
@@ -242,7 +266,7 @@ window.offlineProgram = function (compiled, rate, GSprint, offline_page, canvas,
 
   function start(setup) {
     var text = programFor(setup);
-    if (!compiled[text]) compiled[text] = window.glowscript_compile(text, {lang: "vpython", version: "3.2"});
+    if (!compiled[text]) compiled[text] = compile(text);
     var old = current;
     var run = {setup: setup, printed: [], steps: [], n: 0, stepped: false, dt: setup.values.dt};
     current = run;
@@ -265,6 +289,16 @@ window.offlineProgram = function (compiled, rate, GSprint, offline_page, canvas,
       if (run === current) say("The program stopped: " + String(error).split("\n")[0]);
     });
     showLink(setup);
+  }
+
+  // GlowScript's compiler (RScompiler, kept as text in #compiler) compiles one program per run of
+  // its file, as GlowScript's own editor loads the file again for each run: run it, then compile.
+  function compile(text) {
+    var script = document.createElement("script");
+    script.textContent = byId("compiler").textContent;
+    document.head.appendChild(script);
+    script.remove();
+    return window.glowscript_compile(text, {lang: "vpython", version: "3.2"});
   }
 
   function retire(run) {           // the replaced run's canvas stops drawing and leaves the page
@@ -305,7 +339,7 @@ window.offlineProgram = function (compiled, rate, GSprint, offline_page, canvas,
 
   function showRunButton() { byId("run").textContent = paused ? "Run" : "Pause"; }
 
-  function toggle() { paused = !paused; showRunButton(); if (!paused) letGo(); }
+  function toggle() { paused = !paused; showRunButton(); if (current) current.clock = null; if (!paused) letGo(); }
   function step() {
     if (!paused) { paused = true; showRunButton(); return; }
     steps += 1;
@@ -387,6 +421,7 @@ window.offlineProgram = function (compiled, rate, GSprint, offline_page, canvas,
         start(setup);
       });
     });
+    byId("speed").addEventListener("change", function (e) { setSpeed(DATA.speeds[e.target.value]); e.target.blur(); });
     byId("projector").addEventListener("change", function (e) {
       document.body.classList.toggle("projector", e.target.checked);
       if (current) sizeView(current);
@@ -400,10 +435,20 @@ window.offlineProgram = function (compiled, rate, GSprint, offline_page, canvas,
       if (e.key === " " && tag !== "BUTTON") toggle();
       else if (e.key === "ArrowRight" && tag !== "BUTTON") step();
       else if (e.key === "r" || e.key === "R") reset();
+      else if (e.key === "+" || e.key === "=") changeSpeed(1);
+      else if (e.key === "-" || e.key === "−" || e.key === "_") changeSpeed(-1);
       else done = false;
       if (done) e.preventDefault();
     });
   }
+
+  function changeSpeed(by) {
+    var menu = byId("speed");
+    menu.selectedIndex = Math.min(menu.options.length - 1, Math.max(0, menu.selectedIndex + by));
+    setSpeed(DATA.speeds[menu.value]);
+  }
+
+  function setSpeed(value) { speed = value; if (current) current.clock = null; }
 
   function placeSliders() {
     Object.keys(DATA.sliders).forEach(function (name) {
@@ -412,6 +457,18 @@ window.offlineProgram = function (compiled, rate, GSprint, offline_page, canvas,
       showSlider(name);
     });
   }
+
+  // What the page shows now, for a look from outside (the tests): the step reached, whether it is
+  // paused, the set-up, and which kinds of arrow are drawn.
+  window.offlineState = function () {
+    var run = current || {};
+    var drawn = {};
+    Object.keys(run.arrows || {}).forEach(function (kind) {
+      drawn[kind] = run.arrows[kind].length > 0 && run.arrows[kind].every(function (o) { return o.visible; });
+    });
+    return {n: run.n, paused: paused, speed: speed, integrator: setup.integrator, values: setup.values,
+            arrows: drawn, opacity: (run.balls || []).map(function (ball) { return ball.opacity; })};
+  };
 
   // ---- start ----
 

@@ -38,7 +38,8 @@ from scenes._sliders import round_slider_values, slider_names, slider_range, sym
 from scenes._view import DEFAULT_VIEW
 
 from . import files
-from .arrows import ARROW_LABELS, ARROWS, SEE_THROUGH
+from .arrows import ARROW_LABELS, ARROWS, SEE_THROUGH, choose_scales
+from .framing import frame
 from .lines import ProgramError
 from .program_command import description
 from .step_update import step_layout
@@ -56,11 +57,14 @@ LIBRARIES = (
     ("RSrun.3.2.min.js", "2735844b615f87b4147e9cb2b90bf8a7a15da208fc8876eae469fc98861e429d"),
     ("RScompiler.3.2.min.js", "4fc76f1d6ab7d9b15d118fac2aa3f7c237a216f779b829801fb623b26d2c207c"),
 )
+COMPILER = "RScompiler.3.2.min.js"   # run anew for each program compiled (see _document)
 NOTICE = os.path.join(GLOWSCRIPT, "NOTICE")
 SCRIPT = os.path.join(HERE, "offline_page.js")
 STYLE = os.path.join(HERE, "offline_page.css")
 MAX_BYTES = 7_000_000          # the issue's bound on the file's size
 STEP_MASSES = 4                # masses whose Step is written out, as on the local page (browser/view.py)
+FOV = 0.2                      # rad: the local page's long lens (browser/scene3d.py), the support and springs flat
+SPEEDS = {"¼×": 0.25, "½×": 0.5, "1×": 1.0, "2×": 2.0, "4×": 4.0}   # as the local page's speed menu (browser/controls.py)
 BODY_PX, PROJECTOR_PX = 18, 22  # px: the smallest text, as on the local page (browser/page_layout.py)
 # What only frames the picture: the writer chooses it from the motion, and a constant moved on the
 # page keeps the file's (the local page also keeps its arrow scales through a run).
@@ -181,6 +185,9 @@ def page(setup, *, integrator: str | None = None, arrows=None, end: float | None
                 for name in names}
     offered = {found.name: found for found in settable(setup, integrator=None if fixed else first, view=view)}
     methods = sorted(set(fixed or INTEGRATORS))
+    framed = frame(model, view)   # the local page's camera (export/framing.py), and room for the arrows
+    scales = choose_scales(model, view=view, integrator=first if not fixed else None, forces="forces" in shown)
+    reach = max(framed.camera.range, scales.view_range) if shown else framed.camera.range
     data = {
         "scene": setup.name,
         "programs": programs,
@@ -191,7 +198,10 @@ def page(setup, *, integrator: str | None = None, arrows=None, end: float | None
         "all_constants": list(setup.constants),
         "smallest": 1e-9,
         "sliders": sliders(setup, view, offered),
-        "arrows": {"kinds": list(ARROWS), "see_through": SEE_THROUGH},
+        "arrows": {"kinds": list(ARROWS), "see_through": SEE_THROUGH, "legend": scales.legend()},
+        "camera": {"centre": [float(x) for x in framed.camera.centre], "range": float(reach),
+                   "pitch": float(framed.camera.pitch), "fov": FOV},
+        "speeds": SPEEDS,
         "step": {"layouts": {name: dict(zip(("lines", "drift"), step_layout(name))) for name in methods},
                  "kicks_once": {name: INTEGRATORS[name].kicks_once for name in methods},
                  "labels": list(model.labels), "masses": STEP_MASSES},
@@ -222,7 +232,11 @@ def _document(setup, data: dict, *, shown) -> str:
         + (f'min="0" max="{len(spec["values"]) - 1}" step="1"' if spec["values"] else
            f'min="{spec["low"]!r}" max="{spec["high"]!r}" step="{spec["step"]!r}"')
         + f'> <span id="slider-{name}-value"></span></div>' for name, spec in data["sliders"].items())
-    scripts = "".join(f"<script>{library(name)}</script>\n" for name, _ in LIBRARIES)
+    # GlowScript's compiler compiles once per load of its file (its own editor page loads the file
+    # again for every run), so the page keeps the file as text and runs it before each compile.
+    scripts = "".join(f'<script type="text/x-glowscript-compiler" id="compiler">{library(name)}</script>\n'
+                      if name == COMPILER else f"<script>{library(name)}</script>\n" for name, _ in LIBRARIES)
+    speeds = "".join(f'<option{" selected" if value == 1 else ""}>{label}</option>' for label, value in SPEEDS.items())
     return f"""<!DOCTYPE html>
 <!-- {files.HANDOUT_MARK} (python main.py {setup.name} --html): {html.escape(title)} -->
 <html lang="en">
@@ -243,11 +257,13 @@ This file holds GlowScript 3.2 and the libraries bundled in it, each under its o
 <div id="view"></div>
 <div id="panel">
 <div class="buttons"><button id="run" type="button">Pause</button> <button id="step-button" type="button">Step</button>
-<button id="reset" type="button">Reset</button> <span id="time" class="time">t = 0.00 s</span></div>
+<button id="reset" type="button">Reset</button> <label>speed <select id="speed">{speeds}</select></label>
+<span id="time" class="time">t = 0.00 s</span></div>
 <p id="status" class="status" role="status"></p>
-<div class="arrows">arrows: {arrows}</div>
+<div class="arrows">arrows: {arrows}<br><span class="legend">{html.escape(data["arrows"]["legend"])}</span></div>
 {slider_rows}
-<p class="hint">Moving a slider restarts the run from t = 0. Keys: Space run/pause, → step, R reset.
+<p class="hint">Moving a slider restarts the run from t = 0. Keys: Space run/pause, → step, R reset,
++ and − speed.
 <label><input type="checkbox" id="projector"> projector</label></p>
 <h2>Answer at the question time</h2>
 <pre id="answer" class="answer"></pre>
