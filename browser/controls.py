@@ -1,9 +1,9 @@
 """The page's controls and captions: buttons, menus, sliders, the time, the constants and the status.
 
-A click arrives on vpython's server thread; the control only queues it as a command, such as
-("toggle",), ("set", "k", 45.0) or ("scene", "pendulum"), and the frame loop (browser/view.py)
-carries the commands out between frames. Each build of the page has its own queue, so a click on
-a control of a page already taken down is never carried out.
+A click arrives on vpython's server thread; the control only queues it as a message, a small named
+type of browser/messages.py such as RunOrPause(), SetConstant("k", 45.0) or ChooseScene("pendulum"),
+and the frame loop (browser/view.py) carries the messages out between frames. Each build of the
+page has its own queue, so a click on a control of a page already taken down is never carried out.
 """
 from __future__ import annotations
 
@@ -18,6 +18,8 @@ from scenes._sliders import round_slider_values, slider_names, slider_range, sym
 
 from .axes import PLAIN_TICKS
 from .arrows3d import arrow_checkboxes
+from .messages import (ChooseIntegrator, ChoosePreset, ChooseScene, ChooseSpeed, DownloadCsv, DownloadProgram,
+                       FitData, Reset, RunOrPause, SetConstant, Step)
 from .readout import units_kept
 
 SPEEDS = {"¼×": 0.25, "½×": 0.5, "1×": 1.0, "2×": 2.0, "4×": 4.0}
@@ -74,41 +76,41 @@ class Controls:
         caption = vp.scene.append_to_caption
         defaults = {name: constant.value for name, constant in setup.constants.items()}
         caption("\n")
-        self.run_button = vp.button(text="Pause", bind=lambda _: put(("toggle",)))
+        self.run_button = vp.button(text="Pause", bind=lambda _: put(RunOrPause()))
         caption("  ")
-        vp.button(text="Step", bind=lambda _: put(("step",)))
+        vp.button(text="Step", bind=lambda _: put(Step()))
         caption("  ")
-        vp.button(text="Reset", bind=lambda _: put(("reset",)))
+        vp.button(text="Reset", bind=lambda _: put(Reset()))
         caption("    integrator ")
         if integrators:
             vp.wtext(text="<i>" + ", ".join(integrators) + "</i> (one per mass)")
         else:
             vp.menu(choices=list(INTEGRATORS), selected=integrator,
-                    bind=lambda menu: put(("integrator", menu.selected)))
+                    bind=lambda menu: put(ChooseIntegrator(menu.selected)))
         caption("    speed ")
-        vp.menu(choices=list(SPEEDS), selected=speed, bind=lambda menu: put(("speed", menu.selected)))
+        vp.menu(choices=list(SPEEDS), selected=speed, bind=lambda menu: put(ChooseSpeed(menu.selected)))
         caption("\n\nscene ")
         self.scene_menu = vp.menu(choices=scene_menu_choices(), selected=setup.name,
-                                  bind=lambda menu: put(("scene", menu.selected)))
+                                  bind=lambda menu: put(ChooseScene(menu.selected)))
         caption("    preset ")
         labels = [label for label, _ in catalog.presets(setup)]
         self.preset_menu = None
         if labels:
             self.preset_menu = vp.menu(choices=[PRESET_PROMPT] + labels, selected=preset or PRESET_PROMPT,
-                                       bind=lambda menu: put(("preset", menu.selected)))
+                                       bind=lambda menu: put(ChoosePreset(menu.selected)))
         else:
             vp.wtext(text="<i>none for this scene</i>")
         caption("    ")
-        vp.button(text="Download CSV", bind=lambda _: put(("csv",)))
+        vp.button(text="Download CSV", bind=lambda _: put(DownloadCsv()))
         caption(" ")
-        vp.button(text="Download program", bind=lambda _: put(("program",)))
+        vp.button(text="Download program", bind=lambda _: put(DownloadProgram()))
         caption(" ")
         self.download_text = vp.wtext(text="")
         caption("\n\nmeasured data ")
         if load_button:
             vp.wtext(text="").text = load_button  # set, not made with it: the setter runs its script
             caption(" ")
-        vp.button(text="Fit", bind=lambda _: put(("fit",)))
+        vp.button(text="Fit", bind=lambda _: put(FitData()))
         caption("\n")
         self.data_text = vp.wtext(text="")
         caption("\n")
@@ -131,11 +133,11 @@ class Controls:
             if values:   # the slider picks a place in the list of round values
                 self.sliders[name] = vp.slider(
                     min=0, max=len(values) - 1, step=1, value=values.index(float(setup.values[name])),
-                    length=320, bind=lambda s, name=name, values=values: put(("set", name, values[round(s.value)])))
+                    length=320, bind=lambda s, name=name, values=values: put(SetConstant(name, values[round(s.value)])))
             else:
                 low, high, step = slider_range(name, float(setup.values[name]), defaults.get(name))
                 self.sliders[name] = vp.slider(min=low, max=high, step=step, value=setup.values[name],
-                                               length=320, bind=lambda s, name=name: put(("set", name, s.value)))
+                                               length=320, bind=lambda s, name=name: put(SetConstant(name, s.value)))
             self.slider_texts[name] = vp.wtext(text="")
         if self.sliders:
             vp.wtext(text="").text = PRIME_SLIDERS  # set, not made with it: the setter runs scripts
@@ -146,8 +148,8 @@ class Controls:
                 "the run from t = 0; Reset returns to the start; "
                 "Step advances one Δt.</i>\n")
 
-    def clicks(self) -> list[tuple]:
-        """The commands queued by clicks since the last call, oldest first."""
+    def clicks(self) -> list:
+        """The messages queued by clicks since the last call (browser/messages.py), oldest first."""
         pending = []
         while True:
             try:
@@ -191,12 +193,14 @@ class Controls:
         self.notice = text
         self.status_text.text = text
 
-    def choice_refused(self, kind: str, scene: str, preset: str | None = None) -> None:
-        """A scene or preset chosen in a menu could not be used: the menu goes back to what runs
-        (the scene, and the preset whose constants run, or the prompt if none)."""
-        if kind == "scene":
-            self.scene_menu.selected = scene
-        elif self.preset_menu is not None:
+    def show_scene(self, scene: str) -> None:
+        """A scene chosen in the menu could not be used: the menu goes back to the scene that runs."""
+        self.scene_menu.selected = scene
+
+    def show_preset(self, preset: str | None) -> None:
+        """A preset chosen in the menu could not be used: the menu goes back to the preset whose
+        constants run, or to its prompt if none does."""
+        if self.preset_menu is not None:
             self.preset_menu.selected = preset or PRESET_PROMPT
 
     def preset_left(self) -> None:

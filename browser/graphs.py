@@ -20,6 +20,7 @@ import io
 import math
 import time
 from collections import deque
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -42,6 +43,33 @@ GRAPH_SIZE = (580, 290)   # px
 NARROW_GRAPH_WIDTH = 440  # px: three graphs side by side fit a 1400-px window (a projector's 1440 × 900)
 GRAPH_CANVAS_HEIGHT = GRAPH_SIZE[1] + 26  # px: vpython adds room for the title; flot spaces ticks by this
 LIVE_EVERY = 0.5          # s of wall time between redraws of a scene graph's live dots
+HELD = ("position", "exact")   # the kinds of curve a time axis held over measured points keeps whole
+
+
+@dataclass(frozen=True)
+class Series:
+    """What one curve of the graphs plots, one value per sample:
+
+    kind   "position": coordinate `axis` (0, 1, 2 for x, y, z) of mass `mass`, m;
+           "exact": the same from the closed form; "error": log₁₀ of the largest |x − x_exact| of
+           that mass over the last period (browser/error_envelope.py);
+           "energy": the system's energy `key` (K, U, E or E_minus_W_nc), J;
+           "mass_energy": mass `mass`'s own E = K + U, J
+    """
+
+    kind: str
+    mass: int | None = None
+    axis: int | None = None
+    key: str | None = None
+
+
+@dataclass
+class Curve:
+    """One curve on the page: its vpython gcurve (line), the points it keeps (trace), what it plots."""
+
+    line: object
+    trace: Trace
+    series: Series
 
 
 class Graphs:
@@ -61,7 +89,7 @@ class Graphs:
         self.position_fit = AxisFit(pixels=GRAPH_CANVAS_HEIGHT)
         self.energy_fit = AxisFit(pixels=GRAPH_CANVAS_HEIGHT)
         self.recorded: deque = deque()  # the samples the graphs show, for Download CSV
-        self.curves = []  # (gcurve, Trace, what it plots)
+        self.curves: list[Curve] = []  # every curve of the graphs, and what it plots
         self.colours = mass_colours(model, view)  # each mass's, as in the 3-D view
         # the masses the position graph shows (VIEW["graphed"]: resonance's few chosen springs)
         self.graphed = list(view["graphed"](model)) if view.get("graphed") else list(range(model.state.count))
@@ -152,7 +180,7 @@ class Graphs:
                 name = "xyz"[axis] + (f" {label}" if many or len(self.axes) > 1 else " (simulation)")
                 name = name if legend else ""
                 colour = vp.vector(*shade(self.colours[i], self.axes.index(axis)))
-                self._curve(graph, name, colour, ("r", i, axis),
+                self._curve(graph, name, colour, Series("position", mass=i, axis=axis),
                             width=simulation_width(n, count, crowded=not legend))
         return graph
 
@@ -163,7 +191,7 @@ class Graphs:
             for axis in self.axes:
                 # one legend entry for all the exact curves: they share a colour
                 name = f"{'xyz'[axis]} exact" if n == 0 and legend else ""
-                self._curve(self.position_graph, name, self.vp.vector(*EXACT_COLOUR), ("exact", i, axis),
+                self._curve(self.position_graph, name, self.vp.vector(*EXACT_COLOUR), Series("exact", mass=i, axis=axis),
                             width=EXACT_WIDTH)
 
     def _build_error_graph(self, model):
@@ -182,7 +210,7 @@ class Graphs:
                          ytitle=f"log₁₀ of the largest |{name} − {name}_exact| over a period (m)", width=width, height=height, align="left",
                          fast=True, xmin=0, xmax=self.error_span)
         for n, i in enumerate(self.graphed):
-            self._curve(graph, model.labels[i], vp.vector(*self.colours[i]), ("error", i, self.axes[0]),
+            self._curve(graph, model.labels[i], vp.vector(*self.colours[i]), Series("error", mass=i, axis=self.axes[0]),
                         width=3, span=self.error_span)
         return graph
 
@@ -202,18 +230,18 @@ class Graphs:
         if self.per_mass_energy:
             for i, label in enumerate(model.labels):
                 # half the position curves' widths: an energy that wobbles fast would fill a band
-                self._curve(graph, f"E {label}", vp.vector(*self.colours[i]), ("mass_energy", i),
+                self._curve(graph, f"E {label}", vp.vector(*self.colours[i]), Series("mass_energy", mass=i),
                             width=simulation_width(i, model.state.count) / 2)
         else:
             for key, colour in ENERGY_COLOURS.items():
                 # E − W_nc comes last and thinner, so it shows on top of E when no work is done
                 label = energy_label(key, from_rest=bool(self.energy_offset))
-                self._curve(graph, label, vp.vector(*colour), ("energy", key), width=4 if key == "E" else 2)
+                self._curve(graph, label, vp.vector(*colour), Series("energy", key=key), width=4 if key == "E" else 2)
         return graph
 
-    def _curve(self, graph, label, colour, what, *, width, span=None) -> None:
-        curve = self.vp.gcurve(graph=graph, label=label, color=colour, width=width)
-        self.curves.append((curve, Trace(span=span or self.span), what))
+    def _curve(self, graph, label, colour, series: Series, *, width, span=None) -> None:
+        line = self.vp.gcurve(graph=graph, label=label, color=colour, width=width)
+        self.curves.append(Curve(line=line, trace=Trace(span=span or self.span), series=series))
 
     # ---- a new run ----
 
@@ -237,8 +265,8 @@ class Graphs:
             envelope.clear()
         if self.data_values:
             _fit(self.position_graph, self.position_fit, self.data_values)
-        for _, trace, _ in self.curves:
-            trace.clear()
+        for curve in self.curves:
+            curve.trace.clear()
         self.recorded.clear()
         for graph in (self.position_graph, self.energy_graph):
             graph.xmin, graph.xmax = time_axis(0.0, span=self.span, dt=self.spacing, pixels=self.size[0])
@@ -269,9 +297,9 @@ class Graphs:
             replace_points(self.data_dots, points)
         self.data_values = [y for _, y in points]
         self.held = data_window(points, dt=self.spacing, pixels=self.size[0])
-        for _, trace, what in self.curves:   # a held curve keeps every point in the window
-            if what[0] in ("r", "exact"):
-                trace.span = max(self.span, self.held[1] - self.held[0]) if self.held else self.span
+        for curve in self.curves:   # a held curve keeps every point in the window
+            if curve.series.kind in HELD:
+                curve.trace.span = max(self.span, self.held[1] - self.held[0]) if self.held else self.span
         if points:
             _fit(self.position_graph, self.position_fit, self.data_values)
 
@@ -294,31 +322,34 @@ class Graphs:
         exact = live.model.exact_where_valid(t)[0] if (self.show_exact and len(t)) else None
         energies = self._energies(samples, live)
         errors_shown = []
-        for curve, trace, what in self.curves:
-            if what[0] == "r":
-                values = r[:, what[1], what[2]]
-            elif what[0] in ("exact", "error"):
+        for curve in self.curves:
+            series = curve.series
+            if series.kind == "position":
+                values = r[:, series.mass, series.axis]
+            elif series.kind in ("exact", "error"):
                 if exact is None:
                     values = np.zeros(0)
-                elif what[0] == "exact":
-                    values = exact[:, what[1], what[2]]
+                elif series.kind == "exact":
+                    values = exact[:, series.mass, series.axis]
                 else:   # the error's envelope: its largest size over the last period (error_envelope.py)
-                    values = [self.error_windows[what[1]].add(float(a), float(b)) for a, b in
-                              zip(t, r[:, what[1], what[2]] - exact[:, what[1], what[2]])]
+                    values = [self.error_windows[series.mass].add(float(a), float(b)) for a, b in
+                              zip(t, r[:, series.mass, series.axis] - exact[:, series.mass, series.axis])]
+            elif series.kind == "mass_energy":
+                values = energies[series.mass]
             else:
-                values = energies[what[1]]
+                values = energies[series.key]
             points = [[float(a), float(b)] for a, b in zip(t, values) if math.isfinite(b)
-                      and not (self.held and what[0] in ("r", "exact") and a > self.held[1])]
-            if what[0] in ("r", "mass_energy", "error") and what[1] in live.runaways:
-                frozen = live.runaways[what[1]][0]  # the curve ends where the mass ran away
+                      and not (self.held and series.kind in HELD and a > self.held[1])]
+            if series.kind in ("position", "mass_energy", "error") and series.mass in live.runaways:
+                frozen = live.runaways[series.mass][0]  # the curve ends where the mass ran away
                 points = [point for point in points if point[0] <= frozen]
-            if what[0] == "error":   # the axis: errors over a whole period (euler's too: its climb is the
-                whole = self.error_windows[what[1]].period      # lesson); the first period's, from 0 m, ran
+            if series.kind == "error":   # the axis: errors over a whole period (euler's too: its climb is the
+                whole = self.error_windows[series.mass].period      # lesson); the first period's, from 0 m, ran
                 errors_shown += [value for at, value in points if at >= whole]   # to 1e-7 m and squashed them
-            if trace.add(points) or redraw:
-                replace_points(curve, list(trace.points))
+            if curve.trace.add(points) or redraw:
+                replace_points(curve.line, list(curve.trace.points))
             elif points:
-                curve.plot(points)
+                curve.line.plot(points)
         if exact is not None and np.isfinite(exact[..., self.axes]).any():
             # the exact motion, and the simulated points near it (within the exact span again), so
             # a few Steps after Reset show on the axis while a run that strays far runs off it

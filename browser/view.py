@@ -7,9 +7,9 @@ The page has three parts, each built by its constructor from the scene's model a
     browser/controls.py  buttons, menus, sliders and captions, and the queue of their clicks
 
 :class:`SceneView` here owns the run (browser/clock.py's LiveRun, RealTimeClock and StepBudget):
-once per frame it carries out the clicks, asks the engine for the steps real time says are due,
-and tells the parts to draw. A scene's VIEW dict names what to draw (the keys and their defaults:
-scenes/_view.py's DEFAULT_VIEW). What the page does for the teacher is in README.md.
+once per frame it carries out the clicks (browser/messages.py, one handler each), asks the engine
+for the steps real time says are due, and tells the parts to draw. A scene's VIEW dict names what
+to draw (the keys and their defaults: scenes/_view.py's DEFAULT_VIEW). What the page does for the teacher is in README.md.
 
 Closing the tab, or Ctrl-C, makes vpython raise SystemExit(0) in this (main) thread. Closing the
 tab ends the program with status 0; show() turns a Ctrl-C into KeyboardInterrupt, which the
@@ -17,6 +17,7 @@ command line reports with status 130.
 """
 from __future__ import annotations
 
+import functools
 import sys
 import time
 
@@ -33,6 +34,8 @@ from .controls import (PRESET_PROMPT, SPEEDS, Controls, constants_text, csv_href
 from .arrows3d import MomentumArrows
 from .data_panel import MeasuredData, load_button_html
 from .graphs import SAMPLE_EVERY, Graphs, csv_text
+from .messages import (Batch, ChooseIntegrator, ChoosePreset, ChooseScene, ChooseSpeed, DownloadCsv,
+                       DownloadProgram, FitData, Reset, RunOrPause, SetConstant, ShowArrows, Step)
 from .page_layout import PROJECTOR_BUTTON, page_head
 from .scene3d import Scene3D
 
@@ -241,62 +244,107 @@ class SceneView:
         return max(0.002, 1.0 / FRAME_RATE - (time.perf_counter() - start))
 
     def _apply_commands(self, *, now: float) -> bool:
-        """Carry out the clicks queued by the page (they arrive on vpython's server thread).
+        """Carry out the messages queued by the page's clicks (they arrive on vpython's server
+        thread; browser/messages.py), each by its handler below.
 
         They take effect in the order they were made, as if each came in a frame of its own: an
         integrator or a slider value chosen just before a preset still holds after it (a preset
-        changes only its own constants). A new scene or preset builds new controls; the clicks
+        changes only its own constants). A new scene or preset builds new controls; the messages
         after it in this batch were made on the old ones, so they are dropped.
         """
         pending = self.controls.clicks()
-        changes, integrator = {}, None
-        for command in pending:
-            kind = command[0]
-            if kind == "toggle":
-                self.running = not self.running
-                self.arrows.end_step()
-                self.controls.step_text.text = ""
-            elif kind == "step":
-                self.running = False
-                self._step()
-            elif kind == "arrows":
-                self.arrows.set_shown(command[1], bool(command[2]))
-            elif kind == "reset":
-                self._reset()
-                self.clock.restart(now=now)
-            elif kind == "speed":
-                self.speed = command[1] if command[1] in SPEEDS else "1×"
-                self.clock.speed = SPEEDS[self.speed]
-            elif kind == "integrator":
-                integrator = command[1]
-            elif kind == "set" and command[2] != self.setup.values.get(command[1]):
-                changes[command[1]] = float(command[2])
-            elif kind == "csv":
-                self._offer_csv()
-            elif kind == "program":
-                self._offer_program()
-            elif kind == "fit":
-                self._fit()
-            elif kind in ("preset", "scene"):
-                try:
-                    if kind == "preset" and command[1] != PRESET_PROMPT:
-                        setup, preset = self.setup.with_values(**changes).with_preset(command[1]), command[1]
-                    elif kind == "scene" and command[1] != self.setup.name:
-                        setup, preset = catalog.configure(command[1]), None
-                    else:
-                        continue
-                except ValueError as problem:  # a scene file a teacher broke: say so, keep this one
-                    self.controls.say(f"<b>Cannot open that:</b> {problem}")
-                    self.controls.choice_refused(kind, self.setup.name, self.preset)
-                    continue
-                self.integrator = integrator or self.integrator
-                changes, integrator = {}, None
-                if self._switch(setup, preset=preset):
-                    break
-                self.controls.choice_refused(kind, self.setup.name, self.preset)
-        if changes or integrator:
-            self._rebuild(changes=changes, integrator=integrator or self.integrator)
+        batch = Batch(now=now)
+        for message in pending:
+            self.carry_out(message, batch)
+            if batch.page_built:
+                break
+        if batch.changes or batch.integrator:
+            self._rebuild(changes=batch.changes, integrator=batch.integrator or self.integrator)
         return bool(pending)
+
+    # ---- one handler per message (browser/messages.py) ----
+
+    @functools.singledispatchmethod
+    def carry_out(self, message, batch: Batch) -> None:
+        """Do what one message asks, now or (constants, the integrator) once the batch is done."""
+        raise TypeError(f"the page has no handler for {message!r}")
+
+    @carry_out.register
+    def _run_or_pause(self, message: RunOrPause, batch: Batch) -> None:
+        self.running = not self.running
+        self.arrows.end_step()
+        self.controls.step_text.text = ""
+
+    @carry_out.register
+    def _step_once(self, message: Step, batch: Batch) -> None:
+        self.running = False
+        self._step()
+
+    @carry_out.register
+    def _show_arrows(self, message: ShowArrows, batch: Batch) -> None:
+        self.arrows.set_shown(message.kind, bool(message.shown))
+
+    @carry_out.register
+    def _reset_run(self, message: Reset, batch: Batch) -> None:
+        self._reset()
+        self.clock.restart(now=batch.now)
+
+    @carry_out.register
+    def _choose_speed(self, message: ChooseSpeed, batch: Batch) -> None:
+        self.speed = message.label if message.label in SPEEDS else "1×"
+        self.clock.speed = SPEEDS[self.speed]
+
+    @carry_out.register
+    def _choose_integrator(self, message: ChooseIntegrator, batch: Batch) -> None:
+        batch.integrator = message.name
+
+    @carry_out.register
+    def _set_constant(self, message: SetConstant, batch: Batch) -> None:
+        if message.value != self.setup.values.get(message.name):
+            batch.changes[message.name] = float(message.value)
+
+    @carry_out.register
+    def _download_csv(self, message: DownloadCsv, batch: Batch) -> None:
+        self._offer_csv()
+
+    @carry_out.register
+    def _download_program(self, message: DownloadProgram, batch: Batch) -> None:
+        self._offer_program()
+
+    @carry_out.register
+    def _fit_data(self, message: FitData, batch: Batch) -> None:
+        self._fit()
+
+    @carry_out.register
+    def _choose_preset(self, message: ChoosePreset, batch: Batch) -> None:
+        if message.label == PRESET_PROMPT:
+            return
+        self._choose(lambda: self.setup.with_values(**batch.changes).with_preset(message.label),
+                     preset=message.label, batch=batch,
+                     refused=lambda: self.controls.show_preset(self.preset))
+
+    @carry_out.register
+    def _choose_scene(self, message: ChooseScene, batch: Batch) -> None:
+        if message.name == self.setup.name:
+            return
+        self._choose(lambda: catalog.configure(message.name), preset=None, batch=batch,
+                     refused=lambda: self.controls.show_scene(self.setup.name))
+
+    def _choose(self, configure, *, preset: str | None, batch: Batch, refused) -> None:
+        """A scene or preset from a menu: configure() gives its setup, built anew from t = 0 with
+        the integrator chosen in this batch; refused() puts the menu back where it cannot be."""
+        try:
+            setup = configure()
+        except ValueError as problem:  # a scene file a teacher broke: say so, keep this one
+            self.controls.say(f"<b>Cannot open that:</b> {problem}")
+            refused()
+            return
+        self.integrator = batch.integrator or self.integrator
+        batch.changes, batch.integrator = {}, None
+        if self._switch(setup, preset=preset):
+            batch.page_built = True
+        else:
+            refused()
 
     def _switch(self, setup, *, preset: str | None = None) -> bool:
         """Another scene, or new values from a preset: build the page again, from t = 0.
@@ -380,7 +428,7 @@ class SceneView:
         upload = self.server.uploaded() if hasattr(self.server, "uploaded") else None
         if upload is None:
             return False
-        self.data.load(upload[1], upload[0], self.setup, self.integrator)   # on a thread
+        self.data.load(upload.raw, upload.name, self.setup, self.integrator)   # on a thread
         self.fresh_file = True      # once read, the run restarts (_data_answered)
         self._show_data()
         return True

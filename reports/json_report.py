@@ -20,9 +20,10 @@ from export.numbers import clean_time
 from export.step_update import cleaned
 
 from .headless import Result
+from .periods import period_json, periods
 
 UNITS = {"t": "s", "dt": "s", "r": "m", "v": "m/s", "p": "kg·m/s", "F_net": "N", "energy": "J",
-         "exact_valid_until": "s"}
+         "exact_valid_until": "s", "period": "s"}
 
 
 def integrator_json(methods):
@@ -44,7 +45,8 @@ def as_json(result: Result) -> dict:
     closed form at the final time and the size of the error, where a closed form exists. Where
     it stopped holding before the final time, "exact" is left out and "exact_note" says why, with
     "exact_valid_until" the time it stopped holding, s (null, with a line in "notes", where it
-    holds to the end or there is no closed form). F_net is the net force at the final time. In a row each mass is judged on its own:
+    holds to the end or there is no closed form). F_net is the net force at the final time.
+    "period" is the period measured from the motion and the formula's (reports/periods.py). In a row each mass is judged on its own:
     a body whose closed form stopped holding has no "exact" but its own "exact_note" and
     "exact_valid_until", and the top-level ones count such masses and give the first time. A scene
     may add its own keys with a function extra_json(result) -> dict (scenes/_hooks.py).
@@ -71,6 +73,7 @@ def as_json(result: Result) -> dict:
     final_energy = traj.energy_at([-1])            # the last sample's alone, not the whole run's
     if final_energy is not None:
         out["energy"] = {key: float(values[0]) for key, values in final_energy.items()}
+    _periods(out, result)
     out["constants"] = {name: {"value": _plain(setup.values[name]), "unit": c.unit, "meaning": c.meaning}
                         for name, c in setup.constants.items()}
     out["units"] = UNITS
@@ -82,7 +85,27 @@ def as_json(result: Result) -> dict:
     return out
 
 
-_CLEANED = ("r", "p", "v", "F_net", "bodies")   # the keys as_json's own steps give to 15 digits already
+_CLEANED = ("r", "p", "v", "F_net", "bodies")
+
+
+def _periods(out: dict, result: Result) -> None:
+    """"period": {"measured", "spread", "cycles", "formula"} (s, s, count, s or null) for one
+    mass, null with a note where the motion gives none; several masses: each body's own."""
+    reports = periods(result)
+    if len(reports) == 1:
+        out["period"] = period_json(reports[0])
+        if out["period"] is None:
+            out.setdefault("notes", []).append(f"period: null, {reports[0].measured_note}")
+        elif reports[0].formula is None:
+            out.setdefault("notes", []).append(f"period.formula: null, {reports[0].formula_note}")
+        return
+    out["period"] = None
+    out.setdefault("notes", []).append("period: null, the scene has several masses: each body has its own")
+    for body, report in zip(out["bodies"], reports):
+        body["period"] = None if period_json(report) is None else cleaned(period_json(report))
+        note = report.measured_note if report.measured is None else report.formula_note if report.formula is None else ""
+        if note:
+            body["period_note"] = note   # the keys as_json's own steps give to 15 digits already
 
 
 def _final_state(result: Result) -> dict:
