@@ -253,6 +253,8 @@ window.offlineProgram = function (compiled, rate, GSprint, offline_page, canvas,
         run.last = pos.map(function (r, i) { return {r: vec(r), p: vec(p[i])}; });
         run.graph = window.graph.get_selected();
         showArrows(run);
+        drawEquilibrium(run);
+        showMeasured(run);
       },
       stepped: function (i, n, m, F, p, r) {
         if (run !== current) return;
@@ -304,6 +306,43 @@ window.offlineProgram = function (compiled, rate, GSprint, offline_page, canvas,
   function retire(run) {           // the replaced run's canvas stops drawing and leaves the page
     try { if (run.scene) { run.scene.visible = false; run.scene.remove(); } } catch (e) { /* already gone */ }
     if (run.box) run.box.remove();
+  }
+
+  // ---- the equilibrium and the period: the file's own set-up's, from the physics the local page
+  // uses (export/offline_page.py's measured), shown while that set-up runs ----
+
+  function ownSetUp(run) {
+    return run.setup.integrator === DATA.integrator && Object.keys(DATA.constants).every(function (name) {
+      return run.setup.values[name] === DATA.constants[name].written;
+    });
+  }
+
+  function drawEquilibrium(run) {   // a thin line across each mass's equilibrium, the first one named
+    var lesson = DATA.measured, centres = lesson.equilibrium;
+    run.equilibrium = [];
+    if (!centres || !ownSetUp(run)) return;
+    var r = lesson.radius, across = lesson.axis === 1 ? [1, 0, 0] : [0, 1, 0];
+    centres.slice(0, DATA.step.masses).forEach(function (c, i) {
+      var size = across.map(function (a) { return a ? 5 * r : 0.08 * r; });
+      var at = window.vector(c[0], c[1], c[2]);
+      run.equilibrium.push(window.box({pos: at, size: window.vector(size[0], size[1], 0.08 * r),
+                                       color: window.vector(0.8, 0.8, 0.8)}));
+      if (i === 0) run.equilibrium.push(window.label({pos: at.add(window.vector(2.5 * r * across[0], 2.5 * r * across[1], 0)),
+        text: "equilibrium", height: 18, color: window.vector(0.8, 0.8, 0.8), box: false, line: false,
+        xoffset: 12, yoffset: 0, align: "left"}));
+    });
+    showMeasured(run);
+  }
+
+  function showMeasured(run) {
+    var own = ownSetUp(run), lines = DATA.measured.period;
+    var equilibriumOn = byId("show-equilibrium").checked, periodOn = byId("show-period").checked;
+    (run.equilibrium || []).forEach(function (object) { object.visible = equilibriumOn && own; });
+    byId("period").hidden = !(periodOn && own);
+    byId("period").textContent = "measured over the first " + pyG(DATA.measured.window, 6) + " s:\n" + lines.join("\n") +
+      (DATA.measured.formula_note ? "\nno formula: " + DATA.measured.formula_note : "");
+    byId("measure-note").textContent = (equilibriumOn || periodOn) && !own ?
+      "shown for the file's own set-up only; write a file with these constants (Copy link, or --set) to see them" : "";
   }
 
   // ---- the Step read-out: export/step_update.py's layout, filled with the program's numbers ----
@@ -422,6 +461,9 @@ window.offlineProgram = function (compiled, rate, GSprint, offline_page, canvas,
       });
     });
     byId("speed").addEventListener("change", function (e) { setSpeed(DATA.speeds[e.target.value]); e.target.blur(); });
+    ["show-equilibrium", "show-period"].forEach(function (id) {
+      byId(id).addEventListener("change", function () { if (current) showMeasured(current); });
+    });
     byId("projector").addEventListener("change", function (e) {
       document.body.classList.toggle("projector", e.target.checked);
       if (current) sizeView(current);

@@ -32,7 +32,13 @@ import json
 import os
 from dataclasses import dataclass
 
+import numpy as np
+
+from physics.equilibrium import equilibrium
 from physics.integrators import INTEGRATORS
+from physics.period import formula_period, measured_period, record_spacing, why_no_period
+from physics.recording import steps_to_reach
+from physics.simulate import BlowUpError, every, trajectory
 from scenes import DECLARED
 from scenes._sliders import round_slider_values, slider_names, slider_range, symbol
 from scenes._view import DEFAULT_VIEW
@@ -42,7 +48,7 @@ from .arrows import ARROW_LABELS, ARROWS, SEE_THROUGH, choose_scales
 from .framing import frame
 from .lines import ProgramError
 from .program_command import description
-from .step_update import step_layout
+from .step_update import number, step_layout
 from .vpython_program import program
 
 HERE = os.path.dirname(os.path.abspath(__file__))
@@ -151,6 +157,45 @@ def settable(setup, *, integrator=None, view: dict) -> list[Settable]:
     return found
 
 
+def measured(model, *, view: dict, integrator: str | None) -> dict:
+    """The period and the equilibrium of the file's own set-up, worked out by the physics the local
+    page uses (physics/period.py, physics/equilibrium.py): each mass's equilibrium, m, and a line
+    per mass (at most STEP_MASSES) giving its period measured over the page's window (upward
+    crossings of the equilibrium along the graphed axis) beside 2π/ω_d, or why there is none."""
+    centre = equilibrium(model.forces, model.state)
+    axis = "xyz".index(view["plot"][0])
+    covered = False if model.exact is None else np.isfinite(model.exact_where_valid([0.0])[0][0]).all(axis=-1)
+    formula, formula_why = formula_period(model.forces, model.state, closed_form=covered)
+    end = max(view["window"], model.until)
+    spacing = record_spacing(model.forces, model.state.m, model.dt)
+    traj, why = None, ""
+    if centre is None or spacing is None:
+        why = "nothing pulls the mass back to an equilibrium, so the motion does not repeat"
+    else:
+        engine = model.simulation(integrator)
+        try:
+            samples = engine.advance(steps_to_reach(end - model.state.t, model.dt),
+                                     record=every(max(1, int(spacing / model.dt))))
+            traj = trajectory(engine, samples, with_energy=False)
+        except BlowUpError as problem:
+            why = f"the run blew up ({problem})"
+    lines = []
+    for i in range(min(model.state.count, STEP_MASSES)):
+        head = f"{model.labels[i]}: " if model.state.count > 1 else ""
+        if traj is not None:
+            x = traj.r[:, i, axis]
+            found = measured_period(traj.t, x, centre=float(centre[i, axis]))
+            said = (f"T = {number(found.measured)} ± {number(found.spread, 2)} s over {found.cycles} cycles"
+                    if found is not None else "no period: " + why_no_period(traj.t, x, centre=float(centre[i, axis])))
+        else:
+            said = "no period: " + why
+        if formula is not None and np.isfinite(formula[i]):
+            said += f"; 2π/ω_d = {number(formula[i])} s"
+        lines.append(head + said)
+    return {"equilibrium": None if centre is None else centre.tolist(), "axis": axis,
+            "period": lines, "window": end, "formula_note": formula_why if formula is None else ""}
+
+
 def sliders(setup, view: dict, offered: dict[str, Settable]) -> dict[str, dict]:
     """The page's sliders: the local page's (scenes/_sliders.py), for the constants this file can change."""
     made = {}
@@ -202,6 +247,8 @@ def page(setup, *, integrator: str | None = None, arrows=None, end: float | None
         "camera": {"centre": [float(x) for x in framed.camera.centre], "range": float(reach),
                    "pitch": float(framed.camera.pitch), "fov": FOV},
         "speeds": SPEEDS,
+        "measured": {**measured(model, view=view, integrator=None if fixed else first),
+                     "radius": float(framed.radius)},
         "step": {"layouts": {name: dict(zip(("lines", "drift"), step_layout(name))) for name in methods},
                  "kicks_once": {name: INTEGRATORS[name].kicks_once for name in methods},
                  "labels": list(model.labels), "masses": STEP_MASSES},
@@ -262,6 +309,9 @@ This file holds GlowScript 3.2 and the libraries bundled in it, each under its o
 <p id="status" class="status" role="status"></p>
 <div class="arrows">arrows: {arrows}<br><span class="legend">{html.escape(data["arrows"]["legend"])}</span></div>
 {slider_rows}
+<div class="measure"><label><input type="checkbox" id="show-equilibrium"> equilibrium</label>
+<label><input type="checkbox" id="show-period"> period</label>
+<span id="measure-note" class="note"></span><pre id="period" class="period" hidden></pre></div>
 <p class="hint">Moving a slider restarts the run from t = 0. Keys: Space run/pause, → step, R reset,
 + and − speed.
 <label><input type="checkbox" id="projector"> projector</label></p>
@@ -278,6 +328,30 @@ This file holds GlowScript 3.2 and the libraries bundled in it, each under its o
 </body>
 </html>
 """
+
+
+def link_fragment(setup, integrator: str | None = None) -> str:
+    """The address fragment of a set-up, in `--set`'s grammar: each constant that differs from
+    the scene's own value, then the integrator where it is not the scene's (`k=60&integrator=rk4`).
+    An offline page of the scene served over http(s) reads it from its address; '' for the scene
+    as shipped."""
+    parts = []
+    for name, constant in setup.constants.items():
+        value, shipped = setup.values[name], constant.value
+        if value is None or value == shipped:
+            continue
+        text = ",".join(_short(x) for x in value) if isinstance(value, (tuple, list)) else _short(value)
+        parts.append(f"{name}={text}")
+    model = setup.build()
+    if integrator is not None and model.integrators is None and integrator != model.methods()[0]:
+        parts.append(f"integrator={integrator}")
+    return "&".join(parts)
+
+
+def _short(x) -> str:
+    """A number as the address writes it: as short as reads back exactly (60, 0.05, 1e-07)."""
+    x = float(x)
+    return str(int(x)) if x.is_integer() and abs(x) < 1e15 else repr(x)
 
 
 def check_page_path(path: str, *, overwrite: bool = False) -> None:

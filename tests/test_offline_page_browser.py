@@ -368,3 +368,48 @@ def test_a_force_constant_set_to_0_keeps_its_line_and_gives_the_command_lines_an
         page.close()
     assert lines == [headless_answer("damped", "--set", "b=0")]
     assert "\nb = 0 " in program_text and "Fdamping = -b*v" in program_text
+
+
+# ---- the local page's two controls ----
+
+def test_the_local_page_downloads_its_set_up_as_an_offline_page_and_shows_its_link(chromium, tmp_path):
+    """The local page's Download offline page gives the file `--html` writes for the set-up on the
+    page (a preset and a slider applied), byte for byte, and its Copy link line carries that
+    set-up's fragment, which the offline file reads to the same answer."""
+    from test_browser import Program
+    program = Program("vertical", "--preset", "Moon gravity")
+    page = None
+    try:
+        url = program.url()
+        page = chromium.new_page(viewport={"width": 1280, "height": 800}, accept_downloads=True)
+        page.goto(url)
+        page.wait_for_selector("#sm-link")
+        page.wait_for_function("document.getElementById('sm-link').value === '#g=1.62'")
+        handle = page.locator(".ui-slider-handle").nth(1)        # k's slider: the keyboard moves it one step
+        handle.focus()
+        handle.press("ArrowRight")
+        page.wait_for_function("document.getElementById('sm-link').value.startsWith('#k=')")
+        link = page.input_value("#sm-link")
+        with page.expect_download() as download:
+            page.get_by_role("button", name="Download offline page").click()
+        downloaded = tmp_path / "downloaded.html"
+        download.value.save_as(downloaded)
+    finally:
+        if page is not None:
+            page.close()
+        program.stop()
+    k = re.match(r"#k=([^&]+)&g=1\.62$", link)
+    assert k, link
+    written = tmp_path / "written.html"
+    done = main_py("vertical", "--preset", "Moon gravity", "--set", f"k={k[1]}", "--html", str(written))
+    assert done.returncode == 0, done.stderr
+    assert downloaded.read_bytes() == written.read_bytes()
+    shipped = tmp_path / "shipped.html"
+    assert main_py("vertical", "--html", str(shipped)).returncode == 0
+    offline = Offline(chromium, shipped, link)
+    try:
+        lines = offline.answers(1)
+        status = offline.text("status")
+    finally:
+        offline.close()
+    assert status == "" and lines == [headless_answer("vertical", "--set", f"k={k[1]}", "--set", "g=1.62")]
