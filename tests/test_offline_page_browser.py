@@ -189,7 +189,7 @@ def test_pause_reset_and_step_write_out_the_update_as_the_local_page(scene, chro
         page.page.wait_for_function("document.getElementById('step').textContent.length > 0")
         page.page.click("#step-button")
         wait_state(page, "state.n === 2")
-        page.page.wait_for_function("document.getElementById('step').textContent.includes('t = ' + arguments[0] + ' s')",
+        page.page.wait_for_function("t => document.getElementById('step').textContent.includes('t = ' + t + ' s')",
                                     arg=number(2 * catalog.configure(scene).build().dt))
         step_text = page.text("step")
         time_text = page.text("time")
