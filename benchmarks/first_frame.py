@@ -27,13 +27,11 @@ import tempfile
 import time
 from pathlib import Path
 
-import numpy as np
-
 ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT / "tests"))
 sys.path.insert(0, str(ROOT))
 
-from browser_support import CHROMIUM, CHROMIUM_ARGS, free_port  # noqa: E402
+from browser_support import CHROMIUM, CHROMIUM_ARGS, free_port, shaded_like  # noqa: E402
 from export.palette import MASS_COLOURS  # noqa: E402
 
 TIMEOUT = 180.0   # s: a page that draws nothing by then counts as a failure
@@ -41,14 +39,7 @@ TIMEOUT = 180.0   # s: a page that draws nothing by then counts as a failure
 
 def drawn(image) -> bool:
     """Whether the first mass shows, in its colour, lit, shaded or seen through."""
-    target = np.array(MASS_COLOURS[0], dtype=float) * 255
-    count = 0
-    for n, rgb in image.getcolors(maxcolors=1 << 24):
-        pixel = np.array(rgb[:3], dtype=float)
-        scale = pixel @ target / (target @ target)
-        if 0.3 <= scale <= 1.1 and np.abs(pixel - scale * target).sum() <= 40:
-            count += n
-    return count > 30
+    return shaded_like(image, MASS_COLOURS[0]) > 30
 
 
 def first_frame(browser, url: str, *, only: str | None = None) -> float:

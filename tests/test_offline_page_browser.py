@@ -14,7 +14,7 @@ import re
 import numpy as np
 import pytest
 
-from browser_support import launched, require_browser, screenshot_folder
+from browser_support import launched, require_browser, screenshot_folder, shaded_like
 from test_export import main_py
 from test_handout import edge_values, headless_answer
 
@@ -128,18 +128,6 @@ def test_each_scene_runs_from_file_with_no_request_draws_and_prints_the_headless
         assert lines == [headless_answer(scene)]
     assert shaded_like(image, MASS_COLOURS[0]) > 30, "the first mass is not drawn in its colour"
 
-
-def shaded_like(image, colour) -> int:
-    """Pixels of `colour` lit or shaded, or seen through (the masses are see-through under arrows):
-    a multiple of it from a third to all of its brightness."""
-    target = np.array(colour, dtype=float) * 255
-    count = 0
-    for n, rgb in image.getcolors(maxcolors=1 << 24):
-        pixel = np.array(rgb[:3], dtype=float)
-        scale = pixel @ target / (target @ target)
-        if 0.3 <= scale <= 1.1 and np.abs(pixel - scale * target).sum() <= 40:
-            count += n
-    return count
 
 
 # ---- the lesson's controls ----
