@@ -262,8 +262,8 @@ def _check_until(args) -> None:
     if args.until is None:
         return
     if not headless_run(args) and not _programs(args):
-        raise UsageError("--until needs --headless, or --vpython or --webvpython (the program runs that "
-                         "long); the browser runs until you stop it")
+        raise UsageError("--until needs --headless, or --vpython or --webvpython or --html (the program runs "
+                         "that long); the browser runs until you stop it")
     try:
         check_value("until", args.until, "s")  # the same range as the scenes' own `until`
     except ConstantError as problem:
@@ -282,7 +282,7 @@ def _check_arrows(args) -> None:
     except ValueError as problem:
         raise UsageError(str(problem)) from None
     if headless_run(args) and not _programs(args):
-        raise UsageError("--arrows (and --no-arrows) is for the page and the program (--vpython, --webvpython), and a "
+        raise UsageError("--arrows (and --no-arrows) is for the page and the program (--vpython, --webvpython, --html), and a "
                          "headless run draws none; leave it out")
 
 
@@ -291,8 +291,8 @@ def _check_outputs(args) -> None:
     outputs = [(flag, getattr(args, attribute)) for flag, attribute in OUTPUT_FILES
                if getattr(args, attribute) not in (None, files.STDOUT)]
     if args.overwrite and not outputs:
-        raise UsageError("--overwrite does nothing without a file to write (--csv, --plot, --vpython or "
-                         "--webvpython); leave it out")
+        raise UsageError("--overwrite does nothing without a file to write (--csv, --plot, --vpython, "
+                         "--webvpython or --html); leave it out")
     for n, (flag, path) in enumerate(outputs):
         for other, other_path in outputs[n + 1:]:
             if files.same_file(path, other_path):
