@@ -31,6 +31,7 @@ ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT / "tests"))
 sys.path.insert(0, str(ROOT))
 
+from benchmarks.common import load_average  # noqa: E402
 from browser_support import CHROMIUM, CHROMIUM_ARGS, free_port, shaded_like  # noqa: E402
 from export.palette import MASS_COLOURS  # noqa: E402
 
@@ -113,7 +114,7 @@ def main(argv=None) -> int:
             browser.close()
     offline_s, local_s = statistics.median(times["offline"]), statistics.median(times["local"])
     print(f"first drawn frame, {args.scene}, median of {args.repeats} (headless Chromium, software WebGL, "
-          f"load {os.getloadavg()[0]:.1f}):")
+          f"load {load_average()}):")
     print(f"  offline page (file://): {offline_s:6.2f} s   runs: " + ", ".join(f"{t:.2f}" for t in times["offline"]))
     print(f"  local page (server):    {local_s:6.2f} s   runs: " + ", ".join(f"{t:.2f}" for t in times["local"]))
     print(f"  offline / local = {offline_s / local_s:.2f} (target: at most 1)")

@@ -110,8 +110,6 @@ class Controls:
         vp.button(text="Download offline page", bind=lambda _: put(DownloadOfflinePage()))
         caption(" ")
         self.download_text = vp.wtext(text="")
-        caption("\n")
-        self.link_text = vp.wtext(text="")   # the set-up's link for an offline page on a web site (show_link)
         caption("\n\nmeasured data ")
         if load_button:
             vp.wtext(text="").text = load_button  # set, not made with it: the setter runs its script
@@ -150,6 +148,8 @@ class Controls:
         vp.wtext(text="").text = PLAIN_TICKS  # every graph's tick labels in plain decimals (browser/axes.py)
         caption("\n\n")
         self.constants_text = vp.wtext(text="")
+        caption("\n")
+        self.link_text = vp.wtext(text="")   # the set-up's link, for its offline page on a web site (show_link)
         caption("\n<i>Moving a slider, choosing another integrator or a preset, or loading data restarts "
                 "the run from t = 0; Reset returns to the start; "
                 "Step advances one Δt.</i>\n")

@@ -167,15 +167,15 @@ def measured(model, *, view: dict, integrator: str | None) -> dict:
     covered = False if model.exact is None else np.isfinite(model.exact_where_valid([0.0])[0][0]).all(axis=-1)
     formula, formula_why = formula_period(model.forces, model.state, closed_form=covered)
     end = max(view["window"], model.until)
-    spacing = record_spacing(model.forces, model.state.m, model.dt)
+    every_s = record_spacing(model.forces, model.state.m, model.dt)   # s between samples
     traj, why = None, ""
-    if centre is None or spacing is None:
+    if centre is None or every_s is None:
         why = "nothing pulls the mass back to an equilibrium, so the motion does not repeat"
     else:
         engine = model.simulation(integrator)
         try:
             samples = engine.advance(steps_to_reach(end - model.state.t, model.dt),
-                                     record=every(max(1, int(spacing / model.dt))))
+                                     record=every(max(1, int(every_s / model.dt))))
             traj = trajectory(engine, samples, with_energy=False)
         except BlowUpError as problem:
             why = f"the run blew up ({problem})"
