@@ -179,7 +179,7 @@ class Controls:
         link_fragment), which an offline page of this scene on a web site reads from its address."""
         shown = html.escape("#" + fragment if fragment else "(the scene as shipped: no fragment)")
         self.link_text.text = (
-            f"link <input id='sm-link' readonly size='36' value='{shown}' style='font-family: monospace'> "
+            f"link <input id='sm-link' readonly tabindex='-1' size='36' value='{shown}' style='font-family: monospace'> "
             "<button id='sm-copy-link' type='button' onclick=\"var f = document.getElementById('sm-link');"
             " f.select(); if (navigator.clipboard) navigator.clipboard.writeText(f.value);\">Copy link</button>"
             " <i>add it to the address of this scene's offline page on a web site</i>")
