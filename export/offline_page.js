@@ -186,8 +186,9 @@ window.offlineProgram = function (compiled, rate, GSprint, offline_page, canvas,
 
   // What the program's rate(1/dt) is in one run: the page's clock. Simulated time runs at speed ×
   // wall time: a step not yet due waits; behind, the program steps on, letting the page draw every
-  // YIELD_MS (GlowScript's own rate waits for every drawing, so a slow graphics card slowed the
-  // physics down with it); more than LAG_S behind (a tab the browser froze), the clock slips
+  // YIELD_MS, or after as long as the last drawing took where that is longer, so the physics keeps
+  // at least half the time (GlowScript's own rate waits for every drawing, so a slow graphics card
+  // slowed the physics down with it); more than LAG_S behind (a tab the browser froze), the clock slips
   // instead of racing to catch up. Paused, it holds the program here until Run or Step; a replaced
   // run is held for good (its promise never settles, so that run ends here).
   var YIELD_MS = 30, LAG_S = 0.25;
@@ -211,8 +212,11 @@ window.offlineProgram = function (compiled, rate, GSprint, offline_page, canvas,
       clock.steps += 1;
       var due = (now - clock.wall) / 1000 * rate;
       if (due < clock.steps - 1) await wait((clock.steps - 1 - due) / rate * 1000);
-      else if (now - clock.drawn > YIELD_MS) await wait(0);
-      else return;
+      else if (now - clock.drawn > Math.max(YIELD_MS, clock.drawing || 0)) {
+        var asked = performance.now();
+        await wait(0);                 // the page draws: as long as it takes, the physics gets as long
+        clock.drawing = performance.now() - asked;
+      } else return;
       clock.drawn = performance.now();
       if ((clock.drawn - clock.wall) / 1000 * rate - clock.steps > LAG_S * rate)
         clock.wall = clock.drawn - clock.steps / rate * 1000;
