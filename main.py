@@ -125,7 +125,8 @@ def print_step_table(args, setup, model, warning) -> None:
 
 
 def write_programs(args, setup, model, *, warn: bool) -> None:
-    """--vpython FILE.py and --webvpython FILE.py: the scene as a program to hand out (export/).
+    """--vpython FILE.py, --webvpython FILE.py and --html FILE.html: the scene as a program to hand
+    out, and as an offline page (export/).
 
     Every program is made and every path checked before any file is written, so bad input leaves
     no file at all. With `warn`, a Δt the program's motion will grow or blow up at is said on
@@ -150,6 +151,13 @@ def write_programs(args, setup, model, *, warn: bool) -> None:
         for path, _ in texts:
             if path != "-":
                 export.check_path(path, overwrite=args.overwrite)
+        if args.html is not None:   # the offline page (export/offline_page.py), checked with the programs
+            from export import offline_page
+
+            if args.html != "-":
+                offline_page.check_page_path(args.html, overwrite=args.overwrite)
+            texts.append((args.html, offline_page.page(setup, integrator=args.integrator, arrows=args.arrows,
+                                                       end=args.until)))
         if args.vpython not in (None, "-") and os.path.basename(args.vpython).lower() in ("vpython.py", "vpython.pyw"):
             raise UsageError(f"a program called {os.path.basename(args.vpython)} cannot run: its "
                              f"`from vpython import *` would import the program itself instead of the vpython "
@@ -157,6 +165,9 @@ def write_programs(args, setup, model, *, warn: bool) -> None:
         for path, program_text in texts:
             if path == "-":
                 print(program_text, end="")
+            elif path == args.html:
+                offline_page.write_page(path, program_text, overwrite=args.overwrite)
+                print(f"wrote {path}", file=sys.stderr)
             else:
                 export.write_program(path, program_text, overwrite=args.overwrite)
                 print(f"wrote {one_line(path)}", file=sys.stderr)
@@ -191,7 +202,7 @@ def main(argv=None) -> int:
                        "--show-answer": measured.show_answer}[lab_command(args)]
             return run_lab(args, setup)
         runs_headless = headless_run(args)
-        if args.vpython is not None or args.webvpython is not None:
+        if args.vpython is not None or args.webvpython is not None or args.html is not None:
             write_programs(args, setup, model, warn=not runs_headless)   # then a headless run too, if asked
             if not runs_headless:
                 return 0

@@ -43,6 +43,8 @@ SEPARATE = {
     "python -m benchmarks.long_run": "part 5: a scene in headless Chromium for 10 min (--minutes, --scene, "
                                      "--set dt=0.0001, --source DIR): t shown against wall time, memory, "
                                      "CPU per wall second; see --help",
+    "python -m benchmarks.first_frame": "part 9: time to the first drawn frame, the offline page (--html, from "
+                                        "file://) against the local page, in one Chromium; and the file's size",
 }
 
 

@@ -7,6 +7,7 @@ page has its own queue, so a click on a control of a page already taken down is 
 """
 from __future__ import annotations
 
+import base64
 import html
 import queue
 from urllib.parse import quote
@@ -22,8 +23,8 @@ from .axes import PLAIN_TICKS
 from .graph_reading import GRAPH_READING
 from .measure_panel import MeasurePanel
 from .arrows3d import arrow_checkboxes
-from .messages import (ChooseIntegrator, ChoosePreset, ChooseScene, ChooseSpeed, DownloadCsv, DownloadProgram,
-                       FitData, Reset, RunOrPause, SetConstant, Step)
+from .messages import (ChooseIntegrator, ChoosePreset, ChooseScene, ChooseSpeed, DownloadCsv, DownloadOfflinePage,
+                       DownloadProgram, FitData, Reset, RunOrPause, SetConstant, Step)
 from .readout import units_kept
 
 SPEEDS = {"¼×": 0.25, "½×": 0.5, "1×": 1.0, "2×": 2.0, "4×": 4.0}
@@ -123,6 +124,8 @@ class Controls:
         caption(" ")
         vp.button(text="Download program", bind=lambda _: put(DownloadProgram()))
         caption(" ")
+        vp.button(text="Download offline page", bind=lambda _: put(DownloadOfflinePage()))
+        caption(" ")
         self.download_text = vp.wtext(text="")
         caption("\n\nmeasured data ")
         if load_button:
@@ -155,6 +158,8 @@ class Controls:
         vp.wtext(text="").text = GRAPH_READING  # a click reads a graph (browser/graph_reading.py)
         caption("\n\n")
         self.constants_text = vp.wtext(text="")
+        caption("\n")
+        self.link_text = vp.wtext(text="")   # the set-up's link, for its offline page on a web site (show_link)
         caption("\n<i>Moving a slider, choosing another integrator or a preset, or loading data restarts "
                 "the run from t = 0; Reset returns to the start; "
                 "Step advances one Δt.</i>\n")
@@ -178,6 +183,16 @@ class Controls:
             text.text = f"  {symbol(name)} = {format_value(setup.values[name], unit)}"
         self.download_text.text = ""
         self.notice = ""
+
+    def show_link(self, fragment: str) -> None:
+        """The Copy link line: the address fragment of the set-up running now (export/offline_page.py's
+        link_fragment), which an offline page of this scene on a web site reads from its address."""
+        shown = html.escape("#" + fragment if fragment else "(the scene as shipped: no fragment)")
+        self.link_text.text = (
+            f"link <input id='sm-link' readonly tabindex='-1' size='36' value='{shown}' style='font-family: monospace'> "
+            "<button id='sm-copy-link' type='button' onclick=\"var f = document.getElementById('sm-link');"
+            " f.select(); if (navigator.clipboard) navigator.clipboard.writeText(f.value);\">Copy link</button>"
+            " <i>add it to the address of this scene's offline page on a web site</i>")
 
     def show_time(self, t: float, *, decimals: int, running: bool, error: str) -> None:
         """The time (to `decimals` places), Run or Pause on the button, and the error readout."""
@@ -260,6 +275,11 @@ def csv_href(text: str) -> str:
 
 def program_href(text: str) -> str:
     return f"data:text/x-python;charset=utf-8,{quote(text)}"
+
+
+def page_href(text: str) -> str:
+    """An offline page (6 MB of mostly JavaScript) as a data: link, base64 (shorter than %-escapes)."""
+    return "data:text/html;charset=utf-8;base64," + base64.b64encode(text.encode("utf-8")).decode("ascii")
 
 
 def scene_menu_choices() -> list[str]:

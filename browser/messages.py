@@ -139,6 +139,12 @@ class DownloadProgram:
 
 
 @dataclass(frozen=True)
+class DownloadOfflinePage:
+    """Hand the scene, as chosen now, to the browser as one HTML file that runs offline
+    (export/offline_page.py: what `main.py SCENE --html FILE.html` writes)."""
+
+
+@dataclass(frozen=True)
 class FitData:
     """Fit the constants to the measured data loaded (browser/data_panel.py)."""
 

@@ -19,10 +19,13 @@ from __future__ import annotations
 
 import functools
 import sys
+import threading
 import time
 
 import numpy as np
 
+from export import offline_page
+from export.offline_page import link_fragment
 from export.step_update import step_lines, update_force
 from physics.period import CrossingMeter, formula_period
 
@@ -30,15 +33,15 @@ from scenes import catalog
 from scenes._view import DEFAULT_VIEW
 
 from .clock import LiveRun, RealTimeClock, StepBudget
-from .controls import (PRESET_PROMPT, SPEEDS, Controls, constants_text, csv_href, program_href,
+from .controls import (PRESET_PROMPT, SPEEDS, Controls, constants_text, csv_href, page_href, program_href,
                        scene_menu_choices, slider_names, slider_range, symbol, time_decimals)
 from .arrows3d import MomentumArrows
 from .data_panel import MeasuredData, load_button_html
 from .graphs import SAMPLE_EVERY, Graphs, csv_text
 from .measure_panel import period_text
 from .messages import (Batch, ChooseGraph, ChooseIntegrator, ChoosePreset, ChooseScene, ChooseSpeed, ClearStopwatch,
-                       DownloadCsv, DownloadProgram, FitData, LapStopwatch, MoveMarker, Reset, RunOrPause,
-                       SetConstant, ShowArrows, ShowLine, ShowPeriod, StartStopwatch, Step)
+                       DownloadCsv, DownloadOfflinePage, DownloadProgram, FitData, LapStopwatch, MoveMarker, Reset,
+                       RunOrPause, SetConstant, ShowArrows, ShowLine, ShowPeriod, StartStopwatch, Step)
 from .reference_lines import ReferenceLines
 from .stopwatch import Stopwatch
 from .page_layout import PROJECTOR_BUTTON, page_head
@@ -113,6 +116,7 @@ class SceneView:
         self.preset = preset   # the preset whose constants run now (None once a slider moved one)
         self.data = data or MeasuredData()
         self.fresh_file = False     # a file from Load data, not yet compared
+        self._page_writing = None   # the offline page being written on its thread (_offer_offline_page)
         self.live = LiveRun(model, integrator=integrator, sample_every=SAMPLE_EVERY)
         # the Measure panel's tools, kept across scenes as the arrows are (browser/measure_panel.py)
         self.stopwatch = Stopwatch()
@@ -187,6 +191,7 @@ class SceneView:
         self.clock.dt = self.live.model.dt
         self._reset()
         self.controls.show_constants(self.setup)
+        self.controls.show_link(link_fragment(self.setup, self.integrator))
         self.data.compare(self.setup, self.integrator)   # on a thread: the run starts at once
         self._show_data()
         self._draw()
@@ -270,6 +275,7 @@ class SceneView:
         changed = self._take_upload()
         changed = self._apply_commands(now=start) or changed
         changed = self._data_answered() or changed
+        changed = self._offline_page_written() or changed
         steps = self.clock.steps_due(now=start, running=self.running and not self.live.problem,
                                      quiet=self.server.seconds_since_contact(),
                                      max_steps=self.budget.max_steps)
@@ -349,6 +355,10 @@ class SceneView:
     @carry_out.register
     def _download_program(self, message: DownloadProgram, batch: Batch) -> None:
         self._offer_program()
+
+    @carry_out.register
+    def _download_offline_page(self, message: DownloadOfflinePage, batch: Batch) -> None:
+        self._offer_offline_page()
 
     @carry_out.register
     def _fit_data(self, message: FitData, batch: Batch) -> None:
@@ -583,6 +593,40 @@ class SceneView:
             return
         self.controls.offer(kind="program", name=f"{self.setup.name}.py", href=program_href(text),
                             note=f"a VPython program to hand out, {text.count(chr(10))} lines")
+
+
+    def _offer_offline_page(self) -> None:
+        """Hand the scene as chosen now (constants, integrator, preset, arrows) to the browser as the
+        offline page `main.py SCENE --html` writes (export/offline_page.py). Writing it takes a
+        second or more (it tries which constants the page may change), so it is written on a
+        thread of its own while the run goes on; _offline_page_written offers it."""
+        if self._page_writing is not None:
+            return
+        self.controls.offer_nothing("writing the offline page…")
+        setup, integrator, shown = self.setup, self.integrator, tuple(self.arrows.shown)
+        writing = self._page_writing = {"name": f"{setup.name}.html"}
+
+        def write():
+            try:
+                writing["text"] = offline_page.page(setup, integrator=integrator, arrows=shown)
+            except ValueError as problem:
+                writing["problem"] = str(problem)
+        writing["thread"] = threading.Thread(target=write, name="offline page", daemon=True)
+        writing["thread"].start()
+
+    def _offline_page_written(self) -> bool:
+        """Offer the offline page once its thread has written it (or say why there is none)."""
+        writing = self._page_writing
+        if writing is None or writing["thread"].is_alive():
+            return False
+        self._page_writing = None
+        if "text" not in writing:
+            self.controls.offer_nothing(f"no offline page: {writing.get('problem', 'it could not be written')}")
+            return True
+        text = writing["text"]
+        self.controls.offer(kind="page", name=writing["name"], href=page_href(text),
+                            note=f"one file that runs offline in any browser, {len(text.encode()) / 1e6:.1f} MB")
+        return True
 
 
 def _summary(module) -> str:

@@ -80,6 +80,9 @@ def build_parser() -> argparse.ArgumentParser:
                         help="write the scene as a standalone VPython program to hand out ('-': print it)")
     parser.add_argument("--webvpython", metavar="FILE.py",
                         help="the same program for Web VPython (glowscript.org, trinket)")
+    parser.add_argument("--html", metavar="FILE.html",
+                        help="the scene as one HTML file that runs offline in any browser (GlowScript inside: "
+                             "no install, no network), with the page's controls")
     parser.add_argument("--overwrite", action="store_true",
                         help="let --csv, --plot, --vpython, --webvpython or --mystery replace an existing "
                              "file this program did not write (its own outputs are replaced without it; "
@@ -133,7 +136,7 @@ def _add_lab_options(parser: argparse.ArgumentParser) -> None:
 BROWSER_ONLY = (("--port", "port"), ("--no-browser", "no_browser"), ("--projector", "projector"))
 RUN_OPTIONS = (("--headless", "headless"), ("--json", "json"), ("--csv", "csv"), ("--plot", "plot"),
                ("--steps", "steps"), ("--until", "until"), ("--integrator", "integrator"))
-PROGRAM_OPTIONS = (("--vpython", "vpython"), ("--webvpython", "webvpython"))
+PROGRAM_OPTIONS = (("--vpython", "vpython"), ("--webvpython", "webvpython"), ("--html", "html"))
 OUTPUT_FILES = (("--csv", "csv"), ("--plot", "plot"), *PROGRAM_OPTIONS)
 
 
@@ -293,8 +296,8 @@ def _check_until(args) -> None:
     if args.until is None:
         return
     if not headless_run(args) and not _programs(args):
-        raise UsageError("--until needs --headless, or --vpython or --webvpython (the program runs that "
-                         "long); the browser runs until you stop it")
+        raise UsageError("--until needs --headless, or --vpython or --webvpython or --html (the program runs "
+                         "that long); the browser runs until you stop it")
     try:
         check_value("until", args.until, "s")  # the same range as the scenes' own `until`
     except ConstantError as problem:
@@ -310,7 +313,7 @@ def _check_arrows(args) -> None:
         return
     _parse_arrows(args)
     if headless_run(args) and not _programs(args):
-        raise UsageError("--arrows (and --no-arrows) is for the page and the program (--vpython, --webvpython), and a "
+        raise UsageError("--arrows (and --no-arrows) is for the page and the program (--vpython, --webvpython, --html), and a "
                          "headless run draws none; leave it out")
 
 
@@ -329,8 +332,8 @@ def _check_outputs(args) -> None:
     outputs = [(flag, getattr(args, attribute)) for flag, attribute in OUTPUT_FILES
                if getattr(args, attribute) not in (None, files.STDOUT)]
     if args.overwrite and not outputs:
-        raise UsageError("--overwrite does nothing without a file to write (--csv, --plot, --vpython or "
-                         "--webvpython); leave it out")
+        raise UsageError("--overwrite does nothing without a file to write (--csv, --plot, --vpython, "
+                         "--webvpython or --html); leave it out")
     for n, (flag, path) in enumerate(outputs):
         for other, other_path in outputs[n + 1:]:
             if files.same_file(path, other_path):

@@ -130,3 +130,17 @@ def curve_pixels(image) -> int:
     """
     image = image.crop((0, 0, int(0.4 * image.width), image.height))
     return sum(n for rgb, n in colours(image).items() if max(rgb) - min(rgb) > 80)
+
+
+def shaded_like(image, colour) -> int:
+    """Pixels of `colour` (r, g, b from 0 to 1) lit or shaded, or seen through on black (a mass
+    drawn see-through under its arrows): a multiple of it from a third to all of its brightness."""
+    import numpy as np
+    target = np.array(colour, dtype=float) * 255
+    count = 0
+    for n, rgb in image.getcolors(maxcolors=1 << 24):
+        pixel = np.array(rgb[:3], dtype=float)
+        scale = pixel @ target / (target @ target)
+        if 0.3 <= scale <= 1.1 and np.abs(pixel - scale * target).sum() <= 40:
+            count += n
+    return count
