@@ -21,7 +21,9 @@ and in the program --vpython and --webvpython write (default: the scene's VIEW).
 lists them) in the browser and headless alike, after --scenario and before --set.
 --steps and --plot always run headless, so they need no --headless. --json and --csv describe a
 headless run and are an error without --headless. Bad input gives one line `error: ...` and exit
-status 2; a run that blows up gives its reason (Δt and the stability limit) and exit status 1.
+status 2; a run that blows up gives its reason (Δt and the stability limit) and exit status 1; a fit
+(--data --fit) whose numbers cannot be trusted prints why on its first line, then the figures, and
+exits with status 3.
 """
 from __future__ import annotations
 
@@ -48,7 +50,7 @@ if __name__ == "__main__":  # run() takes over once everything is loaded
     # them, 0.19-0.29 s without, the same user time. A value the user set is kept.
     os.environ.setdefault("NUMPY_MADVISE_HUGEPAGE", "0")
 
-from cli.options import UsageError, build_parser, check_options, headless_run, lab_command  # noqa: E402
+from cli.options import UsageError, build_parser, check_options, headless_run, lab_command, one_line  # noqa: E402
 from export import files  # noqa: E402
 from reports import csv_file, headless, json_report, step_table, terminal, text  # noqa: E402
 from physics.simulate import BlowUpError  # noqa: E402
@@ -90,7 +92,7 @@ def run_headless(args, setup, model) -> int:
         plotting.check_format(args.plot)
     warning = headless.stability_warning(model, model.methods(args.integrator))
     if warning:
-        print(warning, file=sys.stderr)
+        print(one_line(warning), file=sys.stderr)
     if args.steps is not None:
         print_step_table(args, setup, model, warning)
         if run is None:
@@ -98,7 +100,7 @@ def run_headless(args, setup, model) -> int:
     result = headless.simulate(setup, checked=run)
     note = headless.stop_note(model, until=until)
     if note:
-        print(note, file=sys.stderr)
+        print(one_line(note), file=sys.stderr)
     if args.csv is not None:
         csv_file.write_csv(result, args.csv)
     if args.plot is not None:
@@ -123,7 +125,8 @@ def print_step_table(args, setup, model, warning) -> None:
 
 
 def write_programs(args, setup, model, *, warn: bool) -> None:
-    """--vpython FILE.py and --webvpython FILE.py: the scene as a program to hand out (export/).
+    """--vpython FILE.py, --webvpython FILE.py and --html FILE.html: the scene as a program to hand
+    out, and as an offline page (export/).
 
     Every program is made and every path checked before any file is written, so bad input leaves
     no file at all. With `warn`, a Δt the program's motion will grow or blow up at is said on
@@ -139,7 +142,7 @@ def write_programs(args, setup, model, *, warn: bool) -> None:
         except BlowUpError as problem:
             warning = f"warning: {problem}; the program is written as asked"
         if warning:
-            print(warning, file=sys.stderr)
+            print(one_line(warning), file=sys.stderr)
 
     try:
         texts = [(path, export.program(setup, integrator=args.integrator, web=web, arrows=args.arrows,
@@ -148,6 +151,13 @@ def write_programs(args, setup, model, *, warn: bool) -> None:
         for path, _ in texts:
             if path != "-":
                 export.check_path(path, overwrite=args.overwrite)
+        if args.html is not None:   # the offline page (export/offline_page.py), checked with the programs
+            from export import offline_page
+
+            if args.html != "-":
+                offline_page.check_page_path(args.html, overwrite=args.overwrite)
+            texts.append((args.html, offline_page.page(setup, integrator=args.integrator, arrows=args.arrows,
+                                                       end=args.until)))
         if args.vpython not in (None, "-") and os.path.basename(args.vpython).lower() in ("vpython.py", "vpython.pyw"):
             raise UsageError(f"a program called {os.path.basename(args.vpython)} cannot run: its "
                              f"`from vpython import *` would import the program itself instead of the vpython "
@@ -155,9 +165,12 @@ def write_programs(args, setup, model, *, warn: bool) -> None:
         for path, program_text in texts:
             if path == "-":
                 print(program_text, end="")
+            elif path == args.html:
+                offline_page.write_page(path, program_text, overwrite=args.overwrite)
+                print(f"wrote {path}", file=sys.stderr)
             else:
                 export.write_program(path, program_text, overwrite=args.overwrite)
-                print(f"wrote {path}", file=sys.stderr)
+                print(f"wrote {one_line(path)}", file=sys.stderr)
     except ValueError as problem:   # export.ProgramError, or constants the physics cannot take
         raise UsageError(str(problem)) from None
 
@@ -170,7 +183,7 @@ def main(argv=None) -> int:
             listing, problems = text.list_scenes()
             print(listing)
             for problem in problems:  # the other scenes are listed, and run, as usual
-                print(f"error: {problem}", file=sys.stderr)
+                print(f"error: {one_line(str(problem))}", file=sys.stderr)
             return 2 if problems else 0
         setup = catalog.configure(catalog.DEFAULT_SCENE if args.scene is None else args.scene,
                                   assignments=args.assignments,
@@ -189,17 +202,17 @@ def main(argv=None) -> int:
                        "--show-answer": measured.show_answer}[lab_command(args)]
             return run_lab(args, setup)
         runs_headless = headless_run(args)
-        if args.vpython is not None or args.webvpython is not None:
+        if args.vpython is not None or args.webvpython is not None or args.html is not None:
             write_programs(args, setup, model, warn=not runs_headless)   # then a headless run too, if asked
             if not runs_headless:
                 return 0
         if runs_headless:
             return run_headless(args, setup, model)
     except (ConstantError, UsageError, files.OutputError, LabError) as problem:
-        print(f"error: {problem}", file=sys.stderr)
+        print(f"error: {one_line(str(problem))}", file=sys.stderr)
         return 2
     except BlowUpError as problem:
-        print(f"error: {problem}", file=sys.stderr)
+        print(f"error: {one_line(str(problem))}", file=sys.stderr)
         return 1
     from browser.clock import check_live_cost
     from browser.view import show
@@ -207,7 +220,7 @@ def main(argv=None) -> int:
     try:
         check_live_cost(model, args.integrator)
     except ValueError as problem:
-        print(f"error: {problem}", file=sys.stderr)
+        print(f"error: {one_line(str(problem))}", file=sys.stderr)
         return 2
     # the page's integrator menu starts where a headless run would: the scene's own default (rk4 for
     # resonance), else the page's euler-cromer
@@ -265,7 +278,7 @@ def run(argv=None) -> int:
         return status
     except terminal.OutputStreamError as problem:
         terminal.discard_output(stdout)
-        print(f"error: {problem}", file=sys.stderr)
+        print(f"error: {one_line(str(problem))}", file=sys.stderr)
         return 2
     except KeyboardInterrupt:
         print("stopped: interrupted (Ctrl-C); no file was left half-written", file=sys.stderr)

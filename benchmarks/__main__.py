@@ -20,7 +20,7 @@ import subprocess
 import sys
 import time
 
-from . import accuracy, batches, fit, resonance_sweep, single_mass, startup, where_the_work_is
+from . import accuracy, batches, fit, fit_coverage, friction, resonance_sweep, single_mass, startup, where_the_work_is
 from .common import Settings, load_average
 
 BENCHMARKS = {
@@ -32,13 +32,19 @@ BENCHMARKS = {
     "startup": (startup, "part 6: wall time of `python main.py vertical --headless`"),
     "csv-batch": (where_the_work_is, "part 7: --csv of 10⁶ rows against the page's loop, and "
                                      "`main.py resonance` at 10⁴ masses in rk4 mass-steps/s"),
-    "fit": (fit, "part 8: `main.py damped --data FILE --fit k,b` on 1,000 points, as processes"),
+    "fit": (fit, "part 8: `main.py damped --data FILE --fit k,b --set m=M` on 10³, 10⁴ and 2·10⁵ points, "
+                 "as processes: time and engine runs"),
+    "friction": (friction, "part 9: `main.py friction` 10⁶ steps against `main.py damped` 10⁶ steps, as processes"),
+    "fit-coverage": (fit_coverage, "part 10: the fit's σ against the truth on 400 closed-form records over the "
+                                   "whole range (in this process)"),
 }
 # Not in the full run: minutes of wall time in headless Chromium. Run it as its own command.
 SEPARATE = {
     "python -m benchmarks.long_run": "part 5: a scene in headless Chromium for 10 min (--minutes, --scene, "
                                      "--set dt=0.0001, --source DIR): t shown against wall time, memory, "
                                      "CPU per wall second; see --help",
+    "python -m benchmarks.first_frame": "part 9: time to the first drawn frame, the offline page (--html, from "
+                                        "file://) against the local page, in one Chromium; and the file's size",
 }
 
 

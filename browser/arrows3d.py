@@ -34,14 +34,16 @@ from export.palette import ARROW_COLOURS
 from physics.forces import net_force
 from physics.state import velocity
 
+from .messages import ShowArrows
+
 
 def arrow_checkboxes(vp, put, shown) -> dict:
-    """A check box per kind of arrow, each queueing ("arrows", kind, checked); returns them by kind."""
+    """A check box per kind of arrow, each queueing ShowArrows(kind, checked); returns them by kind."""
     boxes = {}
     vp.scene.append_to_caption("arrows: ")
     for kind in ARROWS:
         boxes[kind] = vp.checkbox(text=ARROW_LABELS[kind] + " ", checked=kind in shown,
-                                  bind=lambda box, kind=kind: put(("arrows", kind, box.checked)))
+                                  bind=lambda box, kind=kind: put(ShowArrows(kind, box.checked)))
     return boxes
 
 

@@ -7,7 +7,8 @@ spacing, widened by whole steps until flot's own rule picks a round spacing too.
 
 The labels under those ticks are plain decimals, one line each at any scale (`0.04`, not vpython's
 `4e-2`, which the page broke over two lines as `4e-` / `2`): PLAIN_TICKS, a script the page runs
-once, has flot print every graph's ticks with the decimals of the tick spacing.
+once, has flot print every graph's ticks with the decimals of the tick spacing, and clears what
+a thick curve draws outside a graph's frame.
 
 Nothing here imports vpython: tests/test_axes.py checks the rule on many ranges, and
 tests/test_tick_labels.py runs PLAIN_TICKS in Chromium's flot from 10⁻⁶ to 10⁶.
@@ -34,10 +35,29 @@ PLAIN_TICKS = """<script>(function () {
     if (Math.abs(value) < step / 2) return "0";
     return value.toFixed(decimals);
   }
+  // vpython's graphs never clear the canvas outside the plotting area (it keeps its titles there),
+  // so where a thick curve once touched the frame (an axis about to widen), half its width stayed
+  // above the frame for good (resonance's position graph, from t = 16 s). After every drawing,
+  // everything outside the frame is cleared: the titles are in the line above each graph.
+  function clearOutside(plot, ctx) {
+    var o = plot.getPlotOffset(), w = plot.width(), h = plot.height();
+    var holder = plot.getPlaceholder(), W = holder.width(), H = holder.height();
+    var border = plot.getOptions().grid.borderWidth, edge = 1 + (typeof border === "number" ? border :
+        Math.max(border.top || 0, border.right || 0, border.bottom || 0, border.left || 0));
+    ctx.save();
+    ctx.clearRect(0, 0, W, Math.max(0, o.top - edge));
+    ctx.clearRect(0, o.top + h + edge, W, H);
+    ctx.clearRect(0, 0, Math.max(0, o.left - edge), H);
+    ctx.clearRect(o.left + w + edge, 0, W, H);
+    ctx.restore();
+  }
   var original = jq.plot;
   jq.plot = function (placeholder, data, options) {
     options = options || {};
     ["xaxis", "yaxis"].forEach(function (name) { options[name] = options[name] || {}; options[name].tickFormatter = plain; });
+    options.hooks = options.hooks || {};
+    var draw = options.hooks.draw || [];
+    if (draw.indexOf(clearOutside) < 0) options.hooks.draw = draw.concat([clearOutside]);
     return original(placeholder, data, options);
   };
   for (var key in original) jq.plot[key] = original[key];

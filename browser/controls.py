@@ -1,12 +1,14 @@
 """The page's controls and captions: buttons, menus, sliders, the time, the constants and the status.
 
-A click arrives on vpython's server thread; the control only queues it as a command, such as
-("toggle",), ("set", "k", 45.0) or ("scene", "pendulum"), and the frame loop (browser/view.py)
-carries the commands out between frames. Each build of the page has its own queue, so a click on
-a control of a page already taken down is never carried out.
+A click arrives on vpython's server thread; the control only queues it as a message, a small named
+type of browser/messages.py such as RunOrPause(), SetConstant("k", 45.0) or ChooseScene("pendulum"),
+and the frame loop (browser/view.py) carries the messages out between frames. Each build of the
+page has its own queue, so a click on a control of a page already taken down is never carried out.
 """
 from __future__ import annotations
 
+import base64
+import html
 import queue
 from urllib.parse import quote
 
@@ -14,10 +16,15 @@ from physics.integrators import INTEGRATORS
 
 from export.numbers import time_decimals as file_time_decimals
 from scenes import catalog, format_value
+from scenes._constants import idle as idle_constants
 from scenes._sliders import round_slider_values, slider_names, slider_range, symbol
 
 from .axes import PLAIN_TICKS
+from .graph_reading import GRAPH_READING
+from .measure_panel import MeasurePanel
 from .arrows3d import arrow_checkboxes
+from .messages import (ChooseIntegrator, ChoosePreset, ChooseScene, ChooseSpeed, DownloadCsv, DownloadOfflinePage,
+                       DownloadProgram, FitData, Reset, RunOrPause, SetConstant, Step)
 from .readout import units_kept
 
 SPEEDS = {"¼×": 0.25, "½×": 0.5, "1×": 1.0, "2×": 2.0, "4×": 4.0}
@@ -57,6 +64,7 @@ class Controls:
 
     vp           the vpython module
     setup        the scene as configured (name, constants and their values)
+    measure      the Measure panel's state to show (browser/measure_panel.py): period, lines, graph
     view         the scene's VIEW merged with the defaults (sliders)
     integrators  the model's one integrator per mass, if it has them (then no integrator menu)
     integrator   the integrator chosen now; speed: the speed chosen now (a key of SPEEDS)
@@ -66,7 +74,7 @@ class Controls:
     """
 
     def __init__(self, vp, *, setup, view: dict, integrators, integrator: str, speed: str,
-                 preset: str | None = None, arrows=(), load_button: str = ""):
+                 preset: str | None = None, arrows=(), load_button: str = "", measure: dict | None = None):
         self.vp = vp
         self.commands: queue.SimpleQueue = queue.SimpleQueue()
         self.downloads = 0  # links offered so far: each gets its own id
@@ -74,43 +82,19 @@ class Controls:
         caption = vp.scene.append_to_caption
         defaults = {name: constant.value for name, constant in setup.constants.items()}
         caption("\n")
-        self.run_button = vp.button(text="Pause", bind=lambda _: put(("toggle",)))
+        self.run_button = vp.button(text="Pause", bind=lambda _: put(RunOrPause()))
         caption("  ")
-        vp.button(text="Step", bind=lambda _: put(("step",)))
+        vp.button(text="Step", bind=lambda _: put(Step()))
         caption("  ")
-        vp.button(text="Reset", bind=lambda _: put(("reset",)))
+        vp.button(text="Reset", bind=lambda _: put(Reset()))
         caption("    integrator ")
         if integrators:
             vp.wtext(text="<i>" + ", ".join(integrators) + "</i> (one per mass)")
         else:
             vp.menu(choices=list(INTEGRATORS), selected=integrator,
-                    bind=lambda menu: put(("integrator", menu.selected)))
+                    bind=lambda menu: put(ChooseIntegrator(menu.selected)))
         caption("    speed ")
-        vp.menu(choices=list(SPEEDS), selected=speed, bind=lambda menu: put(("speed", menu.selected)))
-        caption("\n\nscene ")
-        self.scene_menu = vp.menu(choices=scene_menu_choices(), selected=setup.name,
-                                  bind=lambda menu: put(("scene", menu.selected)))
-        caption("    preset ")
-        labels = [label for label, _ in catalog.presets(setup)]
-        self.preset_menu = None
-        if labels:
-            self.preset_menu = vp.menu(choices=[PRESET_PROMPT] + labels, selected=preset or PRESET_PROMPT,
-                                       bind=lambda menu: put(("preset", menu.selected)))
-        else:
-            vp.wtext(text="<i>none for this scene</i>")
-        caption("    ")
-        vp.button(text="Download CSV", bind=lambda _: put(("csv",)))
-        caption(" ")
-        vp.button(text="Download program", bind=lambda _: put(("program",)))
-        caption(" ")
-        self.download_text = vp.wtext(text="")
-        caption("\n\nmeasured data ")
-        if load_button:
-            vp.wtext(text="").text = load_button  # set, not made with it: the setter runs its script
-            caption(" ")
-        vp.button(text="Fit", bind=lambda _: put(("fit",)))
-        caption("\n")
-        self.data_text = vp.wtext(text="")
+        vp.menu(choices=list(SPEEDS), selected=speed, bind=lambda menu: put(ChooseSpeed(menu.selected)))
         caption("\n")
         self.time_text = vp.wtext(text="t = 0.00 s")
         caption("    ")
@@ -119,6 +103,37 @@ class Controls:
         # open) under the time, where a class looks: at the page's foot it was below a 1280×800 screen
         self.status_text = _OwnLine(vp.wtext(text=""))
         self.notice = ""   # a sentence said (say()) that stays until the next run starts
+        caption("\n")
+        # browser/measure_panel.py: its button here, its block (closed at first) under it, by the clock
+        self.measure = MeasurePanel(vp, put, **(measure or {"period": False, "lines": (), "graph": "energy"}))
+        caption("\n\nscene ")
+        self.scene_menu = vp.menu(choices=scene_menu_choices(), selected=setup.name,
+                                  bind=lambda menu: put(ChooseScene(menu.selected)))
+        if catalog.SKIPPED:   # files of a teacher's folder left out of the menu: say why, folded away
+            vp.wtext(text=left_out_html(catalog.SKIPPED))
+        caption("    preset ")
+        labels = [label for label, _ in catalog.presets(setup)]
+        self.preset_menu = None
+        if labels:
+            self.preset_menu = vp.menu(choices=[PRESET_PROMPT] + labels, selected=preset or PRESET_PROMPT,
+                                       bind=lambda menu: put(ChoosePreset(menu.selected)))
+        else:
+            vp.wtext(text="<i>none for this scene</i>")
+        caption("    ")
+        vp.button(text="Download CSV", bind=lambda _: put(DownloadCsv()))
+        caption(" ")
+        vp.button(text="Download program", bind=lambda _: put(DownloadProgram()))
+        caption(" ")
+        vp.button(text="Download offline page", bind=lambda _: put(DownloadOfflinePage()))
+        caption(" ")
+        self.download_text = vp.wtext(text="")
+        caption("\n\nmeasured data ")
+        if load_button:
+            vp.wtext(text="").text = load_button  # set, not made with it: the setter runs its script
+            caption(" ")
+        vp.button(text="Fit", bind=lambda _: put(FitData()))
+        caption("\n")
+        self.data_text = vp.wtext(text="")
         caption("\n")
         self.arrow_boxes = arrow_checkboxes(vp, put, arrows)   # browser/arrows3d.py
         self.arrow_legend = vp.wtext(text="")
@@ -131,23 +146,26 @@ class Controls:
             if values:   # the slider picks a place in the list of round values
                 self.sliders[name] = vp.slider(
                     min=0, max=len(values) - 1, step=1, value=values.index(float(setup.values[name])),
-                    length=320, bind=lambda s, name=name, values=values: put(("set", name, values[round(s.value)])))
+                    length=320, bind=lambda s, name=name, values=values: put(SetConstant(name, values[round(s.value)])))
             else:
                 low, high, step = slider_range(name, float(setup.values[name]), defaults.get(name))
                 self.sliders[name] = vp.slider(min=low, max=high, step=step, value=setup.values[name],
-                                               length=320, bind=lambda s, name=name: put(("set", name, s.value)))
+                                               length=320, bind=lambda s, name=name: put(SetConstant(name, s.value)))
             self.slider_texts[name] = vp.wtext(text="")
         if self.sliders:
             vp.wtext(text="").text = PRIME_SLIDERS  # set, not made with it: the setter runs scripts
         vp.wtext(text="").text = PLAIN_TICKS  # every graph's tick labels in plain decimals (browser/axes.py)
+        vp.wtext(text="").text = GRAPH_READING  # a click reads a graph (browser/graph_reading.py)
         caption("\n\n")
         self.constants_text = vp.wtext(text="")
+        caption("\n")
+        self.link_text = vp.wtext(text="")   # the set-up's link, for its offline page on a web site (show_link)
         caption("\n<i>Moving a slider, choosing another integrator or a preset, or loading data restarts "
                 "the run from t = 0; Reset returns to the start; "
                 "Step advances one Δt.</i>\n")
 
-    def clicks(self) -> list[tuple]:
-        """The commands queued by clicks since the last call, oldest first."""
+    def clicks(self) -> list:
+        """The messages queued by clicks since the last call (browser/messages.py), oldest first."""
         pending = []
         while True:
             try:
@@ -165,6 +183,16 @@ class Controls:
             text.text = f"  {symbol(name)} = {format_value(setup.values[name], unit)}"
         self.download_text.text = ""
         self.notice = ""
+
+    def show_link(self, fragment: str) -> None:
+        """The Copy link line: the address fragment of the set-up running now (export/offline_page.py's
+        link_fragment), which an offline page of this scene on a web site reads from its address."""
+        shown = html.escape("#" + fragment if fragment else "(the scene as shipped: no fragment)")
+        self.link_text.text = (
+            f"link <input id='sm-link' readonly tabindex='-1' size='36' value='{shown}' style='font-family: monospace'> "
+            "<button id='sm-copy-link' type='button' onclick=\"var f = document.getElementById('sm-link');"
+            " f.select(); if (navigator.clipboard) navigator.clipboard.writeText(f.value);\">Copy link</button>"
+            " <i>add it to the address of this scene's offline page on a web site</i>")
 
     def show_time(self, t: float, *, decimals: int, running: bool, error: str) -> None:
         """The time (to `decimals` places), Run or Pause on the button, and the error readout."""
@@ -191,12 +219,14 @@ class Controls:
         self.notice = text
         self.status_text.text = text
 
-    def choice_refused(self, kind: str, scene: str, preset: str | None = None) -> None:
-        """A scene or preset chosen in a menu could not be used: the menu goes back to what runs
-        (the scene, and the preset whose constants run, or the prompt if none)."""
-        if kind == "scene":
-            self.scene_menu.selected = scene
-        elif self.preset_menu is not None:
+    def show_scene(self, scene: str) -> None:
+        """A scene chosen in the menu could not be used: the menu goes back to the scene that runs."""
+        self.scene_menu.selected = scene
+
+    def show_preset(self, preset: str | None) -> None:
+        """A preset chosen in the menu could not be used: the menu goes back to the preset whose
+        constants run, or to its prompt if none does."""
+        if self.preset_menu is not None:
             self.preset_menu.selected = preset or PRESET_PROMPT
 
     def preset_left(self) -> None:
@@ -247,9 +277,25 @@ def program_href(text: str) -> str:
     return f"data:text/x-python;charset=utf-8,{quote(text)}"
 
 
+def page_href(text: str) -> str:
+    """An offline page (6 MB of mostly JavaScript) as a data: link, base64 (shorter than %-escapes)."""
+    return "data:text/html;charset=utf-8;base64," + base64.b64encode(text.encode("utf-8")).decode("ascii")
+
+
 def scene_menu_choices() -> list[str]:
     """The scene menu: every scene found (scenes/_catalog.py), in menu order."""
     return list(catalog.SCENE_NAMES)
+
+
+def left_out_html(skipped: dict) -> str:
+    """Why files of the scene folders are not in the scene menu (scenes/_catalog.py's SKIPPED:
+    not a scene, a name the program's code has taken, not a regular file, too big), folded into
+    one line the teacher opens: a file that silently did not appear looked like a bug."""
+    count = len(skipped)
+    reasons = "".join(f"<li>{html.escape(why, quote=False)}</li>" for why in skipped.values())
+    return (f" <details class='sm-left-out' style='display:inline-block; vertical-align:top'><summary>"
+            f"{count} file{'s' if count != 1 else ''} not in the menu: why</summary>"
+            f"<ul style='margin:0; white-space:normal; max-width:40em'>{reasons}</ul></details>")
 
 
 def time_decimals(dt: float) -> int:
@@ -261,11 +307,10 @@ def time_decimals(dt: float) -> int:
 def constants_text(setup) -> str:
     """The scene's constants that are switched on, with units: `m = 10 kg, k = 40 N/m, ...`."""
     parts = []
+    idle = idle_constants(setup.values)     # drive_axis where F0 = 0: its force is off
     for name, constant in setup.constants.items():
         value = setup.values[name]
-        if name == "until" or value is None or (not isinstance(value, tuple) and value == 0):
-            continue
-        if name == "drive_axis" and not setup.values.get("F0"):
+        if name == "until" or value is None or (not isinstance(value, tuple) and value == 0) or name in idle:
             continue
         parts.append(f"{symbol(name)} = {format_value(value, constant.unit)}")
     lines, line = [], ""

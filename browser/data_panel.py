@@ -5,8 +5,11 @@ A file arrives from the page's Load data button (its bytes are sent to the loopb
 lab/readers.py, as the command line reads it, and compared with the scene as it runs now by
 lab/compare.py: the data's clock and zero are the file's own, so the comparison fits a time offset
 t₀ and a position offset, and the graph shows each measured point at (t − t₀, position − offset),
-on the model's own axes, with the RMS residual in metres. Fit fits the constants (k and b, or the
-names given with --fit), and the frame loop moves the sliders to the fitted values.
+on the model's own axes, with the RMS residual in metres. Fit fits the constants (those the scene
+declares, LAB["fit"], or the names given with --fit) with the page's own integrator and Δt, and the
+frame loop moves the sliders to the fitted values. A fit whose numbers cannot be trusted (lab/trust.py:
+with the page's Euler-Cromer at Δt = 0.1 s, halving Δt moves them by many σ) shows its values
+without ± figures, and in their place the sentence saying why.
 
 Comparing and fitting run the engine many times, so they run on a thread of their own: the page's
 frame loop keeps going, says "fitting…" meanwhile, and picks the answer up when it is there. Each
@@ -27,7 +30,6 @@ from lab import LabError, compare, readers
 from .controls import symbol
 from .readout import length_text
 
-DEFAULT_FIT = ("k", "b")     # what the Fit button fits unless --fit names others
 MAX_DOTS = 1500              # measured points drawn at most (a long file is thinned evenly)
 SENDING_SCRIPT = """<script>
 window.smLoadData = function (input) {
@@ -68,14 +70,15 @@ class MeasuredData:
     """The measured file shown on the page, its comparison with the scene, and the fits under way.
 
     measured    the file read (lab/readers.py's Measured), or None before one is loaded
-    fit_names   the constants the Fit button fits
+    fit_names   the constants the Fit button fits (none: what the scene declares, LAB["fit"])
     coordinate  --coordinate, or None for the scene's plotted one
     sign        --data-sign (1 or −1), or None to try both (lab/compare.py)
     """
 
     def __init__(self, *, measured=None, fit_names=(), coordinate: str | None = None, sign: int | None = None):
         self.measured = measured
-        self.fit_names = tuple(fit_names) or DEFAULT_FIT
+        self.fit_names = tuple(fit_names)
+        self.fitting = ()         # the names of the fit under way
         self.coordinate, self.sign = coordinate, sign
         self.result = None        # the Comparison shown (lab/compare.py)
         self.shown_for = None     # the scene, values and integrator it was made for
@@ -99,8 +102,13 @@ class MeasuredData:
         if self.measured is None or self.working == "reading" or \
                 (not fit and self.shown_for == _key(setup, integrator)):
             return
-        self._start("fitting" if fit else "comparing", setup, integrator, self.fit_names if fit else (),
-                    self.measured)
+        names = (self.fit_names or tuple(setup.hooks.lab.get("fit", ()))) if fit else ()
+        if fit and not names:
+            self.problem = (f"scene {setup.name!r} declares nothing to fit; name the constants with --fit "
+                            f"(e.g. --fit k,b)")
+            return
+        self.fitting = names
+        self._start("fitting" if fit else "comparing", setup, integrator, names, self.measured)
 
     def _start(self, working: str, setup, integrator: str, names, measured, upload=None) -> None:
         self.job += 1
@@ -175,26 +183,45 @@ class MeasuredData:
             lines.append(f"<b>Data</b> {html.escape(name, quote=False)}: {measured.position.size} points, "
                          f"{html.escape(measured.choice, quote=False)}")
         if self.working:
-            names = ", ".join(self.fit_names)
+            names = ", ".join(self.fitting)
             lines.append({"fitting": f"<i>fitting {names}…</i>", "comparing": "<i>comparing…</i>",
                           "reading": f"<i>reading {html.escape(self.reading, quote=False)}…</i>"}[self.working])
         elif result is not None:
             c = result.coordinate
             shown = f"{c} − {c}₀" if result.sign > 0 else f"−({c} − {c}₀)"
+            t0, c0 = result.t_offset, result.position_offset
+            if result.trust is not None and not result.trust.trusted:
+                t0, c0 = t0.plain, c0.plain
             lines.append(f"<b>RMS residual = {length_text(result.rms)}</b>; blue dots: the data at t − t₀, {shown} "
-                         f"with t₀ = {result.t_offset}, {c}₀ = {result.position_offset} (fitted offsets)")
+                         f"with t₀ = {t0}, {c}₀ = {c0} (fitted offsets)")
             if result.sign < 0:
                 lines.append(html.escape(result.sign_said, quote=False))
-            if result.fitted:
+            untrusted = result.trust is not None and not result.trust.trusted
+            if result.fitted and untrusted:      # the values without ± figures, and why in their place
+                lines.append("<b>Fit:</b> <span class='sm-fit'>" + ", ".join(
+                    f"{symbol(name)} = {estimate.plain}" for name, estimate in result.fitted.items()) + "</span>")
+                lines.append("<b class='sm-untrusted'>" + html.escape(_untrusted_said(result.trust, dt_slider),
+                                                                      quote=False) + "</b>")
+            elif result.fitted:
                 lines.append("<b>Fit:</b> <span class='sm-fit'>" + ", ".join(
                     f"{symbol(name)} = {estimate}" for name, estimate in result.fitted.items()) + "</span>")
-            if result.slow_dt:
+            if result.slow_dt and not untrusted:
                 lines.append(_slow_dt_note(*result.slow_dt, dt_slider=dt_slider))
-            if result.misfit:
+            if result.misfit and not untrusted:
                 lines.append(html.escape("Note: " + result.misfit, quote=False))
         elif measured is None and not self.problem:
             return ""
         return "\n".join(line.replace(" ± ", "\u00a0±\u00a0") for line in lines)
+
+
+def _untrusted_said(trust, dt_slider: bool) -> str:
+    """The fit's verdict as the page says it: the reasons, then what the page offers where its Δt
+    moved the answer (the command line's advice names flags the page has none of)."""
+    said = trust.said[0].upper() + trust.said[1:]
+    if trust.smaller_dt == trust.smaller_dt:      # not NaN: the page's Δt moved the answer
+        said += ("; move the Δt slider to " + f"{trust.smaller_dt:.3g} s or choose rk4 in the integrator menu"
+                 if dt_slider else "; choose rk4 in the integrator menu")
+    return said + "."
 
 
 def _slow_dt_note(dt: float, interval: float, smaller: str, *, dt_slider: bool) -> str:

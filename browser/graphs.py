@@ -20,6 +20,7 @@ import io
 import math
 import time
 from collections import deque
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -31,6 +32,8 @@ from physics.energy import kinetic, potential, rest_potential
 from physics.state import State, velocity
 
 from .axes import AxisFit, data_window, nice_range, time_axis
+from .energy_bars import EnergyBars
+from .phase_space import PhaseSpace
 from .error_envelope import PeriodMax, periods
 from .clock import Trace, window
 from .page_layout import NOTE_MARK
@@ -42,6 +45,35 @@ GRAPH_SIZE = (580, 290)   # px
 NARROW_GRAPH_WIDTH = 440  # px: three graphs side by side fit a 1400-px window (a projector's 1440 × 900)
 GRAPH_CANVAS_HEIGHT = GRAPH_SIZE[1] + 26  # px: vpython adds room for the title; flot spaces ticks by this
 LIVE_EVERY = 0.5          # s of wall time between redraws of a scene graph's live dots
+HELD = ("position", "exact")   # the kinds of curve a time axis held over measured points keeps whole
+ENERGY_KINDS = ("energy", "mass_energy")
+PLACES = ("energy", "phase", "bars")   # what the graph place under the position graph may show
+
+
+@dataclass(frozen=True)
+class Series:
+    """What one curve of the graphs plots, one value per sample:
+
+    kind   "position": coordinate `axis` (0, 1, 2 for x, y, z) of mass `mass`, m;
+           "exact": the same from the closed form; "error": log₁₀ of the largest |x − x_exact| of
+           that mass over the last period (browser/error_envelope.py);
+           "energy": the system's energy `key` (K, U, E or E_minus_W_nc), J;
+           "mass_energy": mass `mass`'s own E = K + U, J
+    """
+
+    kind: str
+    mass: int | None = None
+    axis: int | None = None
+    key: str | None = None
+
+
+@dataclass
+class Curve:
+    """One curve on the page: its vpython gcurve (line), the points it keeps (trace), what it plots."""
+
+    line: object
+    trace: Trace
+    series: Series
 
 
 class Graphs:
@@ -53,15 +85,15 @@ class Graphs:
     view    the scene's VIEW merged with the defaults (plot, exact, window)
     """
 
-    def __init__(self, vp, *, setup, model, view: dict):
-        self.vp = vp
+    def __init__(self, vp, *, setup, model, view: dict, place: str = "energy", reference=None):
+        self.vp, self.setup = vp, setup
         self.span = float(view["window"])
         self.spacing = max(model.dt, SAMPLE_EVERY)   # s between graph points
         self.axes = ["xyz".index(axis) for axis in view["plot"]]
         self.position_fit = AxisFit(pixels=GRAPH_CANVAS_HEIGHT)
         self.energy_fit = AxisFit(pixels=GRAPH_CANVAS_HEIGHT)
         self.recorded: deque = deque()  # the samples the graphs show, for Download CSV
-        self.curves = []  # (gcurve, Trace, what it plots)
+        self.curves: list[Curve] = []  # every curve of the graphs, and what it plots
         self.colours = mass_colours(model, view)  # each mass's, as in the 3-D view
         # the masses the position graph shows (VIEW["graphed"]: resonance's few chosen springs)
         self.graphed = list(view["graphed"](model)) if view.get("graphed") else list(range(model.state.count))
@@ -94,11 +126,28 @@ class Graphs:
         self.per_mass_energy = bool(model.integrators)
         self.energy_offset = 0.0 if self.per_mass_energy else (rest_potential(model.state, model.forces) or 0.0)
         self.energy_note = view.get("energy_note")  # VIEW["energy_note"]: a line under the energy graph
-        self.energy_graph = self._build_energy_graph(model, setup)
-        self.graphs = [graph for graph in (self.scene_graph, self.position_graph, self.error_graph,
-                                           self.energy_graph) if graph is not None]
+        # The graph place under the position graph (Measure panel): the energy graph, phase
+        # space or energy bars, one at a time.
+        self.place = place if place in PLACES else "energy"
+        self.energy_graph = self._build_energy_graph(model, setup) if self.place == "energy" else None
+        self.phase = self._build_phase(model) if self.place == "phase" else None
+        self.bars = EnergyBars(vp, model=model, reference=reference)
+        self.bars.show(self.place == "bars")
+        self.titles_text = vp.wtext(text="")
+        self._publish_titles()
+
+    @property
+    def graphs(self) -> list:
+        """The vpython graphs on the page, in the order they are shown."""
+        return [graph for graph in (self.scene_graph, self.position_graph, self.error_graph, self.energy_graph,
+                                    self.phase.graph if self.phase else None) if graph is not None]
 
     # ---- building ----
+
+    def _build_phase(self, model) -> PhaseSpace:
+        return PhaseSpace(self.vp, model=model, graphed=self.graphed, colours=self.colours, axis=self.axes[0],
+                          span=self.span, size=self.size, canvas_height=GRAPH_CANVAS_HEIGHT,
+                          exact=self.exact_curves)
 
     def _build_scene_graph(self, spec) -> None:
         """The scene's own graph (view_graph): lines and dots, and dots that follow the run."""
@@ -152,7 +201,7 @@ class Graphs:
                 name = "xyz"[axis] + (f" {label}" if many or len(self.axes) > 1 else " (simulation)")
                 name = name if legend else ""
                 colour = vp.vector(*shade(self.colours[i], self.axes.index(axis)))
-                self._curve(graph, name, colour, ("r", i, axis),
+                self._curve(graph, name, colour, Series("position", mass=i, axis=axis),
                             width=simulation_width(n, count, crowded=not legend))
         return graph
 
@@ -163,7 +212,7 @@ class Graphs:
             for axis in self.axes:
                 # one legend entry for all the exact curves: they share a colour
                 name = f"{'xyz'[axis]} exact" if n == 0 and legend else ""
-                self._curve(self.position_graph, name, self.vp.vector(*EXACT_COLOUR), ("exact", i, axis),
+                self._curve(self.position_graph, name, self.vp.vector(*EXACT_COLOUR), Series("exact", mass=i, axis=axis),
                             width=EXACT_WIDTH)
 
     def _build_error_graph(self, model):
@@ -182,7 +231,7 @@ class Graphs:
                          ytitle=f"log₁₀ of the largest |{name} − {name}_exact| over a period (m)", width=width, height=height, align="left",
                          fast=True, xmin=0, xmax=self.error_span)
         for n, i in enumerate(self.graphed):
-            self._curve(graph, model.labels[i], vp.vector(*self.colours[i]), ("error", i, self.axes[0]),
+            self._curve(graph, model.labels[i], vp.vector(*self.colours[i]), Series("error", mass=i, axis=self.axes[0]),
                         width=3, span=self.error_span)
         return graph
 
@@ -202,18 +251,18 @@ class Graphs:
         if self.per_mass_energy:
             for i, label in enumerate(model.labels):
                 # half the position curves' widths: an energy that wobbles fast would fill a band
-                self._curve(graph, f"E {label}", vp.vector(*self.colours[i]), ("mass_energy", i),
+                self._curve(graph, f"E {label}", vp.vector(*self.colours[i]), Series("mass_energy", mass=i),
                             width=simulation_width(i, model.state.count) / 2)
         else:
             for key, colour in ENERGY_COLOURS.items():
                 # E − W_nc comes last and thinner, so it shows on top of E when no work is done
                 label = energy_label(key, from_rest=bool(self.energy_offset))
-                self._curve(graph, label, vp.vector(*colour), ("energy", key), width=4 if key == "E" else 2)
+                self._curve(graph, label, vp.vector(*colour), Series("energy", key=key), width=4 if key == "E" else 2)
         return graph
 
-    def _curve(self, graph, label, colour, what, *, width, span=None) -> None:
-        curve = self.vp.gcurve(graph=graph, label=label, color=colour, width=width)
-        self.curves.append((curve, Trace(span=span or self.span), what))
+    def _curve(self, graph, label, colour, series: Series, *, width, span=None) -> None:
+        line = self.vp.gcurve(graph=graph, label=label, color=colour, width=width)
+        self.curves.append(Curve(line=line, trace=Trace(span=span or self.span), series=series))
 
     # ---- a new run ----
 
@@ -222,11 +271,63 @@ class Graphs:
         for the new constants, and show the exact curves if the new model has a closed form."""
         if self.scene_graph is not None and changes:
             self._fill_scene_graph(setup.hooks.view_graph(setup))
-        if self.energy_note and changes and self.energy_graph.title != self._energy_title(setup):
+        self.setup = setup
+        if self.energy_graph is not None and self.energy_note and changes and \
+                self.energy_graph.title != self._energy_title(setup):
             self.energy_graph.title = self._energy_title(setup)
         self.show_exact = self.exact_curves and model.exact is not None
         self.spacing = max(model.dt, SAMPLE_EVERY)   # s between graph points
         self.error_windows = [PeriodMax(period) for period in periods(model)]   # a new m or k: a new period
+
+    def new_reference(self, model, reference) -> None:
+        """The energy bars of a rebuilt model: its forces and its equilibrium."""
+        shown = self.bars.shown
+        self.bars.forces, self.bars.reference = model.forces, reference
+        self.bars.show(shown)
+
+    def choose(self, place: str, live) -> None:
+        """Show `place` in the graph place ("energy", "phase" or "bars"), filled with the run
+        so far (the samples kept for Download CSV)."""
+        if place not in PLACES or place == self.place:
+            return
+        if self.energy_graph is not None:
+            self.energy_graph.delete()
+            self.energy_graph = None
+            self.curves = [curve for curve in self.curves if curve.series.kind not in ENERGY_KINDS]
+        if self.phase is not None:
+            self.phase.take_down()
+            self.phase = None
+        self.place = place
+        self.bars.show(place == "bars")
+        samples = list(self.recorded)
+        if place == "energy":
+            self.energy_graph = self._build_energy_graph(live.model, self.setup)
+            self.energy_fit.clear()
+            fresh = [curve for curve in self.curves if curve.series.kind in ENERGY_KINDS]
+            energies = self._energies(samples, live)
+            self._plot_curves(fresh, samples, live, energies=energies, redraw=True)
+            self._fit_energy(energies, live, samples)
+        elif place == "phase":
+            self.phase = self._build_phase(live.model)
+            self.phase.plot(samples, live, redraw=True)
+        else:
+            self.bars.clear()
+            self.bars.draw(live)
+        self._publish_titles()
+
+    def _publish_titles(self) -> None:
+        """Each graph's axis titles, for reading a graph by clicking it (browser/graph_reading.py),
+        keyed by its first curve's label: in a notebook the page's script cannot reach the graphs."""
+        titles = {}
+        for graph in self.graphs:
+            labels = [curve.line.label for curve in self.curves if _on(curve.line, graph)]
+            if self.phase is not None and graph is self.phase.graph:
+                labels = [line.label for line, *_ in self.phase.curves]
+            if graph is self.scene_graph:
+                labels = [series.label for series in self.scene_series]
+            if labels and labels[0]:
+                titles[labels[0]] = [graph.xtitle, graph.ytitle]
+        self.titles_text.text = graph_titles_script(titles)
 
     def clear(self) -> None:
         """Empty every curve and the recorded samples, and show t from 0 again."""
@@ -237,11 +338,15 @@ class Graphs:
             envelope.clear()
         if self.data_values:
             _fit(self.position_graph, self.position_fit, self.data_values)
-        for _, trace, _ in self.curves:
-            trace.clear()
+        for curve in self.curves:
+            curve.trace.clear()
         self.recorded.clear()
+        if self.phase is not None:
+            self.phase.clear()
+        self.bars.clear()
         for graph in (self.position_graph, self.energy_graph):
-            graph.xmin, graph.xmax = time_axis(0.0, span=self.span, dt=self.spacing, pixels=self.size[0])
+            if graph is not None:
+                graph.xmin, graph.xmax = time_axis(0.0, span=self.span, dt=self.spacing, pixels=self.size[0])
         if self.held:
             self.position_graph.xmin, self.position_graph.xmax = self.held
         if self.error_graph is not None:
@@ -253,7 +358,8 @@ class Graphs:
         """Remove the graphs from the page."""
         for graph in self.graphs:
             graph.delete()
-        self.graphs = []
+        self.scene_graph = self.position_graph = self.error_graph = self.energy_graph = self.phase = None
+        self.bars.show(False)
 
     # ---- measured data ----
 
@@ -269,9 +375,9 @@ class Graphs:
             replace_points(self.data_dots, points)
         self.data_values = [y for _, y in points]
         self.held = data_window(points, dt=self.spacing, pixels=self.size[0])
-        for _, trace, what in self.curves:   # a held curve keeps every point in the window
-            if what[0] in ("r", "exact"):
-                trace.span = max(self.span, self.held[1] - self.held[0]) if self.held else self.span
+        for curve in self.curves:   # a held curve keeps every point in the window
+            if curve.series.kind in HELD:
+                curve.trace.span = max(self.span, self.held[1] - self.held[0]) if self.held else self.span
         if points:
             _fit(self.position_graph, self.position_fit, self.data_values)
 
@@ -292,33 +398,8 @@ class Graphs:
         r = np.array([s.r for s in samples]) if samples else np.zeros((0,) + live.state.r.shape)
         # NaN where the closed form no longer describes a mass (past its anchor): no point there
         exact = live.model.exact_where_valid(t)[0] if (self.show_exact and len(t)) else None
-        energies = self._energies(samples, live)
-        errors_shown = []
-        for curve, trace, what in self.curves:
-            if what[0] == "r":
-                values = r[:, what[1], what[2]]
-            elif what[0] in ("exact", "error"):
-                if exact is None:
-                    values = np.zeros(0)
-                elif what[0] == "exact":
-                    values = exact[:, what[1], what[2]]
-                else:   # the error's envelope: its largest size over the last period (error_envelope.py)
-                    values = [self.error_windows[what[1]].add(float(a), float(b)) for a, b in
-                              zip(t, r[:, what[1], what[2]] - exact[:, what[1], what[2]])]
-            else:
-                values = energies[what[1]]
-            points = [[float(a), float(b)] for a, b in zip(t, values) if math.isfinite(b)
-                      and not (self.held and what[0] in ("r", "exact") and a > self.held[1])]
-            if what[0] in ("r", "mass_energy", "error") and what[1] in live.runaways:
-                frozen = live.runaways[what[1]][0]  # the curve ends where the mass ran away
-                points = [point for point in points if point[0] <= frozen]
-            if what[0] == "error":   # the axis: errors over a whole period (euler's too: its climb is the
-                whole = self.error_windows[what[1]].period      # lesson); the first period's, from 0 m, ran
-                errors_shown += [value for at, value in points if at >= whole]   # to 1e-7 m and squashed them
-            if trace.add(points) or redraw:
-                replace_points(curve, list(trace.points))
-            elif points:
-                curve.plot(points)
+        energies = self._energies(samples, live) if self.energy_graph is not None else {}
+        errors_shown = self._plot_curves(self.curves, samples, live, energies=energies, exact=exact, redraw=redraw)
         if exact is not None and np.isfinite(exact[..., self.axes]).any():
             # the exact motion, and the simulated points near it (within the exact span again), so
             # a few Steps after Reset show on the axis while a run that strays far runs off it
@@ -330,21 +411,67 @@ class Graphs:
             _fit(self.position_graph, self.position_fit, np.concatenate([exact_values, near]))
         elif len(t):
             _fit(self.position_graph, self.position_fit, r[:, matter][..., self.axes].ravel())
-        _fit(self.energy_graph, self.energy_fit,
-             [value for key, values in energies.items() if key not in live.may_run_away for value in values])
+        self._fit_energy(energies, live, samples)
         if self.error_graph is not None:
             _fit(self.error_graph, self.error_fit, errors_shown)
         if len(t):
             start, end = time_axis(float(t[-1]), span=self.span, dt=self.spacing,
                                    pixels=self.size[0])
-            for graph, (low, high) in ((self.position_graph, self.held or (start, end)),
-                                       (self.energy_graph, (start, end))):
-                if (low, high) != (graph.xmin, graph.xmax):
-                    graph.xmin, graph.xmax = low, high
+            graph, (low, high) = self.position_graph, self.held or (start, end)
+            if (low, high) != (graph.xmin, graph.xmax):
+                graph.xmin, graph.xmax = low, high
             if self.error_graph is not None:
                 self.error_graph.xmin, self.error_graph.xmax = time_axis(
                     float(t[-1]), span=self.error_span, dt=self.spacing, pixels=self.size[0])
+        if self.phase is not None:
+            self.phase.plot(samples, live, redraw=redraw)
         self._plot_live(live, redraw=redraw)
+
+    def _plot_curves(self, curves, samples, live, *, energies: dict, exact=None, redraw: bool = False) -> list:
+        """Add the samples to these curves; returns the errors shown on the error graph."""
+        t = np.array([s.t for s in samples])
+        r = np.array([s.r for s in samples]) if samples else np.zeros((0,) + live.state.r.shape)
+        errors_shown = []
+        for curve in curves:
+            series = curve.series
+            if series.kind == "position":
+                values = r[:, series.mass, series.axis]
+            elif series.kind in ("exact", "error"):
+                if exact is None:
+                    values = np.zeros(0)
+                elif series.kind == "exact":
+                    values = exact[:, series.mass, series.axis]
+                else:   # the error's envelope: its largest size over the last period (error_envelope.py)
+                    values = [self.error_windows[series.mass].add(float(a), float(b)) for a, b in
+                              zip(t, r[:, series.mass, series.axis] - exact[:, series.mass, series.axis])]
+            elif series.kind == "mass_energy":
+                values = energies[series.mass]
+            else:
+                values = energies[series.key]
+            points = [[float(a), float(b)] for a, b in zip(t, values) if math.isfinite(b)
+                      and not (self.held and series.kind in HELD and a > self.held[1])]
+            if series.kind in ("position", "mass_energy", "error") and series.mass in live.runaways:
+                frozen = live.runaways[series.mass][0]  # the curve ends where the mass ran away
+                points = [point for point in points if point[0] <= frozen]
+            if series.kind == "error":   # the axis: errors over a whole period (euler's too: its climb is the
+                whole = self.error_windows[series.mass].period      # lesson); the first period's, from 0 m, ran
+                errors_shown += [value for at, value in points if at >= whole]   # to 1e-7 m and squashed them
+            if curve.trace.add(points) or redraw:
+                replace_points(curve.line, list(curve.trace.points))
+            elif points:
+                curve.line.plot(points)
+        return errors_shown
+
+    def _fit_energy(self, energies: dict, live, samples) -> None:
+        """The energy graph's axes: its values (not the masses that may run away), and time."""
+        if self.energy_graph is None:
+            return
+        _fit(self.energy_graph, self.energy_fit,
+             [value for key, values in energies.items() if key not in live.may_run_away for value in values])
+        if samples:
+            low, high = time_axis(float(samples[-1].t), span=self.span, dt=self.spacing, pixels=self.size[0])
+            if (low, high) != (self.energy_graph.xmin, self.energy_graph.xmax):
+                self.energy_graph.xmin, self.energy_graph.xmax = low, high
 
     def _energies(self, samples, live) -> dict:
         """What the energy graph plots, per curve key, one value per sample, J.
@@ -427,6 +554,20 @@ def csv_text(samples, *, m, labels, dt) -> str:
                    *energy]
             writer.writerow(row + ([] if single else [label]))
     return out.getvalue()
+
+
+def _on(line, graph) -> bool:
+    """Whether a gcurve is drawn on this graph (vpython keeps the graph's index in line.graph)."""
+    where = getattr(line, "graph", None)
+    return where is graph or (where is not None and where == getattr(graph, "idx", None))
+
+
+def graph_titles_script(titles: dict) -> str:
+    """A script adding {first curve's label: [xtitle, ytitle]} to the page's window.smGraphTitles."""
+    import json
+
+    return ("<script>window.smGraphTitles = Object.assign(window.smGraphTitles || {}, "
+            + json.dumps(titles, ensure_ascii=False).replace("</", "<\\/") + ");</script>")
 
 
 def replace_points(series, points) -> None:

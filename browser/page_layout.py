@@ -17,8 +17,10 @@ browser, where the window's size is known, and again whenever the window is resi
 * the 3-D view's labels grow with projector mode as the page's text does, their offsets from
   their masses follow the canvas's size, and each is drawn wholly inside the canvas (moved in from
   an edge it would cross: 18 px text in the 538 × 263 px canvas of a 1024 × 768 window);
-* keys: Space runs or pauses, → steps, R resets, + and − change the speed, P projector mode; every
-  control is reached with Tab and shows a thick outline when it has the focus.
+* keys: Space runs or pauses, → steps, R resets, + and − change the speed, P projector mode, and
+  with the Measure panel open S, L and C for the stopwatch; every control is reached with Tab and
+  shows a thick outline when it has the focus;
+* the energy bars (browser/energy_bars.py), when chosen, in the graph place under the graphs.
 
 The graphs keep the height browser/graphs.py gives them (flot's tick spacing depends on it, and
 browser/axes.py picks round ticks for that height); only their widths follow the window.
@@ -36,14 +38,16 @@ GRAPH_WIDTH = (420, 760)  # px: the graph column's narrowest and widest
 GRAPH_SHARE = 0.45       # of the window's width, for the graph column, within GRAPH_WIDTH
 GAP = 16                 # px: between the view's column and the graphs'
 NOTE_MARK = " ¶ "         # in a graph's title: what follows is a line to show under the graph
+TICK_ROOM = 1.6          # em: room right of the graphs for half their last time tick (`30`, `1000`)
 
 STYLE = """
 body { font-size: %(body)dpx; }
 button, select, input { font-size: %(body)dpx !important; }
+input[type=checkbox] { width: 1em !important; height: 1em !important; vertical-align: middle; }
 button { padding: 2px 10px; }
 #glowscript > div { white-space: pre-wrap !important; }
 #glowscript .glowscript-canvas-wrapper { margin-bottom: 4px; }
-#sm-graphs { position: absolute; top: 8px; }
+#sm-graphs { position: absolute; top: 8px; overflow-x: hidden; }
 #sm-graphs .glowscript-graph { float: none !important; display: block; margin: 0 0 6px 0 !important; }
 .glowscript-graph .tickLabels, .glowscript-graph .tickLabel { font-size: %(body)dpx !important; color: #000 !important; }
 .sm-note { font-size: %(body)dpx; margin: 0 0 10px 0; max-width: 760px; }
@@ -57,10 +61,24 @@ button { padding: 2px 10px; }
 .sm-legend td.legendColorBox > div { border: none !important; }
 .sm-legend td.legendColorBox > div > div { border-width: 8px !important; }
 #sm-projector { margin-left: 16px; font-size: %(body)dpx; }
+.sm-measure { border: 2px solid #0072b2; border-radius: 6px; padding: 4px 10px; margin: 4px 0 2px 0; background: #fff;
+              line-height: 1.6; }
+.sm-read { font-size: %(body)dpx; margin: 0 0 8px 0; max-width: 760px; }
+.sm-bars { font-size: %(body)dpx; margin: 4px 0 10px 0; }
+.sm-bars-table { border-collapse: collapse; width: 100%%; font-size: inherit !important; }
+.sm-bars-table td { font-size: inherit !important; }
+.sm-bars-table td { padding: 3px 0; }
+.sm-bar-label { white-space: nowrap; padding-right: 10px !important; }
+.sm-bar-cell { position: relative; width: 55%%; min-width: 120px; background: #fff; border: 1px solid #999; }
+.sm-bar { position: absolute; top: 3px; bottom: 3px; }
+.sm-bar-zero { position: absolute; top: 0; bottom: 0; border-left: 2px solid #000; }
+.sm-bar-value { white-space: nowrap; text-align: right; padding-left: 10px !important; }
+.sm-bars-scale { color: #333; }
 button:focus-visible, select:focus-visible, .ui-slider-handle:focus, #sm-projector:focus-visible
   { outline: 4px solid #0072b2 !important; outline-offset: 2px; }
-body.sm-projector, body.sm-projector button, body.sm-projector select,
+body.sm-projector, body.sm-projector button, body.sm-projector select, body.sm-projector input,
 body.sm-projector .sm-legend, body.sm-projector .sm-legend table, body.sm-projector .sm-note,
+body.sm-projector .sm-read, body.sm-projector .sm-bars,
 body.sm-projector .glowscript-graph .tickLabels, body.sm-projector .glowscript-graph .tickLabel
   { font-size: %(projector)dpx !important; }
 body.sm-projector { background: #fff; color: #000; font-weight: 600; }
@@ -72,7 +90,8 @@ body.sm-projector button, body.sm-projector select { border: 2px solid #000; col
 SCRIPT = """
 (function () {
   var ASPECT = %(aspect)s, CANVAS_HEIGHT = %(canvas_height)s, GRAPH_WIDTH = %(graph_width)s, SHARE = %(share)s, GAP = %(gap)s,
-      FACTOR = %(factor)s, TITLE_PX = [%(body)d, %(projector)d], NOTE_MARK = %(note_mark)s;
+      FACTOR = %(factor)s, TITLE_PX = [%(body)d, %(projector)d], NOTE_MARK = %(note_mark)s,
+      TICK_ROOM = %(tick_room)s;
   if (window.smProjector === undefined) window.smProjector = %(projector_on)s;
   // In a Jupyter notebook the scene is one cell's output: the notebook lays out its page and owns
   // its keys (Space, R and arrows move between cells), so only the text sizes apply there.
@@ -202,15 +221,17 @@ SCRIPT = """
     });
     if (want.every(function (el, i) { return have[i] === el; })) return;
     want.forEach(function (el) {
-      var box = el.previousElementSibling;
-      var note = el.nextElementSibling;
+      var box = el.previousElementSibling, after = [];
+      for (var next = el.nextElementSibling; next && (next.classList.contains('sm-note') ||
+           next.classList.contains('sm-read')); next = next.nextElementSibling) after.push(next);
       if (box && box.classList.contains('sm-legend')) right.appendChild(box);
       right.appendChild(el);
-      if (note && note.classList.contains('sm-note')) right.appendChild(note);
+      after.forEach(function (line) { right.appendChild(line); });
     });
   }
   function layout() {
     document.body.classList.toggle('sm-projector', !!window.smProjector);
+    if (window.smGather) window.smGather();   // the Measure panel's block (browser/measure_panel.py)
     if (typeof fontsize !== 'undefined') fontsize = TITLE_PX[window.smProjector ? 1 : 0];
     var button = document.getElementById('sm-projector');
     if (button) button.textContent = window.smProjector ? 'Projector: on (P)' : 'Projector: off (P)';
@@ -224,7 +245,11 @@ SCRIPT = """
     // Always a vertical scrollbar: one that came and went would change the width, the layout the
     // height, and the scrollbar again, so the controls would jump about.
     document.documentElement.style.overflowY = 'scroll';
-    var W = document.documentElement.clientWidth - 16, H = window.innerHeight;
+    // The window less the body's margins, and room for the graphs' last time tick, which flot
+    // centres on the axis's end, half of it past the graph (it made every scene scroll sideways
+    // by 14-28 px at 1280 x 800).
+    var px = TITLE_PX[window.smProjector ? 1 : 0];
+    var W = document.documentElement.clientWidth - 16 - Math.ceil(TICK_ROOM * px), H = window.innerHeight;
     var gw = Math.round(Math.min(GRAPH_WIDTH[1], Math.max(GRAPH_WIDTH[0], SHARE * W)));
     var left = Math.max(300, W - gw - GAP);
     var cw = left, ch = Math.round(cw / ASPECT);
@@ -238,6 +263,9 @@ SCRIPT = """
     labels.forEach(grow);  // after the canvas has its size: the labels' offsets follow it
     var right = column();
     right.style.left = (8 + left + GAP) + 'px';
+    // Its own width and the room for the last tick, no more: the box flot gives a tick label is
+    // wider than its text, and the last one's reached past the window (regimes, 1920 px)
+    right.style.width = (gw + Math.ceil(TICK_ROOM * px)) + 'px';
     document.querySelectorAll('#glowscript > .glowscript-graph').forEach(function (el) {
       right.appendChild(el);
     });
@@ -245,8 +273,9 @@ SCRIPT = """
       var next = box.nextElementSibling;
       if (!next || !next.classList.contains('glowscript-graph')) box.remove();
     });
-    right.querySelectorAll('.sm-note').forEach(function (note) {
+    right.querySelectorAll('.sm-note, .sm-read').forEach(function (note) {
       var before = note.previousElementSibling;
+      while (before && before.classList.contains('sm-note')) before = before.previousElementSibling;
       if (!before || !before.classList.contains('glowscript-graph')) note.remove();
     });
     var graphs = objects(function (o) { return o.graph_options && o.container && !o.__deleted; });
@@ -255,12 +284,21 @@ SCRIPT = """
       // changes; the legend line above says them. A graph whose first point came after the layout
       // had set its width (an error graph: every error is 0 at t = 0) is narrowed by a pixel once,
       // and widened back at the next layout, so it looks as the others do.
-      if (g.__activated && !g.__smResized) { g.__smResized = true; g.width = gw - 1; }
-      else if (g.width !== gw) g.width = gw;
+      // vpython redraws a graph whose width changes with no points at all; marked changed, it is
+      // drawn again with its points (a paused graph, or one that gets no new points, stayed blank).
+      if (g.__activated && !g.__smResized) { g.__smResized = true; g.width = gw - 1; g.__changed = true; }
+      else if (g.width !== gw) { g.width = gw; g.__changed = true; }
       headerFor(g);
       thicken(g);
     });
     inOrder(right, graphs);
+    // The energy bars (browser/energy_bars.py) take the graph place, under the other graphs.
+    document.querySelectorAll('.sm-bars').forEach(function (bars) {
+      var holder = bars.closest('span[id]') || bars;
+      holder.style.display = 'block';
+      holder.style.width = gw + 'px';
+      if (holder.parentNode !== right || holder !== right.lastElementChild) right.appendChild(holder);
+    });
   }
   window.smLayout = layout;
   if (!window.smInstalled && !inNotebook) {
@@ -277,6 +315,10 @@ SCRIPT = """
         for (var i = 0; i < buttons.length; i++)
           if (names.indexOf(buttons[i].textContent.trim()) >= 0) { buttons[i].click(); return true; }
         return false;
+      }
+      function measuring() {  // the stopwatch's keys work while the Measure panel is open
+        return Array.prototype.some.call(document.querySelectorAll('.sm-measure'),
+                                         function (box) { return box.style.display !== 'none'; });
       }
       function speed(step) {
         var menus = document.querySelectorAll('select');
@@ -299,6 +341,9 @@ SCRIPT = """
       else if (e.key === '+' || e.key === '=') done = speed(1);
       else if (e.key === '-' || e.key === '−' || e.key === '_') done = speed(-1);
       else if (e.key === 'p' || e.key === 'P') { window.smProjector = !window.smProjector; layout(); done = true; }
+      else if (measuring() && (e.key === 's' || e.key === 'S')) done = press(['Start (S)', 'Stop (S)']);
+      else if (measuring() && (e.key === 'l' || e.key === 'L')) done = press(['Lap (L)']);
+      else if (measuring() && (e.key === 'c' || e.key === 'C')) done = press(['Clear (C)']);
       if (done) e.preventDefault();
     });
   }
@@ -320,5 +365,6 @@ def page_head(*, projector: bool = False) -> str:
                        "canvas_height": json.dumps(CANVAS_SIZE[1]),
                        "graph_width": json.dumps(list(GRAPH_WIDTH)), "share": json.dumps(GRAPH_SHARE),
                        "gap": json.dumps(GAP), "factor": json.dumps(LINE_FACTOR),
-                       "projector_on": json.dumps(bool(projector)), "note_mark": json.dumps(NOTE_MARK)}
+                       "projector_on": json.dumps(bool(projector)), "note_mark": json.dumps(NOTE_MARK),
+                       "tick_room": json.dumps(TICK_ROOM)}
     return f"<style>{STYLE % numbers}</style><script>{script}</script>"

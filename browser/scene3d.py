@@ -12,11 +12,13 @@ import math
 import numpy as np
 
 from export.framing import CANVAS_SIZE, Camera, camera_range, frame, mass_radius, motion_box
-from export.palette import mass_colours
+from export.palette import ORANGE, SKY_BLUE, mass_colours
 
 from .mass_labels import mass_labels
 
 TRAIL_POINTS = 300        # points kept in a trail: the last 15 s at one point per graph sample (0.05 s)
+TRAIL_RADIUS = 0.03       # × the masses' radius: a trail's thickness
+TRAIL_SHADE = 0.6         # a trail's colour: this much of its palette colour, the rest the background's
 SUPPORT_COLOUR = (0.6, 0.6, 0.65)
 SPRING_COLOUR = (0.85, 0.85, 0.9)
 BACKGROUND = (0.12, 0.13, 0.16)
@@ -68,7 +70,10 @@ class Scene3D:
         # The trail is drawn from the graph samples (every 0.05 s of simulation time), not by
         # vpython's make_trail, which adds a point only when the page draws a frame: on a busy
         # computer that is a few times a second, and the trail came out as jagged straight segments.
-        self.trails = [vp.curve(color=vp.vector(*colour), radius=0.06 * radius, retain=TRAIL_POINTS)
+        # Thin, in a hue that is not the ball's, dimmed towards the background: the ball stands out
+        # on it, see-through or not (in the ball's own colour, the pendulum's ball was lost in its rosette).
+        self.trails = [vp.curve(color=vp.vector(*trail_colour(colour)), radius=TRAIL_RADIUS * radius,
+                                retain=TRAIL_POINTS)
                        for colour in colours] if view["trail"] else []
         self.runaway_labels: dict = {}  # mass index -> its label, once it has run away
         self.last_open: dict = {}       # mass index -> its last position inside the picture, m
@@ -283,6 +288,13 @@ class Scene3D:
         elif self.range < needed and self.range < self.max_range:
             self.range = min(1.5 * needed, self.max_range)
             self.vp.scene.range = self.range
+
+
+def trail_colour(colour) -> tuple[float, float, float]:
+    """A mass's trail: sky blue, or orange behind a sky-blue mass (export/palette.py), dimmed
+    towards the picture's background."""
+    hue = ORANGE if tuple(colour) == SKY_BLUE else SKY_BLUE
+    return tuple(TRAIL_SHADE * c + (1 - TRAIL_SHADE) * b for c, b in zip(hue, BACKGROUND))
 
 
 def vec(vp, a):

@@ -7,9 +7,9 @@ The page has three parts, each built by its constructor from the scene's model a
     browser/controls.py  buttons, menus, sliders and captions, and the queue of their clicks
 
 :class:`SceneView` here owns the run (browser/clock.py's LiveRun, RealTimeClock and StepBudget):
-once per frame it carries out the clicks, asks the engine for the steps real time says are due,
-and tells the parts to draw. A scene's VIEW dict names what to draw (the keys and their defaults:
-scenes/_view.py's DEFAULT_VIEW). What the page does for the teacher is in README.md.
+once per frame it carries out the clicks (browser/messages.py, one handler each), asks the engine
+for the steps real time says are due, and tells the parts to draw. A scene's VIEW dict names what
+to draw (the keys and their defaults: scenes/_view.py's DEFAULT_VIEW). What the page does for the teacher is in README.md.
 
 Closing the tab, or Ctrl-C, makes vpython raise SystemExit(0) in this (main) thread. Closing the
 tab ends the program with status 0; show() turns a Ctrl-C into KeyboardInterrupt, which the
@@ -17,22 +17,33 @@ command line reports with status 130.
 """
 from __future__ import annotations
 
+import functools
 import sys
+import threading
 import time
 
 import numpy as np
 
+from export import offline_page
+from export.offline_page import link_fragment
 from export.step_update import step_lines, update_force
+from physics.period import CrossingMeter, formula_period
 
 from scenes import catalog
 from scenes._view import DEFAULT_VIEW
 
 from .clock import LiveRun, RealTimeClock, StepBudget
-from .controls import (PRESET_PROMPT, SPEEDS, Controls, constants_text, csv_href, program_href,
+from .controls import (PRESET_PROMPT, SPEEDS, Controls, constants_text, csv_href, page_href, program_href,
                        scene_menu_choices, slider_names, slider_range, symbol, time_decimals)
 from .arrows3d import MomentumArrows
 from .data_panel import MeasuredData, load_button_html
 from .graphs import SAMPLE_EVERY, Graphs, csv_text
+from .measure_panel import period_text
+from .messages import (Batch, ChooseGraph, ChooseIntegrator, ChoosePreset, ChooseScene, ChooseSpeed, ClearStopwatch,
+                       DownloadCsv, DownloadOfflinePage, DownloadProgram, FitData, LapStopwatch, MoveMarker, Reset,
+                       RunOrPause, SetConstant, ShowArrows, ShowLine, ShowPeriod, StartStopwatch, Step)
+from .reference_lines import ReferenceLines
+from .stopwatch import Stopwatch
 from .page_layout import PROJECTOR_BUTTON, page_head
 from .scene3d import Scene3D
 
@@ -41,6 +52,7 @@ __all__ = ["show", "SceneView", "DEFAULT_VIEW", "csv_text", "constants_text", "s
            "slider_names", "slider_range", "symbol", "time_decimals"]
 
 STEP_MASSES = 4           # masses whose Step is written out in the caption
+PERIOD_MASSES = 4         # graphed masses whose period the Measure panel shows
 FRAME_RATE = 50           # frames per second the loop aims for
 
 
@@ -104,7 +116,14 @@ class SceneView:
         self.preset = preset   # the preset whose constants run now (None once a slider moved one)
         self.data = data or MeasuredData()
         self.fresh_file = False     # a file from Load data, not yet compared
+        self._page_writing = None   # the offline page being written on its thread (_offer_offline_page)
         self.live = LiveRun(model, integrator=integrator, sample_every=SAMPLE_EVERY)
+        # the Measure panel's tools, kept across scenes as the arrows are (browser/measure_panel.py)
+        self.stopwatch = Stopwatch()
+        self.t_drawn = 0.0          # the t the page shows: a run restarting from 0 leaves the stopwatch that
+        self.period_shown = False   # the period is hidden until its box is ticked
+        self.lines_shown: set = set()
+        self.graph_place = "energy"
         self.scene, self.controls, self.graphs = self._build_parts(preset=preset)
         self._start_run()
 
@@ -126,14 +145,38 @@ class SceneView:
         controls = Controls(self.vp, setup=setup, view=view, integrators=model.integrators,
                             integrator=self.integrator, speed=self.speed, preset=preset,
                             arrows=self.arrows_shown,
-                            load_button=load_button_html() if hasattr(self.server, "uploaded") else "")
-        graphs = Graphs(self.vp, setup=setup, model=model, view=view)
+                            load_button=load_button_html() if hasattr(self.server, "uploaded") else "",
+                            measure={"period": self.period_shown, "lines": self.lines_shown,
+                                     "graph": self.graph_place})
+        self.view = view
+        self.lines = self._lines(scene, model)
+        self.lines.bind_mouse(controls.commands.put)
+        graphs = Graphs(self.vp, setup=setup, model=model, view=view, place=self.graph_place,
+                        reference=self.lines.at["equilibrium"])
+        self._measure(model, graphs)
         return scene, controls, graphs
+
+    def _lines(self, scene, model) -> ReferenceLines:
+        """The natural-length, equilibrium and marker lines of this model (browser/reference_lines.py)."""
+        return ReferenceLines(self.vp, model=model, view=self.view, radius=scene.radius, centre=scene.centre,
+                              reach=scene.range, shown=self.lines_shown)
+
+    def _measure(self, model, graphs) -> None:
+        """What the period is measured from, for this model: each graphed mass's crossings of its
+        equilibrium along the graphed coordinate, and the formula's 2π/ω_d (physics/period.py)."""
+        self.period_axis = graphs.axes[0]
+        self.period_masses = graphs.graphed[:PERIOD_MASSES]
+        centre = self.lines.at["equilibrium"]
+        self.crossings = CrossingMeter(np.full(model.state.count, np.nan) if centre is None
+                                       else centre[:, self.period_axis])
+        covered = False if model.exact is None else np.isfinite(model.exact_where_valid([0.0])[0][0]).all(axis=-1)
+        self.formula, self.formula_why = formula_period(model.forces, model.state, closed_form=covered)
 
     def _build_page(self, setup, model, *, preset: str | None = None, old_page_gone: bool = False) -> None:
         """Take down the parts shown so far (unless the page they were on is gone), build this
         scene's, and start its run at t = 0."""
         if not old_page_gone:
+            self.lines.take_down()
             self.arrows.take_down()
             self.scene.take_down()
             self.graphs.take_down()
@@ -148,6 +191,7 @@ class SceneView:
         self.clock.dt = self.live.model.dt
         self._reset()
         self.controls.show_constants(self.setup)
+        self.controls.show_link(link_fragment(self.setup, self.integrator))
         self.data.compare(self.setup, self.integrator)   # on a thread: the run starts at once
         self._show_data()
         self._draw()
@@ -155,6 +199,9 @@ class SceneView:
 
     def _reset(self) -> None:
         """Back to the exact initial state, with empty graphs and trails (Reset)."""
+        self.stopwatch.run_restarted(self.t_drawn)
+        self.t_drawn = 0.0
+        self.crossings.clear()
         samples = self.live.restart()
         self.arrows.legend_text = self.controls.arrow_legend
         self.arrows.reset()
@@ -228,6 +275,7 @@ class SceneView:
         changed = self._take_upload()
         changed = self._apply_commands(now=start) or changed
         changed = self._data_answered() or changed
+        changed = self._offline_page_written() or changed
         steps = self.clock.steps_due(now=start, running=self.running and not self.live.problem,
                                      quiet=self.server.seconds_since_contact(),
                                      max_steps=self.budget.max_steps)
@@ -241,62 +289,140 @@ class SceneView:
         return max(0.002, 1.0 / FRAME_RATE - (time.perf_counter() - start))
 
     def _apply_commands(self, *, now: float) -> bool:
-        """Carry out the clicks queued by the page (they arrive on vpython's server thread).
+        """Carry out the messages queued by the page's clicks (they arrive on vpython's server
+        thread; browser/messages.py), each by its handler below.
 
         They take effect in the order they were made, as if each came in a frame of its own: an
         integrator or a slider value chosen just before a preset still holds after it (a preset
-        changes only its own constants). A new scene or preset builds new controls; the clicks
+        changes only its own constants). A new scene or preset builds new controls; the messages
         after it in this batch were made on the old ones, so they are dropped.
         """
         pending = self.controls.clicks()
-        changes, integrator = {}, None
-        for command in pending:
-            kind = command[0]
-            if kind == "toggle":
-                self.running = not self.running
-                self.arrows.end_step()
-                self.controls.step_text.text = ""
-            elif kind == "step":
-                self.running = False
-                self._step()
-            elif kind == "arrows":
-                self.arrows.set_shown(command[1], bool(command[2]))
-            elif kind == "reset":
-                self._reset()
-                self.clock.restart(now=now)
-            elif kind == "speed":
-                self.speed = command[1] if command[1] in SPEEDS else "1×"
-                self.clock.speed = SPEEDS[self.speed]
-            elif kind == "integrator":
-                integrator = command[1]
-            elif kind == "set" and command[2] != self.setup.values.get(command[1]):
-                changes[command[1]] = float(command[2])
-            elif kind == "csv":
-                self._offer_csv()
-            elif kind == "program":
-                self._offer_program()
-            elif kind == "fit":
-                self._fit()
-            elif kind in ("preset", "scene"):
-                try:
-                    if kind == "preset" and command[1] != PRESET_PROMPT:
-                        setup, preset = self.setup.with_values(**changes).with_preset(command[1]), command[1]
-                    elif kind == "scene" and command[1] != self.setup.name:
-                        setup, preset = catalog.configure(command[1]), None
-                    else:
-                        continue
-                except ValueError as problem:  # a scene file a teacher broke: say so, keep this one
-                    self.controls.say(f"<b>Cannot open that:</b> {problem}")
-                    self.controls.choice_refused(kind, self.setup.name, self.preset)
-                    continue
-                self.integrator = integrator or self.integrator
-                changes, integrator = {}, None
-                if self._switch(setup, preset=preset):
-                    break
-                self.controls.choice_refused(kind, self.setup.name, self.preset)
-        if changes or integrator:
-            self._rebuild(changes=changes, integrator=integrator or self.integrator)
+        batch = Batch(now=now)
+        for message in pending:
+            self.carry_out(message, batch)
+            if batch.page_built:
+                break
+        if batch.changes or batch.integrator:
+            self._rebuild(changes=batch.changes, integrator=batch.integrator or self.integrator)
         return bool(pending)
+
+    # ---- one handler per message (browser/messages.py) ----
+
+    @functools.singledispatchmethod
+    def carry_out(self, message, batch: Batch) -> None:
+        """Do what one message asks, now or (constants, the integrator) once the batch is done."""
+        raise TypeError(f"the page has no handler for {message!r}")
+
+    @carry_out.register
+    def _run_or_pause(self, message: RunOrPause, batch: Batch) -> None:
+        self.running = not self.running
+        self.arrows.end_step()
+        self.controls.step_text.text = ""
+
+    @carry_out.register
+    def _step_once(self, message: Step, batch: Batch) -> None:
+        self.running = False
+        self._step()
+
+    @carry_out.register
+    def _show_arrows(self, message: ShowArrows, batch: Batch) -> None:
+        self.arrows.set_shown(message.kind, bool(message.shown))
+
+    @carry_out.register
+    def _reset_run(self, message: Reset, batch: Batch) -> None:
+        self._reset()
+        self.clock.restart(now=batch.now)
+
+    @carry_out.register
+    def _choose_speed(self, message: ChooseSpeed, batch: Batch) -> None:
+        self.speed = message.label if message.label in SPEEDS else "1×"
+        self.clock.speed = SPEEDS[self.speed]
+
+    @carry_out.register
+    def _choose_integrator(self, message: ChooseIntegrator, batch: Batch) -> None:
+        batch.integrator = message.name
+
+    @carry_out.register
+    def _set_constant(self, message: SetConstant, batch: Batch) -> None:
+        if message.value != self.setup.values.get(message.name):
+            batch.changes[message.name] = float(message.value)
+
+    @carry_out.register
+    def _download_csv(self, message: DownloadCsv, batch: Batch) -> None:
+        self._offer_csv()
+
+    @carry_out.register
+    def _download_program(self, message: DownloadProgram, batch: Batch) -> None:
+        self._offer_program()
+
+    @carry_out.register
+    def _download_offline_page(self, message: DownloadOfflinePage, batch: Batch) -> None:
+        self._offer_offline_page()
+
+    @carry_out.register
+    def _fit_data(self, message: FitData, batch: Batch) -> None:
+        self._fit()
+
+    @carry_out.register
+    def _choose_preset(self, message: ChoosePreset, batch: Batch) -> None:
+        if message.label == PRESET_PROMPT:
+            return
+        self._choose(lambda: self.setup.with_values(**batch.changes).with_preset(message.label),
+                     preset=message.label, batch=batch,
+                     refused=lambda: self.controls.show_preset(self.preset))
+
+    @carry_out.register
+    def _choose_scene(self, message: ChooseScene, batch: Batch) -> None:
+        if message.name == self.setup.name:
+            return
+        self._choose(lambda: catalog.configure(message.name), preset=None, batch=batch,
+                     refused=lambda: self.controls.show_scene(self.setup.name))
+
+    @carry_out.register
+    def _start_stopwatch(self, message: StartStopwatch, batch: Batch) -> None:
+        self.stopwatch.start_stop(self.live.state.t)
+
+    @carry_out.register
+    def _lap_stopwatch(self, message: LapStopwatch, batch: Batch) -> None:
+        self.stopwatch.lap(self.live.state.t)
+
+    @carry_out.register
+    def _clear_stopwatch(self, message: ClearStopwatch, batch: Batch) -> None:
+        self.stopwatch.clear()
+
+    @carry_out.register
+    def _show_period(self, message: ShowPeriod, batch: Batch) -> None:
+        self.period_shown = bool(message.shown)
+
+    @carry_out.register
+    def _show_line(self, message: ShowLine, batch: Batch) -> None:
+        self.lines.set_shown(message.kind, bool(message.shown))
+
+    @carry_out.register
+    def _move_marker(self, message: MoveMarker, batch: Batch) -> None:
+        self.lines.move_marker((message.x, message.y, message.z))
+
+    @carry_out.register
+    def _choose_graph(self, message: ChooseGraph, batch: Batch) -> None:
+        self.graph_place = message.kind
+        self.graphs.choose(message.kind, self.live)
+
+    def _choose(self, configure, *, preset: str | None, batch: Batch, refused) -> None:
+        """A scene or preset from a menu: configure() gives its setup, built anew from t = 0 with
+        the integrator chosen in this batch; refused() puts the menu back where it cannot be."""
+        try:
+            setup = configure()
+        except ValueError as problem:  # a scene file a teacher broke: say so, keep this one
+            self.controls.say(f"<b>Cannot open that:</b> {problem}")
+            refused()
+            return
+        self.integrator = batch.integrator or self.integrator
+        batch.changes, batch.integrator = {}, None
+        if self._switch(setup, preset=preset):
+            batch.page_built = True
+        else:
+            refused()
 
     def _switch(self, setup, *, preset: str | None = None) -> bool:
         """Another scene, or new values from a preset: build the page again, from t = 0.
@@ -325,6 +451,11 @@ class SceneView:
         self.live = LiveRun(model, integrator=integrator, sample_every=SAMPLE_EVERY)
         self.arrows.rescale(model, integrator=integrator)
         self.scene.reframe(model)
+        self.lines.take_down()       # the equilibrium and natural length move with the constants
+        self.lines = self._lines(self.scene, model)
+        self.lines.bind_mouse(self.controls.commands.put)
+        self.graphs.new_reference(model, self.lines.at["equilibrium"])
+        self._measure(model, self.graphs)
         self._start_run()
 
     def _step(self) -> None:
@@ -359,6 +490,8 @@ class SceneView:
         if not samples and not redraw:
             return
         self.scene.extend_trails(samples, self.live.runaways)
+        if samples:
+            self.crossings.add([s.t for s in samples], [s.r[:, self.period_axis] for s in samples])
         self.graphs.plot(samples, self.live, matter=self.matter, redraw=redraw)
 
     def _draw(self) -> None:
@@ -368,9 +501,27 @@ class SceneView:
         self.arrows.draw(live)
         self.controls.show_time(live.state.t, decimals=self.decimals, running=self.running,
                                 error=self.graphs.error_readout(live, matter=self.matter))
+        self.t_drawn = float(live.state.t)
+        self.controls.measure.show_stopwatch(reading=self.stopwatch.reading(live.state.t),
+                                             running=self.stopwatch.running, laps=self.stopwatch.lap_times(),
+                                             decimals=self.decimals)
+        self.controls.measure.show_period(self._period_text() if self.period_shown else "")
+        self.graphs.bars.draw(live)
         self.controls.show_status(problem=live.problem, runaways=[reason for _, reason in live.runaways.values()],
                                   slow_dt=live.model.dt if self.clock.dropped > 0.01 else None,
                                   advice=live.advice)
+
+    def _period_text(self) -> str:
+        """The period of each graphed mass (a few), measured and from the formula, for the panel."""
+        lines = []
+        model, axis = self.live.model, "xyz"[self.period_axis]
+        for i in self.period_masses:
+            formula = None if self.formula is None else float(self.formula[i])
+            said = period_text(self.crossings.period(i), crossings=len(self.crossings.times[i]),
+                               formula=formula, why=self.formula_why, axis=axis,
+                               centre=float(self.crossings.centres[i]))
+            lines.append((f"<b>{model.labels[i]}</b>: " if len(self.period_masses) > 1 else "") + said)
+        return "<span class='sm-period'>" + "\n".join(lines) + "</span>"
 
     # ---- measured data (browser/data_panel.py) ----
 
@@ -380,7 +531,7 @@ class SceneView:
         upload = self.server.uploaded() if hasattr(self.server, "uploaded") else None
         if upload is None:
             return False
-        self.data.load(upload[1], upload[0], self.setup, self.integrator)   # on a thread
+        self.data.load(upload.raw, upload.name, self.setup, self.integrator)   # on a thread
         self.fresh_file = True      # once read, the run restarts (_data_answered)
         self._show_data()
         return True
@@ -442,6 +593,40 @@ class SceneView:
             return
         self.controls.offer(kind="program", name=f"{self.setup.name}.py", href=program_href(text),
                             note=f"a VPython program to hand out, {text.count(chr(10))} lines")
+
+
+    def _offer_offline_page(self) -> None:
+        """Hand the scene as chosen now (constants, integrator, preset, arrows) to the browser as the
+        offline page `main.py SCENE --html` writes (export/offline_page.py). Writing it takes a
+        second or more (it tries which constants the page may change), so it is written on a
+        thread of its own while the run goes on; _offline_page_written offers it."""
+        if self._page_writing is not None:
+            return
+        self.controls.offer_nothing("writing the offline page…")
+        setup, integrator, shown = self.setup, self.integrator, tuple(self.arrows.shown)
+        writing = self._page_writing = {"name": f"{setup.name}.html"}
+
+        def write():
+            try:
+                writing["text"] = offline_page.page(setup, integrator=integrator, arrows=shown)
+            except ValueError as problem:
+                writing["problem"] = str(problem)
+        writing["thread"] = threading.Thread(target=write, name="offline page", daemon=True)
+        writing["thread"].start()
+
+    def _offline_page_written(self) -> bool:
+        """Offer the offline page once its thread has written it (or say why there is none)."""
+        writing = self._page_writing
+        if writing is None or writing["thread"].is_alive():
+            return False
+        self._page_writing = None
+        if "text" not in writing:
+            self.controls.offer_nothing(f"no offline page: {writing.get('problem', 'it could not be written')}")
+            return True
+        text = writing["text"]
+        self.controls.offer(kind="page", name=writing["name"], href=page_href(text),
+                            note=f"one file that runs offline in any browser, {len(text.encode()) / 1e6:.1f} MB")
+        return True
 
 
 def _summary(module) -> str:

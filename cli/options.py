@@ -11,6 +11,7 @@ import argparse
 
 from export import files
 from export.arrows import parse_arrows
+from export.lines import one_line  # noqa: F401  (main.py and the parser write every message through it)
 from physics.integrators import DEFAULT_INTEGRATOR, INTEGRATORS
 from scenes import ConstantError, catalog, check_value
 
@@ -25,9 +26,12 @@ EXAMPLES = """examples:
   python main.py damped --preset "critical damping"    no overshoot, in the browser
   python main.py vertical --steps 2                   the first two updates, to check by hand
   python main.py regimes --plot regimes.png           the page's damping figure
-  python main.py damped --data examples/data/vernier.csv --fit k,b --set dt=0.001
+  python main.py damped --data examples/data/vernier.csv --fit k,b --set m=0.5
                                                       fit k and b to a motion detector's run
   python main.py damped --mystery spring.csv --seed 12   a mystery spring for class
+
+exit status: 0 done; 2 bad input (one line says what); 1 a run that blew up, or a bug of ours;
+3 a fit whose numbers cannot be trusted (--data --fit): its first line says why, the figures follow
 """
 
 
@@ -35,11 +39,12 @@ class UsageError(ValueError):
     """Options that do not fit together, or a value out of range: a one-line message."""
 
 
+# What str.splitlines() breaks a line at, and the other control characters a terminal acts on.
 class Parser(argparse.ArgumentParser):
     """argparse, but a bad option is one line on stderr (no usage block), with exit status 2."""
 
     def error(self, message):
-        self.exit(2, f"error: {message} (see 'python main.py --help')\n")
+        self.exit(2, f"error: {one_line(message)} (see 'python main.py --help')\n")
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -75,9 +80,13 @@ def build_parser() -> argparse.ArgumentParser:
                         help="write the scene as a standalone VPython program to hand out ('-': print it)")
     parser.add_argument("--webvpython", metavar="FILE.py",
                         help="the same program for Web VPython (glowscript.org, trinket)")
+    parser.add_argument("--html", metavar="FILE.html",
+                        help="the scene as one HTML file that runs offline in any browser (GlowScript inside: "
+                             "no install, no network), with the page's controls")
     parser.add_argument("--overwrite", action="store_true",
-                        help="let --csv, --plot, --vpython or --webvpython replace an existing Python file "
-                             "this program did not write (its own files are never replaced)")
+                        help="let --csv, --plot, --vpython, --webvpython or --mystery replace an existing "
+                             "file this program did not write (its own outputs are replaced without it; "
+                             "the program's own files and the --data file never are)")
     _add_lab_options(parser)
     parser.add_argument("--arrows", metavar="LIST",
                         help="arrows on each mass, in the page and the program: any of p,F_net,forces,split "
@@ -99,7 +108,11 @@ def _add_lab_options(parser: argparse.ArgumentParser) -> None:
                       help="compare the model with a measured position against time (Tracker, Vernier, "
                            "PASCO, Logger Pro or --csv file): fits a time and a position offset, prints "
                            "the RMS residual; with --plot, draws both")
-    data.add_argument("--fit", metavar="NAMES", help="with --data: also fit these constants, e.g. k,b")
+    data.add_argument("--fit", metavar="NAMES",
+                      help="with --data: also fit these constants, e.g. k,b (and where the mass was let go, "
+                           "r0, unless --set r0 gives it); the fit chooses the model's integrator and dt "
+                           "unless --integrator or --set dt does; exit status 3 if its numbers cannot be "
+                           "trusted")
     data.add_argument("--data-column", metavar="NAME",
                       help="with --data: the position column to read (a unique part of its header, or "
                            "its number from 1)")
@@ -123,7 +136,7 @@ def _add_lab_options(parser: argparse.ArgumentParser) -> None:
 BROWSER_ONLY = (("--port", "port"), ("--no-browser", "no_browser"), ("--projector", "projector"))
 RUN_OPTIONS = (("--headless", "headless"), ("--json", "json"), ("--csv", "csv"), ("--plot", "plot"),
                ("--steps", "steps"), ("--until", "until"), ("--integrator", "integrator"))
-PROGRAM_OPTIONS = (("--vpython", "vpython"), ("--webvpython", "webvpython"))
+PROGRAM_OPTIONS = (("--vpython", "vpython"), ("--webvpython", "webvpython"), ("--html", "html"))
 OUTPUT_FILES = (("--csv", "csv"), ("--plot", "plot"), *PROGRAM_OPTIONS)
 
 
@@ -171,19 +184,41 @@ def check_lab_options(args) -> None:
         return
     if command == "--show-answer" and args.seed is None:
         raise UsageError("--show-answer needs --seed N, the seed the mystery file was written with")
+    if args.seed is not None and args.seed < 0:
+        raise UsageError(f"--seed needs a whole number of 0 or more (got {args.seed})")
     if args.run is not None and args.run < 1:
         raise UsageError(f"--run needs a whole number of 1 or more (got {args.run})")
+    if args.fit is not None and not args.fit.strip():
+        raise UsageError("--fit needs the names of the constants to fit, like --fit k,b (got nothing); "
+                         "leave it out to fit only the offsets")
     others = [(flag, attribute) for flag, attribute in (("--csv", "csv"), ("--steps", "steps"),
                                                         ("--until", "until"), *PROGRAM_OPTIONS)]
     others += [("--json", "json"), ("--plot", "plot"), ("--headless", "headless")] if args.page else BROWSER_ONLY
     if command != "--data":
         others += [("--json", "json"), ("--plot", "plot"), ("--integrator", "integrator")]
+    if not args.page:   # arrows are drawn on the page only
+        others += [(_arrows_flag(args), "arrows")]
+    if not (command == "--mystery" or (command == "--data" and args.plot is not None)):
+        others += [("--overwrite", "overwrite")]   # it lets --plot or the mystery file replace a file
     for flag, attribute in others:
         if _given(args, attribute):
             page = (" (add --page to show the data on the page)" if command == "--data" and
-                    (flag, attribute) in BROWSER_ONLY else "")
+                    (flag, attribute) in BROWSER_ONLY + ((_arrows_flag(args), "arrows"),) else "")
             raise UsageError(f"{flag} does nothing with {command}{' --page' if args.page else ''}; "
                              f"leave out one of them{page}")
+    if command == "--data" and args.plot is not None and files.same_file(args.plot, args.data):
+        raise UsageError(f"--plot {args.plot!r} is the --data file (the same file{_how_same(args.plot, args.data)}), "
+                         f"and the data is never written over; give the figure another name")
+
+
+def _arrows_flag(args) -> str:
+    """How the user asked for arrows: --no-arrows sets them to ''."""
+    return "--no-arrows" if args.arrows == "" else "--arrows"
+
+
+def _how_same(first: str, second: str) -> str:
+    """' under another name' when two paths that name one file are spelt differently."""
+    return "" if first == second else ", under another name"
 
 
 def _given(args, attribute) -> bool:
@@ -201,11 +236,13 @@ def check_options(args) -> None:
         _check_list(args)
         return
     if args.constants:
-        for flag, attribute in (*RUN_OPTIONS, *PROGRAM_OPTIONS, *BROWSER_ONLY):
+        for flag, attribute in (*RUN_OPTIONS, *PROGRAM_OPTIONS, *BROWSER_ONLY, (_arrows_flag(args), "arrows"),
+                                ("--overwrite", "overwrite")):
             if _given(args, attribute):
                 raise UsageError(f"--constants only prints the constants, so {flag} would do nothing; "
                                  f"leave out one of them")
     if lab_command(args) is not None:
+        _parse_arrows(args)   # --data --page: the page draws them
         return
     _check_run(args)
     _check_until(args)
@@ -228,7 +265,7 @@ def _check_list(args) -> None:
     others = [flag for flag, attribute in (("--constants", "constants"), ("--set", "assignments"),
                                            ("--scenario", "scenario"), ("--preset", "preset"),
                                            *RUN_OPTIONS, *PROGRAM_OPTIONS, *BROWSER_ONLY,
-                                           ("--overwrite", "overwrite"))
+                                           ("--overwrite", "overwrite"), (_arrows_flag(args), "arrows"))
               if _given(args, attribute)]
     if args.scene is not None or others:
         what = f"scene {args.scene!r}" if args.scene is not None else others[0]
@@ -259,8 +296,8 @@ def _check_until(args) -> None:
     if args.until is None:
         return
     if not headless_run(args) and not _programs(args):
-        raise UsageError("--until needs --headless, or --vpython or --webvpython (the program runs that "
-                         "long); the browser runs until you stop it")
+        raise UsageError("--until needs --headless, or --vpython or --webvpython or --html (the program runs "
+                         "that long); the browser runs until you stop it")
     try:
         check_value("until", args.until, "s")  # the same range as the scenes' own `until`
     except ConstantError as problem:
@@ -274,13 +311,20 @@ def _check_arrows(args) -> None:
     """--arrows LIST (or --no-arrows): parsed, and only where arrows are drawn."""
     if args.arrows is None:
         return
-    try:
-        args.arrows = parse_arrows(args.arrows)
-    except ValueError as problem:
-        raise UsageError(str(problem)) from None
+    _parse_arrows(args)
     if headless_run(args) and not _programs(args):
-        raise UsageError("--arrows (and --no-arrows) is for the page and the program (--vpython, --webvpython), and a "
+        raise UsageError("--arrows (and --no-arrows) is for the page and the program (--vpython, --webvpython, --html), and a "
                          "headless run draws none; leave it out")
+
+
+def _parse_arrows(args) -> None:
+    """args.arrows, the text of --arrows, becomes the tuple of arrow names (UsageError naming an
+    unknown one); None stays None (the scene's own)."""
+    if isinstance(args.arrows, str):
+        try:
+            args.arrows = parse_arrows(args.arrows)
+        except ValueError as problem:
+            raise UsageError(str(problem)) from None
 
 
 def _check_outputs(args) -> None:
@@ -288,8 +332,8 @@ def _check_outputs(args) -> None:
     outputs = [(flag, getattr(args, attribute)) for flag, attribute in OUTPUT_FILES
                if getattr(args, attribute) not in (None, files.STDOUT)]
     if args.overwrite and not outputs:
-        raise UsageError("--overwrite does nothing without a file to write (--csv, --plot, --vpython or "
-                         "--webvpython); leave it out")
+        raise UsageError("--overwrite does nothing without a file to write (--csv, --plot, --vpython, "
+                         "--webvpython or --html); leave it out")
     for n, (flag, path) in enumerate(outputs):
         for other, other_path in outputs[n + 1:]:
             if files.same_file(path, other_path):

@@ -27,7 +27,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from physics.forces import net_force
+from physics.forces import forces_each as each_force, net_force
 from physics.rounding import round_up as round_scale  # 13 → 20 per metre of arrow
 
 from .framing import Camera, frame
@@ -115,19 +115,15 @@ def unit_keeping_in(camera: Camera, r, q, *, unit: float, margin: float) -> floa
 
 
 def forces_each(forces, t: float, r, v, m) -> list[np.ndarray]:
-    """Each force on every mass, in the scene's order, (N, 3) N each: they add up to F_net."""
-    return [np.asarray(force(t, r, v, m), dtype=float) for force in forces]
-
-
-FORCE_NAMES = {"Spring": "spring", "SpringBetween": "spring", "Gravity": "gravity",
-               "LinearDamping": "damping", "QuadraticDrag": "drag", "Driving": "driving"}
+    """Each force on every mass, in the scene's order, (N, 3) N each: they add up to F_net
+    (physics.forces.forces_each: static friction given the others' sum, as the engine does)."""
+    return [np.asarray(force, dtype=float) for force in each_force(forces, t, r, v, m)]
 
 
 def force_name(force) -> str:
-    """A force's name for its arrow label: `spring`, `gravity`, ... (a force of a new kind: its
-    own `name`, else its class name)."""
-    kind = type(force).__name__
-    return getattr(force, "name", FORCE_NAMES.get(kind, kind))
+    """A force's name for its arrow label and its energy bar: the LABEL it declares (`spring`,
+    `gravity`, `friction`; physics/forces/), else its class name (a plain function: its name)."""
+    return getattr(force, "LABEL", "") or getattr(force, "name", "") or type(force).__name__
 
 
 def split(F_net, p) -> tuple[np.ndarray, np.ndarray]:

@@ -19,9 +19,6 @@ from physics.exact import damping_regime
 
 from .lines import commented, vector
 
-# The constants of the closed form m x'' + b x' + k x = F0 cos(ω t) (physics/exact.py), under gravity:
-# a force with any other constant is one it does not describe.
-CLOSED_FORM = {"k", "L0", "anchor", "g", "b", "F0", "omega", "drive_axis"}
 DOWN = (0.0, -1.0, 0.0)        # the program writes gravity along −y
 
 
@@ -51,7 +48,8 @@ def exact_lines(model, constants, forces, *, axis: str, m: str):
     `constants` spells the program's names (the program's constants): `b`, or `b_each[i]`.
     """
     n = constants.name
-    if any(set(force.CONSTANTS) - CLOSED_FORM for force in forces.forces) or not constants.has("k"):
+    # only where the closed form covers every force (each force's closed_form(), physics/forces/)
+    if any(force.closed_form() is None for force in forces.forces) or not constants.has("k"):
         return None
     damped, gravity, driven = constants.has("b"), constants.has("g"), constants.has("F0")
     linear = not constants.has("L0")     # L0 = 0: F = −k L, so each coordinate moves on its own

@@ -1,25 +1,52 @@
-"""Writing an output file whole: checked before any work starts, then written to a temporary file in
-the same folder and renamed over the target, so a failure part-way (a full disk, a file-size limit,
-Ctrl-C) leaves the old file as it was and no half-written one. The CSV file and the figure of the
-command line, and the VPython program of both front ends, are written this way.
+"""Writing an output file whole, and never where it must not go.
 
-A symbolic link is followed: the file it points to is replaced, and the link stays a link. Only a
-regular file is replaced: an existing device (/dev/null, /dev/stdout), named pipe or socket is
-refused before anything opens it, since renaming over it would put a regular file in its place
-and opening a pipe waits for a reader.
+Checked before any work starts, then written to a temporary file in the same folder and renamed
+over the target, so a failure part-way (a full disk, a file-size limit, Ctrl-C) leaves the old file
+as it was and no half-written one. The CSV file and the figure of the command line, the mystery
+file, and the programs and pages of both front ends, are written this way.
+
+Where a file may go (check_writable):
+
+- Never into the program's own tree, with or without --overwrite (see own_tree). The tree is
+  worked out from the folder this program runs from, not from a list of its parts, so a module,
+  folder, data file or document added later is covered without anyone remembering to list it.
+- Never over a file the program did not write, unless --overwrite is given. Its own outputs
+  carry a mark (see written_here): the programs and the offline page have MARK in their header,
+  the figures have it in their metadata (matplotlib's savefig metadata: PNG "Software", SVG, PDF
+  and PostScript "Creator"), and a CSV file is known by its header line, which is the program's
+  contract with the scripts that read it (see written_here for why nothing is added to it).
+  A file of a type that carries no metadata (.jpg, .tif, .webp, ...) is never known to be ours.
+- A symbolic link is followed: the file it points to is the one judged, and replaced, and the
+  link stays a link. Only a regular file is replaced: an existing device (/dev/null,
+  /dev/stdout), named pipe or socket is refused before anything opens it, since renaming over it
+  would put a regular file in its place and opening a pipe waits for a reader.
 """
 from __future__ import annotations
 
 import contextlib
+import importlib.machinery
+import importlib.util
 import os
 import stat
+import sys
 import tempfile
+import zlib
+
+from .numbers import CSV_HEADER
 
 STDOUT = "-"                   # the file name that means standard output
-HANDOUT_MARK = "Written by the spring-mass simulator"   # in the header of every program it writes
-PROJECT = os.path.dirname(os.path.dirname(os.path.realpath(__file__)))
-OWN_FILES = ("main.py", "README.md", "pyproject.toml", ".gitignore", "physics", "scenes", "reports", "export",
-             "browser", "tests", "benchmarks", "docs", "examples", ".ci", ".git")   # in PROJECT; also requirements*
+MARK = "Written by the spring-mass simulator"    # in every program, page and figure it writes
+HANDOUT_MARK = MARK            # the name the program writers use
+PROJECT = os.path.dirname(os.path.dirname(os.path.realpath(__file__)))   # the folder main.py is in
+# The header lines of the CSV files it writes (reports/csv_file.py; several masses add "body"),
+# with the line end csv.writer gives them: byte for byte, they are how a CSV file of ours is known.
+CSV_HEADER_LINES = tuple((",".join(CSV_HEADER + extra) + "\r\n").encode() for extra in ([], ["body"]))
+MARK_SPAN = 65536              # bytes read at each end of an existing file to look for the mark
+# Where a figure of each file type keeps the note of who wrote it (matplotlib's savefig metadata;
+# reports/plotting.py writes MARK there). The other types matplotlib writes (.jpg, .tif, .webp, raw
+# pixels) have no such note in matplotlib, so an existing file of theirs is never known to be ours.
+FIGURE_MARK_KEYS = {"png": "Software", "svg": "Creator", "svgz": "Creator", "pdf": "Creator", "eps": "Creator",
+                    "ps": "Creator"}
 
 
 class OutputError(ValueError):
@@ -70,24 +97,177 @@ def _is_a_standard_stream(path: str) -> bool:
     return False
 
 
-def _refuse_foreign(path: str, target: str, *, what: str, overwrite: bool) -> None:
-    """Raise OutputError if target is one of this program's own files, or (unless `overwrite`) an
-    existing Python file it did not write: `--vpython main.py` or `--csv scenes/damped.py` would
-    break the program, and a student's own program is not ours to replace."""
-    inside = os.path.relpath(target, PROJECT).split(os.sep)
-    if inside[0] in OWN_FILES or (len(inside) == 1 and inside[0].startswith("requirements")):
-        raise OutputError(f"cannot write {what} {path!r}: it is one of this program's own files; "
-                          f"give another name")
-    if overwrite or not target.lower().endswith((".py", ".pyw")) or not os.path.isfile(target):
-        return
+# ---- the program's own tree ----
+
+def _module_name(name: str) -> str | None:
+    """The module Python would import from a file called `name` (json.py: json), or None."""
+    for suffix in sorted(set(importlib.machinery.all_suffixes()) | {".pyw"}, key=len, reverse=True):
+        if name.lower().endswith(suffix) and len(name) > len(suffix):
+            return name[:-len(suffix)]
+    return None
+
+
+def _importable(module: str) -> bool:
+    """Whether Python already has a top-level module of this name (json, numpy, physics, __main__)."""
+    if module in sys.stdlib_module_names or module in sys.builtin_module_names or module in sys.modules:
+        return True
+    try:
+        return importlib.util.find_spec(module) is not None
+    except (ImportError, ValueError):   # a module whose spec cannot be told: one that exists
+        return True
+
+
+def _user_folders() -> set[str]:
+    """The folders at PROJECT's top that its own .gitignore gives to the user: the lines that name
+    one folder at the root, such as `/out/` (none if there is no .gitignore)."""
+    try:
+        with open(os.path.join(PROJECT, ".gitignore"), encoding="utf-8") as file:
+            lines = file.read().splitlines()
+    except (OSError, UnicodeDecodeError):
+        return set()
+    names = set()
+    for line in lines:
+        name = line.strip().strip("/")
+        if line.strip().startswith("/") and name and not any(c in name for c in "/*?[]!\\"):
+            names.add(name)
+    return names
+
+
+def _scene_folders() -> list[str]:
+    """A teacher's scene folders (SPRING_SCENES), where Python imports scenes from."""
+    from scenes import catalog
+
+    return [str(folder) for folder in catalog.FOLDERS[1:]]
+
+
+def _inside(target: str, folder: str) -> list[str] | None:
+    """The parts of `target` below `folder` (both real paths; compared as files, so a folder
+    reached by another spelling or mount is still found), or None if it is not below it."""
+    try:
+        top = os.stat(folder)
+    except OSError:
+        return None
+    parts, here = [], target
+    while True:
+        parent = os.path.dirname(here)
+        parts.insert(0, os.path.basename(here))
+        try:
+            if os.path.samestat(os.stat(parent), top):
+                return parts
+        except OSError:
+            pass
+        if parent == here or not parent:
+            return None
+        here = parent
+
+
+def own_tree(target: str) -> str | None:
+    """Why writing the real path `target` would write into the program's own tree (a phrase for
+    the one-line message), or None where it would not.
+
+    The tree is PROJECT, the folder main.py is in, and everything under it: the packages, the
+    data, documents, tests and .git, found as folders and files, not from a list (one added later
+    is covered) and not from git (a copy made without .git, or unzipped from an archive, is the
+    same tree, and is just as broken by a CSV written over one of its modules). So:
+
+    - No existing file under PROJECT is replaced, whatever --overwrite says, except this
+      program's own outputs (written_here) lying directly in PROJECT: the README's examples run
+      from this folder (`--csv damped.csv`), and running one twice replaces its own file. An
+      unmarked file there may be main.py or a requirements file, or a user's file that cannot be
+      told from one.
+    - A new file may be made directly in PROJECT, the folder users run the program from, unless
+      Python would import it in place of a module it already has: main.py's folder comes first
+      on Python's path, so a json.py or numpy.py there would replace that module on the next run.
+    - Nothing is made in any folder below PROJECT: a new file in scenes/ would be a scene, in
+      docs/ or tests/ a part of the project. The exception is the folders the tree's own
+      .gitignore gives to the user by naming them at its root (`/out/`): a student who keeps
+      outputs in ./out/ of a checkout writes there as anywhere else. Git ignores it, the program
+      never reads it, and refusing it would only push the same files somewhere less tidy; it is
+      the place this message suggests. The .gitignore's other lines (`__pycache__/`, `.venv/`,
+      `*.pyc`) name what tools make wherever they run, the compiled modules and installed
+      packages the program runs on, which stay protected. A copy without the .gitignore has no
+      such folder, and everything below PROJECT is refused.
+    - A teacher's scene folder (SPRING_SCENES) is the teacher's, but Python imports scenes from
+      it: no file named as a module is written there, new or old. Other files there are the
+      teacher's, and the usual rules apply to them.
+    """
+    name = os.path.basename(target)
+    parts = _inside(target, PROJECT)
+    if parts is not None:
+        if parts[0] in _user_folders() and len(parts) > 1:
+            return None
+        if len(parts) > 1:
+            return f"it is inside the program's own folder {parts[0]}/, which it never writes into"
+        if os.path.lexists(target):
+            return None if written_here(target) else "it is one of this program's own files"
+        module = _module_name(name)
+        if module is not None and module.isidentifier() and _importable(module):
+            return (f"in the program's own folder it would be imported in place of the {module} module "
+                    f"and break the program")
+        return None
+    for folder in _scene_folders():
+        if _inside(target, folder) == [name] and _module_name(name) is not None:
+            return (f"it is in the teacher's scene folder {folder!r} (SPRING_SCENES), where every Python "
+                    f"file is read as a scene")
+    return None
+
+
+# ---- the program's own outputs ----
+
+def written_here(target: str) -> bool:
+    """Whether the existing file at `target` is one this program wrote: it carries the mark.
+
+    The programs, the offline page and the figures have MARK near one end (a header comment, the
+    PNG's "Software" text, the SVG's, PDF's or PostScript's "Creator"); a compressed SVG (.svgz)
+    is looked at unpacked. A CSV file is ours if its first line is our header, byte for byte
+    (CSV_HEADER_LINES, with csv.writer's line end). Nothing is added to the CSV file for a mark,
+    because every addition breaks a reader the header is promised to: measured on our own
+    vertical run with csv.DictReader, csv.reader, numpy.loadtxt, numpy.genfromtxt(names=True) and
+    pandas.read_csv, and a grader reading line 1 as the header, a comment line before the header
+    breaks all six, one after the rows breaks DictReader, csv.reader and pandas (the t column
+    turns to text), an extra column breaks the line-1 grader and one or more of the others, and a
+    UTF-8 byte-order mark breaks DictReader and genfromtxt. The header is as distinctive: a
+    measurement file from Tracker, Vernier, PASCO or Logger Pro has its own. What it cannot tell
+    is a file another program wrote in our exact format; the one such file a command reads, its
+    --data file, is never written at all (cli/options.py).
+    """
     try:
         with open(target, "rb") as file:
-            ours = HANDOUT_MARK.encode() in file.read(2000)
+            head = file.read(MARK_SPAN)
+            size = os.fstat(file.fileno()).st_size
+            tail = b""
+            if size > MARK_SPAN:
+                file.seek(max(MARK_SPAN, size - MARK_SPAN))
+                tail = file.read(MARK_SPAN)
     except OSError:
-        ours = False   # unreadable: not known to be ours
-    if not ours:
-        raise OutputError(f"cannot write {what} {path!r}: it is a Python file this program did not write; "
-                          f"give another name, or add --overwrite to replace it")
+        return False   # unreadable: not known to be ours
+    if head.startswith(b"\x1f\x8b"):   # gzip: an .svgz figure, unpacked as far as it was read
+        try:
+            head = zlib.decompressobj(wbits=31).decompress(head, MARK_SPAN)
+        except zlib.error:
+            pass
+    mark = MARK.encode()
+    return head.startswith(CSV_HEADER_LINES) or mark in head or mark in tail
+
+
+def _refuse(path: str, target: str, *, what: str, overwrite: bool) -> None:
+    """Raise OutputError if target is in the program's own tree (own_tree), or, unless
+    `overwrite`, an existing file this program did not write (written_here)."""
+    reason = own_tree(target)
+    if reason is not None:
+        where = sorted(_user_folders())
+        advice = ("give another name" if not reason.startswith("it is inside") else
+                  f"write it outside the program's folder, or in {where[0]}/ (kept for your files)" if where else
+                  "write it outside the program's folder")
+        raise OutputError(f"cannot write {what} {path!r}: {reason}; {advice}")
+    if overwrite or not os.path.isfile(target) or written_here(target):
+        return
+    kind = target.rsplit(".", 1)[-1].lower() if "." in os.path.basename(target) else ""
+    if what == "figure" and kind not in FIGURE_MARK_KEYS:
+        said = f"it is a .{kind} file, a type that cannot carry this program's mark, so it cannot tell whether it wrote it"
+    else:
+        said = f"it is {'a Python file' if kind in ('py', 'pyw') else 'a file'} this program did not write"
+    raise OutputError(f"cannot write {what} {path!r}: {said}; give another name, or add --overwrite to replace it")
 
 
 def check_writable(path: str, *, what: str, overwrite: bool = False) -> None:
@@ -97,9 +277,9 @@ def check_writable(path: str, *, what: str, overwrite: bool = False) -> None:
     had to create, so it also catches what permission bits do not show (a read-only file system,
     /proc, a file standing where a folder should be, or running as root). A symbolic link is
     checked as the file it points to; a device, named pipe or socket is refused before it is
-    opened (see _target), and so are the program's own files and, unless `overwrite`, a Python file
-    it did not write (see _refuse_foreign). "-" (standard output) is refused: the callers that can print to it
-    handle it before asking.
+    opened (see _target), and so is a path in the program's own tree (own_tree) and, unless
+    `overwrite`, an existing file it did not write (written_here). "-" (standard output) is
+    refused: the callers that can print to it handle it before asking.
     """
     if path == STDOUT:
         raise OutputError(f"cannot write {what} to '-' (standard output) here: give a file name, "
@@ -110,7 +290,7 @@ def check_writable(path: str, *, what: str, overwrite: bool = False) -> None:
     folder = os.path.dirname(target)
     if not os.path.isdir(folder):
         raise OutputError(f"cannot write {what} {path!r}: folder {folder!r} does not exist")
-    _refuse_foreign(path, target, what=what, overwrite=overwrite)
+    _refuse(path, target, what=what, overwrite=overwrite)
     existed = os.path.exists(target)
     try:
         with open(target, "ab"):

@@ -8,6 +8,18 @@ from __future__ import annotations
 import math
 
 
+LINE_BREAKS = set("\n\r\x0b\x0c\x1c\x1d\x1e\x85\u2028\u2029")
+
+
+def one_line(message: str) -> str:
+    """`message` as one line: a line break or control character in it (a file name, a --fit
+    value) written as Python writes it in a string, \\n, so the message stays one line and still
+    names the value exactly. Tabs stay. Every message and report line that names a user's value
+    goes through it: the command line's errors and notes, and the lab's report of a data file."""
+    return "".join(repr(c)[1:-1] if c in LINE_BREAKS or (c < " " and c != "\t") or c == "\x7f" else c
+                   for c in message)
+
+
 class ProgramError(ValueError):
     """A program that cannot be written (a bad path, a scene the writer cannot follow): one line."""
 

@@ -13,6 +13,7 @@ from physics.integrators import INTEGRATORS
 from .lines import ProgramError, commented
 
 POSITION, VELOCITY, MASS, TIME = "r", "v", "m", "t"      # the names a force's PROGRAM fills in
+START_R, START_P, REST = "r_i", "p_i", "Frest"          # a stop rule's: the step's start, the other forces
 
 
 class ProgramForces:
@@ -35,20 +36,56 @@ class ProgramForces:
         self.uses_velocity = any(force.uses_velocity for force in self.forces)
 
     def lines(self, t: str, r: str, v: str, laws: bool) -> list[tuple[str, str]]:
-        """Fnet at time t, position r and velocity v: each force's lines, then their sum, as (code, comment)."""
+        """Fnet at time t, position r and velocity v: each force's lines, then their sum, as (code,
+        comment). A force that responds to the others (static friction) comes after them, with
+        their sum Frest, as physics.forces.net_force adds them."""
         out, terms = [], []
-        for force in self.forces:
-            names = {name: self.constants.name(name) for name in force.program_values()}
-            names.update({TIME: t, POSITION: r, VELOCITY: v, MASS: self.mass})
-            out += [(code.format(**names), comment if laws else "") for code, comment in force.program()]
+        responding = [force for force in self.forces if force.responds]
+        for force in [force for force in self.forces if not force.responds]:
+            out += self._law(force, t=t, r=r, v=v, laws=laws)
             terms.append(force.TERM)
+        for force in responding:
+            out.append((f"{REST} = " + (" + ".join(terms) or "vector(0, 0, 0)"),
+                        "the other forces, which it answers" if laws else ""))
+            out += self._law(force, t=t, r=r, v=v, laws=laws)
+            terms = [REST, force.TERM]
         out.append(("Fnet = " + (" + ".join(terms) or "vector(0, 0, 0)"),
                     "net force: the sum of the forces" if laws else ""))
         return out
 
+    def _law(self, force, *, t: str, r: str, v: str, laws: bool) -> list[tuple[str, str]]:
+        """A force's own lines (Force.program), filled in with the program's names."""
+        names = {name: self.constants.name(name) for name in force.program_values()}
+        names.update({TIME: t, POSITION: r, VELOCITY: v, MASS: self.mass, "F_rest": REST})
+        return [(code.format(**names), comment if laws else "") for code, comment in force.program()]
+
     @property
     def mass(self) -> str:
         return self.constants.name("m")
+
+    @property
+    def stopping(self) -> list:
+        """The forces with a stop rule (Force.STOP: static friction)."""
+        return [force for force in self.forces if force.STOP]
+
+    def stop_lines(self, *, r: str, p: str) -> list[tuple[str, str]]:
+        """After the update, each stop rule (Force.STOP) as lines: the other forces at the step's
+        start (r_i, p_i) summed into Frest, then the rule, which may set r and p. The engine does
+        the same after every step (physics.forces.settle)."""
+        out = []
+        for force in self.stopping:
+            others = [other for other in self.forces if other is not force]
+            out.append((f"v = {START_P}/{self.mass}", "the other forces at the step's start, for the stop rule"))
+            terms = []
+            for other in others:
+                out += self._law(other, t="t", r=START_R, v="v", laws=False)
+                terms.append(other.TERM)
+            out.append((f"{REST} = " + (" + ".join(terms) or "vector(0, 0, 0)"), "every force but this one"))
+            names = {name: self.constants.name(name) for name in force.program_values()}
+            names.update({TIME: "t", POSITION: r, "p": p, MASS: self.mass, "r_i": START_R, "p_i": START_P,
+                          "F_rest": REST})
+            out += [(code.format(**names), comment) for code, comment in force.STOP]
+        return out
 
 
 def update(method: str, forces: ProgramForces, *, r: str, p: str, m: str) -> list[str]:
@@ -59,4 +96,7 @@ def update(method: str, forces: ProgramForces, *, r: str, p: str, m: str) -> lis
         raise ProgramError(f"the program cannot write the integrator {method!r} (known: "
                            f"{', '.join(name for name, known in INTEGRATORS.items() if known.program)})")
     lines = entry.program(forces.lines, r=r, p=p, m=m, uses_velocity=forces.uses_velocity)
+    if forces.stopping:     # a stop rule reads the step's start: keep it
+        lines = [(f"{START_R} = {r}", "the step's start, for the stop rule"), (f"{START_P} = {p}", "")] + \
+            lines + forces.stop_lines(r=r, p=p)
     return [commented(code, comment) for code, comment in lines]

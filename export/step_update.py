@@ -14,6 +14,7 @@ to 15 significant digits (:func:`cleaned`), so the two agree digit for digit.
 from __future__ import annotations
 
 import math
+import re
 import textwrap
 
 import numpy as np
@@ -80,25 +81,41 @@ def shown(v, unit: str = "") -> str:
     return vector(cleaned(np.asarray(v, dtype=float).tolist()), unit)
 
 
+STEP_SLOTS = ("t", "F_net", "p_i", "impulse", "p_f", "v_f", "r_i", "drift", "r_f")
+SLOT = re.compile(r"\{(" + "|".join(STEP_SLOTS) + r")\}")
+
+
+def step_layout(method: str) -> tuple[list[str], str]:
+    """One mass's step as the page writes it, with a {slot} where each number goes, and the
+    velocity the method moves the mass with ("v_f" or "v_i": the `drift` slot is that velocity Δt).
+
+    The slots (STEP_SLOTS) are t (s), F_net (the force of the update, N), p_i, impulse (F_net Δt),
+    p_f, v_f (p_f / m), r_i, drift and r_f: :func:`step_lines` fills them here, and the offline page
+    (export/offline_page.py) fills the same layout in the browser.
+    """
+    kicks_once = INTEGRATORS[method].kicks_once
+    lines = [f"t = {{t}} s, {method}:",
+             *textwrap.wrap(INTEGRATORS[method].rule, RULE_WIDTH, break_on_hyphens=False),
+             ("F_net = " if kicks_once else "F_net = (p_f − p_i)/Δt, its average force = ") + "{F_net} N",
+             "p_f = p_i + F_net Δt = {p_i} + {impulse}",
+             "    = {p_f} kg·m/s",
+             "v_f = p_f / m = {v_f} m/s"]
+    if method == "euler-cromer":
+        return lines + ["r_f = r_i + v_f Δt = {r_i} + {drift}", "    = {r_f} m"], "v_f"
+    if method == "euler":
+        return lines + ["r_f = r_i + v_i Δt = {r_i} + {drift}", "    = {r_f} m"], "v_i"
+    return lines + ["r_f = {r_f} m (from r_i = {r_i} m, as the rule above says)"], "v_f"
+
+
 def step_lines(*, method: str, dt: float, t_f: float, m: float, F_net, p_i, p_f, r_i, r_f) -> list[str]:
     """One mass's step, in words and numbers: F_net, then p_f, v_f and r_f as the method finds them.
 
     F_net, p_f, v_f and r_f are written as `--steps` writes them, digit for digit.
     """
-    v_f = velocity(np.asarray(p_f, float)[None], np.array([m]))[0]
-    impulse = np.asarray(F_net, float) * dt
-    kicks_once = INTEGRATORS[method].kicks_once
-    lines = [f"t = {number(clean_time(t_f, dt))} s, {method}:",
-             *textwrap.wrap(INTEGRATORS[method].rule, RULE_WIDTH, break_on_hyphens=False),
-             ("F_net = " if kicks_once else "F_net = (p_f − p_i)/Δt, its average force = ") + shown(F_net, "N"),
-             f"p_f = p_i + F_net Δt = {shown(p_i)} + {shown(impulse)}",
-             f"    = {shown(p_f, 'kg·m/s')}",
-             f"v_f = p_f / m = {shown(v_f, 'm/s')}"]
-    if method == "euler-cromer":
-        lines += [f"r_f = r_i + v_f Δt = {shown(r_i)} + {shown(v_f * dt)}", f"    = {shown(r_f, 'm')}"]
-    elif method == "euler":
-        v_i = velocity(np.asarray(p_i, float)[None], np.array([m]))[0]
-        lines += [f"r_f = r_i + v_i Δt = {shown(r_i)} + {shown(v_i * dt)}", f"    = {shown(r_f, 'm')}"]
-    else:
-        lines.append(f"r_f = {shown(r_f, 'm')} (from r_i = {shown(r_i, 'm')}, as the rule above says)")
-    return lines
+    layout, drift = step_layout(method)
+    v = {"v_f": velocity(np.asarray(p_f, float)[None], np.array([m]))[0],
+         "v_i": velocity(np.asarray(p_i, float)[None], np.array([m]))[0]}
+    values = {"t": number(clean_time(t_f, dt)), "F_net": shown(F_net), "p_i": shown(p_i),
+              "impulse": shown(np.asarray(F_net, float) * dt), "p_f": shown(p_f), "v_f": shown(v["v_f"]),
+              "r_i": shown(r_i), "drift": shown(v[drift] * dt), "r_f": shown(r_f)}
+    return [SLOT.sub(lambda slot: values[slot[1]], line) for line in layout]

@@ -59,7 +59,7 @@ from physics.simulate import steps_to_reach
 from scenes import DECLARED
 from scenes._view import DEFAULT_VIEW, MAX_DRAWN_MASSES
 
-from . import program_arrows
+from . import program_arrows, program_page
 from .exact_curve import exact_lines
 from .lines import ProgramError, align_comments, commented, vector
 from .palette import EXACT_COLOUR, EXACT_WIDTH
@@ -79,7 +79,7 @@ IMPORTS = ["from vpython import *",
 
 
 def program(setup, *, integrator: str | None = None, web: bool = False, arrows=None,
-            end: float | None = None) -> str:
+            end: float | None = None, page: bool = False, header: bool = True) -> str:
     """The VPython program for a configured scene (scenes._catalog.Setup), as text.
 
     integrator  the method (default: the scene's own, else euler-cromer, the page's update), as
@@ -89,13 +89,20 @@ def program(setup, *, integrator: str | None = None, web: bool = False, arrows=N
     arrows      the arrows to draw (export/program_arrows.py: p, F_net, forces, split); None: the scene's VIEW's
     end         when the program stops, s (the command line's --until); None: run_end's choice.
                 It prints its answer at the scene's question time, `until`, on the way.
+    page        the program the offline page runs (export/offline_page.py): every kind of arrow
+                written (`arrows` are the ones shown at first, which set the scales), the page's
+                controls section and reports (export/program_page.py), and the question time's
+                step worked out from until and dt as the program runs.
+    header      False leaves out the header's comments (its description and the command of the
+                same case, which takes most of the time to write): to compare programs' code.
 
     Raises ProgramError, or ValueError from the scene's build function, with a one-line message.
     """
     model = setup.build()
     _check_size(setup, model)
-    case = _Case(setup, model, integrator, arrows, end)
-    lines = IMPORTS + case.header() + case.constants_lines()
+    case = _Case(setup, model, integrator, arrows, end, page)
+    lines = IMPORTS + (case.header() if header else []) + case.constants_lines()
+    lines += program_page.controls_lines() if page else []
     lines += ["", "# ---- the objects ----"] + objects(model, case.view, case.constants, case.single)
     lines += case.exact_objects() + scene_setup_lines(case)
     lines += HELPERS + case.loop() + case.answer()
@@ -108,15 +115,22 @@ def program(setup, *, integrator: str | None = None, web: bool = False, arrows=N
 def scene_setup_lines(case) -> list[str]:
     """Lines after the objects are made, before the loop: where another writer adds objects of its
     own, from case.model and case.constants (the arrows, export/program_arrows.py)."""
-    return program_arrows.setup_lines(case.model, shown=case.arrows, integrator=case.integrator,
-                                      single=case.single, view=case.view)
+    written = program_arrows.WRITTEN if case.page else case.arrows
+    lines = program_arrows.setup_lines(case.model, shown=case.arrows, integrator=case.integrator,
+                                       single=case.single, view=case.view, written=written)
+    if case.page:
+        lines += ["", program_page.drawn_line(single=case.single,
+                                              arrows=program_page.arrow_objects(written, single=case.single))]
+    return lines
 
 
 def after_update_lines(case) -> list[str]:
     """Lines in the loop after one mass's momentum update, before time moves on: where another
     writer adds what follows the update (the arrows). `case.index` is "" for one
     mass or "[i]" inside the loop over the masses."""
-    return program_arrows.loop_lines(case.model, shown=case.arrows, single=case.single)
+    written = program_arrows.WRITTEN if case.page else case.arrows
+    lines = program_arrows.loop_lines(case.model, shown=written, single=case.single)
+    return lines + ([program_page.stepped_line(single=case.single, m=case.m)] if case.page else [])
 
 
 def _check_size(setup, model) -> None:
@@ -130,8 +144,8 @@ def _check_size(setup, model) -> None:
 class _Case:
     """One configured case being written: its model, methods, view, named values and forces."""
 
-    def __init__(self, setup, model, integrator, arrows=None, end=None):
-        self.setup, self.model, self.integrator = setup, model, integrator
+    def __init__(self, setup, model, integrator, arrows=None, end=None, page=False):
+        self.setup, self.model, self.integrator, self.page = setup, model, integrator, page
         self.methods = model.methods(integrator)
         self.view = {**DEFAULT_VIEW, **setup.hooks.view}
         self.arrows = self.view["arrows"] if arrows is None else arrows
@@ -144,6 +158,8 @@ class _Case:
         self.constants.add("v0", _start_velocity(setup, model), is_vector=True)
         self.constants.add("dt", model.dt)
         self.end = run_end(model, self.view, end)
+        if page:   # always a t_end, with the answer in the loop: a new until or Δt moves only n_until
+            self.end = max(self.view["window"], model.until) if end is None else max(float(end), model.until)
         if self.end is None:
             self.constants.add("until", model.until)
         else:
@@ -179,6 +195,8 @@ class _Case:
         lines = ["", "# ---- the loop: one momentum update per step ----",
                  commented("t = 0", "s: time, n·Δt after n steps"), "n = 0"]
         lines += [line[4:] for line in self._each_mass(self.plot_position())]   # t = 0 (the exact curve from the first step)
+        if self.page:
+            return lines + self._page_loop()
         asked_at_start = steps_to_reach(self.model.until - self.model.state.t, self.model.dt) == 0
         if self.end is not None and asked_at_start:
             lines += self.printed()
@@ -189,6 +207,18 @@ class _Case:
         if self.end is None or asked_at_start:
             return lines
         return lines + [commented(f"    if {_question_condition(self.model)}:", "the question time: where is the mass now?"),
+                        *("        " + line for line in self.printed())]
+
+    def _page_loop(self) -> list[str]:
+        """The loop of the offline page's program: the handout's, with the question time's step
+        worked out as it runs (program_page.question_lines), since the page may change until or Δt."""
+        lines = program_page.question_lines()
+        lines += [f"if {program_page.QUESTION_CONDITION}:", *("    " + line for line in self.printed())]
+        lines += [_loop_condition(self.model, self.end), commented("    rate(1/dt)", "real time: 1/Δt steps a second")]
+        lines += self._each_mass(self.update() + after_update_lines(self))
+        lines += ["    n = n + 1", commented("    t = n*dt", "a whole number of steps: no round-off piles up")]
+        lines += self._each_mass(self.draw())
+        return lines + [commented(f"    if {program_page.QUESTION_CONDITION}:", "the question time: where is the mass now?"),
                         *("        " + line for line in self.printed())]
 
     def _each_mass(self, body: list[str]) -> list[str]:

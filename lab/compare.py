@@ -7,21 +7,21 @@ The measured file has its own clock and its own zero, so every comparison fits t
 where t_offset is the data's clock reading at the model's t = 0 (the release) and position_offset
 the data's reading where the model's coordinate is 0. The sign is −1 where the data's axis points
 the other way from the model's (a motion detector above the mass measures downward; a video's y
-axis points down): both signs are tried and the one that matches better is kept, or --data-sign
-says which. Before its release the model's mass is
-held still at its start position. `--fit k,b` fits named constants too, by least squares
-(scipy.optimize.least_squares, optional: only --fit needs scipy; lab/least_squares.py).
+axis points down): both signs are tried, or --data-sign says which. Before its release the model's
+mass is held still at its start position. `--fit k,b` fits named constants too, and the release
+point with them unless it is given (lab/names.py).
 
-The model is the engine's own run (physics.simulate.Simulation) with the chosen integrator and Δt:
-at the engine's step times it is exactly the engine's positions, and between two steps a cubic
-Hermite curve through the two positions and velocities. That curve is much closer to the engine
-than the engine is to the exact motion (its error is of order Δt⁴, the integrator's of order Δt),
-and it lets the data keep its own sample times, so one run per set of constants serves every t_offset.
+One job a module:
 
-Standard uncertainties come from the Jacobian J of the residuals at the fit: the covariance is
-s² (JᵀJ)⁻¹ with s² = Σ residual² / (N − number of fitted values), as for any least-squares fit with
-independent noise of the same size on every point. Constants that the data cannot tell apart
-(k and m: x(t) depends on k/m only) are refused with one line instead of a meaningless fit.
+    lab/names.py         which constants may be fitted, and whether the release is fitted with them
+    lab/swing.py         the data's own swing: noise, frequency, decay, a held start
+    lab/settings.py      the model's integrator and Δt (chosen so that its own error stays out)
+    lab/model_run.py     the engine's runs, read at the data's times, counted
+    lab/problem.py       data − model, with everything linear in it solved exactly
+    lab/start.py         the starts: constants matched to the data's swing, the best t_offset and sign
+    lab/fit.py           least squares from the best start, the uncertainties, the Δt/2 check
+    lab/outliers.py      sensor drop-outs named and left out
+    lab/trust.py         whether the numbers can be trusted, in one sentence
 """
 from __future__ import annotations
 
@@ -30,30 +30,21 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from . import LabError, start as start_search
-from .least_squares import MissingScipy, least_squares, offsets_only
-from physics.simulate import BlowUpError, every, steps_to_reach, trajectory
-from scenes import ConstantError, check_value
-from scenes._constants import DECLARED
+from . import outliers as outlier_rows, swing as data_swing
+from .fit import BUDGET, Fitted, _NotScale, descend, finish, moves_at_half_dt
+from .least_squares import MissingScipy, offset_only
+from .model_run import (AXES, MAX_STEPS_PER_RUN, RELEASE, FitError, ModelRun, Runs,  # noqa: F401 (ModelRun:
+                        constants_said, too_long, with_fitted)                   # the reports' plot reads it)
+from .names import check_names, with_release
+from .problem import Problem, linear_mode
+from .settings import ModelSettings, best_method, choose_dt, order_of, suggest_dt
+from .start import matched, offsets
+from .trust import SIGN_TIE, Trust, judge
+from physics.integrators import DEFAULT_INTEGRATOR
+from physics.stability import rates
 
-AXES = {"x": 0, "y": 1, "z": 2}
-RELEASE = "r0"                    # --fit r0: the start position's component along the compared coordinate
-MAX_STEPS_PER_RUN = 2_000_000     # a fit runs the engine dozens of times: each run stays this short
-SIGN_MARGIN = 0.5                 # the data's axis is taken as reversed where that halves the misfit
-CONDITION_LIMIT = 1e8             # beyond this the fitted values cannot be told apart
-# Constants that enter the motion only in a combination: fitting two of a group is meaningless.
-TIED = [
-    ({"m", "k"}, "the motion depends on k/m, not on k and m apart (gravity gives every mass the same g)"),
-    ({"m", "b"}, "the motion depends on b/m, not on b and m apart"),
-    ({"m", "F0"}, "the motion depends on F0/m, not on F0 and m apart"),
-    ({"C", "A"}, "drag depends on the product C·A·ρ only"),
-    ({"C", "rho"}, "drag depends on the product C·A·ρ only"),
-    ({"A", "rho"}, "drag depends on the product C·A·ρ only"),
-]
-
-
-class FitError(LabError):
-    """A comparison or fit that cannot be made: one line saying why and what to do."""
+SIGN_MARGIN = 0.5                 # without a fit, the data's axis is taken as reversed where that halves the misfit
+HALVINGS = 2                      # times a chosen Δt is halved again after the fit, at most
 
 
 @dataclass(frozen=True)
@@ -70,7 +61,14 @@ class Estimate:
         if not (math.isfinite(sigma) and sigma > 0):
             return f"{value:.6g} {unit}"
         decimals = max(0, 1 - math.floor(math.log10(sigma)))
+        if decimals > 12 or abs(value) >= 1e9:
+            return f"{value:.6g} ± {sigma:.2g} {unit}"
         return f"{value:.{decimals}f} ± {sigma:.{decimals}f} {unit}"
+
+    @property
+    def plain(self) -> str:
+        """The value alone, to the digits its uncertainty allows (for a fit that cannot be trusted)."""
+        return str(self).split(" ± ")[0] + ("" if " ± " not in str(self) else f" {self.unit}")
 
 
 @dataclass
@@ -81,23 +79,37 @@ class Comparison:
     data: np.ndarray
     model: np.ndarray
     coordinate: str
-    fitted: dict = field(default_factory=dict)      # name → Estimate, for --fit NAMES
+    fitted: dict = field(default_factory=dict)      # name → Estimate, for --fit NAMES (and r0)
     t_offset: Estimate | None = None
     position_offset: Estimate | None = None
-    setup: object = None                            # the scene with the fitted values set
+    setup: object = None                            # the scene with the fitted values (and Δt) set
     notes: list = field(default_factory=list)
     sign: int = 1                                   # −1: the data's axis points the other way
     slow_dt: tuple = ()                             # (Δt, the data's sample interval, a smaller Δt), s,
                                                     # where the model's Δt is longer than the interval
+    trust: Trust | None = None                      # a fit's verdict (None: nothing was fitted)
+    settings: ModelSettings | None = None           # the model's integrator and Δt, and who chose them
+    moves: dict = field(default_factory=dict)       # fitted constant → its move at Δt/2, in its unit
+    runs: int = 0                                   # engine runs the comparison took
+    release_fitted: bool = False                    # r0 was added to the fit (not given with --set)
+    sign_open: bool = False                         # both signs fit alike (with the same constants)
+    left_out: tuple = ()                            # indices of the points left out (sensor drop-outs)
 
     @property
     def sign_said(self) -> str:
         """Which way the data's axis was taken to point, in words."""
         c = self.coordinate
+        if self.sign_open:
+            return (f"either way fits alike: with r0 fitted, a reversed axis is the same swing let go on the "
+                    f"other side; the model's {c} is compared with the data")
         if self.sign > 0:
             return f"the data's axis points the model's way: the model's {c} is compared with the data"
         way = "down" if c == "y" else "the other way"
         return f"the data's axis points {way}: the model is compared with −{c}"
+
+    @property
+    def integrator(self) -> str | None:
+        return self.settings.integrator if self.settings else None
 
     @property
     def residual(self) -> np.ndarray:
@@ -120,53 +132,6 @@ class Comparison:
             f"figures mean little; check the data's units and the constants not fitted (r0 sets the swing's size)")
 
 
-class ModelRun:
-    """The engine's run of one set of constants, along one coordinate, readable at any time.
-
-    r(τ) and dr/dτ at model times τ: the engine's step values, joined by cubic Hermite curves
-    through each step's position and velocity; before τ = 0 the mass is held at its start.
-    """
-
-    def __init__(self, setup, *, integrator, axis: int, until: float, spacing: float = 0.0):
-        """spacing: keep the engine's values every stride = spacing // Δt steps (every step if that
-        is 0): the engine still takes every step, but reading out every one costs more than taking
-        it. A cubic through values h = stride·Δt apart is off by h⁴/384 · |d⁴r/dt⁴| at most, far
-        below a measurement's noise when h is a quarter of the data's sample interval."""
-        model = setup.build()
-        if model.state.count != 1:
-            raise FitError(f"scene {setup.name!r} has {model.state.count} masses; measured data is "
-                           f"compared with a scene of one mass (vertical, damped, driven)")
-        if until / model.dt > MAX_STEPS_PER_RUN:
-            raise FitError(f"the data span {until:.4g} s, which is {until / model.dt:,.0f} steps of "
-                           f"dt = {model.dt:g} s per run of the model, more than the {MAX_STEPS_PER_RUN:,} "
-                           f"a fit may take; use a larger dt or a shorter stretch of data")
-        engine = model.simulation(integrator)
-        stride = max(1, int(spacing / engine.dt))
-        steps = stride * math.ceil(steps_to_reach(until - engine.t, engine.dt) / stride)
-        try:
-            samples = engine.advance(steps, record=every(stride))
-        except BlowUpError as problem:
-            raise FitError(f"the model blew up with {_constants_said(setup)}: {problem}") from None
-        path = trajectory(engine, samples, with_energy=False)
-        self.dt = engine.dt * stride        # s between the values kept
-        self.end = float(path.t[-1])
-        self.r = path.r[:, 0, axis]
-        self.v = path.v[:, 0, axis]
-
-    def at(self, tau: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        """(r, dr/dτ) at model times τ, s: m and m/s."""
-        held = tau < 0
-        x = np.clip(tau, 0.0, self.end) / self.dt
-        i = np.minimum(np.floor(x).astype(int), len(self.r) - 2)
-        s = x - i
-        r0, r1, v0, v1 = self.r[i], self.r[i + 1], self.v[i] * self.dt, self.v[i + 1] * self.dt
-        s2, s3 = s * s, s * s * s
-        r = (2 * s3 - 3 * s2 + 1) * r0 + (s3 - 2 * s2 + s) * v0 + (3 * s2 - 2 * s3) * r1 + (s3 - s2) * v1
-        slope = ((6 * s2 - 6 * s) * r0 + (3 * s2 - 4 * s + 1) * v0 + (6 * s - 6 * s2) * r1
-                 + (3 * s2 - 2 * s) * v1) / self.dt
-        return np.where(held, self.r[0], r), np.where(held, 0.0, slope)
-
-
 def coordinate_of(setup, asked: str | None = None) -> str:
     """The coordinate compared: `asked` (--coordinate), else the one the scene plots (vertical: y;
     driven: x)."""
@@ -176,273 +141,395 @@ def coordinate_of(setup, asked: str | None = None) -> str:
     return plotted if plotted in AXES else "y"
 
 
-def _constants_said(setup, names=None) -> str:
-    names = names or ("k", "b", "m")
-    return ", ".join(f"{n} = {setup.values[n]:.6g} {setup.constants[n].unit}" for n in names
-                     if n in setup.values and isinstance(setup.values[n], (int, float)))
-
-
-def check_names(setup, names) -> list[str]:
-    """The constants --fit may fit: numbers of the scene (not dt or until), none tied to another."""
-    names = [name.strip() for name in names if name.strip()]
-    if not names:
-        raise FitError("--fit needs the names of constants to fit, e.g. --fit k,b")
-    for name in names:
-        if name not in setup.constants:
-            raise FitError(f"--fit {name}: scene {setup.name!r} has no constant {name!r} "
-                           f"(python main.py {setup.name} --constants lists them)")
-        if name == RELEASE and isinstance(setup.values[name], tuple):
-            pass          # its component along the compared coordinate: where the mass was let go
-        elif name in ("dt", "until") or not isinstance(setup.values[name], (int, float)) \
-                or DECLARED[name].vector or DECLARED[name].whole:
-            raise FitError(f"--fit {name}: only a physical constant with one number (k, b, m, g, ...) "
-                           f"can be fitted")
-        if names.count(name) > 1:
-            raise FitError(f"--fit names {name!r} twice")
-    for group, why in TIED:
-        if group <= set(names):
-            pair = " and ".join(sorted(group))
-            raise FitError(f"--fit {','.join(names)}: {pair} cannot be told apart from a measured "
-                           f"position: {why}; set one with --set (weigh the mass: --set m=...) and fit the other")
-    return names
-
-
-def with_fitted(setup, values: dict, axis: int):
-    """The scene with fitted values set: r0 (RELEASE, a vector) takes its component along the
-    compared coordinate from `values`, and keeps the others."""
-    changes = dict(values)
-    if RELEASE in changes:
-        r0 = [float(x) for x in setup.values[RELEASE]]
-        r0[axis] = float(changes[RELEASE])
-        changes[RELEASE] = tuple(r0)
-    return setup.with_values(**changes)
-
-
 def _value(setup, name: str, axis: int) -> float:
-    """A fitted constant's value as set: r0's component along the compared coordinate."""
+    """A fitted constant's value as set: r0's component along the compared coordinate (as built,
+    where the scene works r0 out)."""
     value = setup.values[name]
+    if name == RELEASE and not isinstance(value, tuple):
+        return float(setup.build().state.r[0][axis])
     return float(value[axis] if isinstance(value, tuple) else value)
 
 
-class _Problem:
-    """The residuals data − model as a function of [fitted constants..., t_offset, position_offset]."""
-
-    def __init__(self, setup, t, y, *, names, integrator, axis):
-        self.setup, self.t, self.y = setup, t, y
-        self.names, self.integrator, self.axis = names, integrator, axis
-        self._runs: dict = {}
-        self._jacobian = None
-        gaps = np.diff(t)
-        self.spacing = float(np.min(gaps)) / 4 if len(gaps) else 0.0   # s: see ModelRun
-
-    def run(self, constants, until: float) -> ModelRun:
-        key = tuple(float(c) for c in constants)
-        cached = self._runs.get(key)
-        if cached is None or cached.end < until:
-            for name, value in zip(self.names, key):
-                try:
-                    check_value(name, value, self.setup.constants[name].unit)
-                except ConstantError as problem:
-                    raise FitError(f"the fit went out of range: {problem}") from None
-            if len(self._runs) > 8:
-                self._runs.clear()
-            cached = ModelRun(with_fitted(self.setup, dict(zip(self.names, key)), self.axis), integrator=self.integrator, axis=self.axis,
-                              until=max(until, 0.0) + 2 * self.setup.values.get("dt", 0.01), spacing=self.spacing)
-            self._runs[key] = cached
-        return cached
-
-    def model(self, theta):
-        p = len(self.names)
-        tau = self.t - theta[p]
-        return self.run(theta[:p], float(tau[-1])).at(tau)
-
-    def residuals(self, theta):
-        r, _ = self.model(theta)
-        return r + theta[-1] - self.y
-
-    def jacobian(self, theta):
-        """d residual / d theta: the constants' columns by forward differences (one engine run each),
-        the offsets' from the model's slope (d/dt_offset = −model'(τ), d/dposition_offset = 1).
-        The last one is kept: the fit's final step and the uncertainties ask for the same theta."""
-        key = tuple(float(x) for x in theta)
-        if self._jacobian is None or self._jacobian[0] != key:
-            self._jacobian = (key, self._columns(theta))
-        return self._jacobian[1]
-
-    def _columns(self, theta):
-        p = len(self.names)
-        J = np.empty((len(self.t), p + 2))
-        base, slope = self.model(theta)
-        for j in range(p):
-            h = 1e-6 * max(abs(theta[j]), 1e-3)
-            moved = np.array(theta, dtype=float)
-            moved[j] += h
-            J[:, j] = (self.model(moved)[0] - base) / h
-        J[:, p] = -slope
-        J[:, p + 1] = 1.0
-        return J
+def _check_points(count: int, names) -> None:
+    values = len(names) + 2
+    need = values + 6
+    if count < need:
+        what = "the two offsets" if not names else f"{', '.join(names)} and the two offsets"
+        raise FitError(f"the data have {count} points, too few to fix {what}: at least {need} are needed")
 
 
-def compare(setup, t, y, *, integrator=None, coordinate="y", fit=(), sign=None) -> Comparison:
+def compare(setup, t, y, *, integrator=None, coordinate="y", fit=(), sign=None, choose=False, given=(),
+            own_step=None, lines=None, progress=None) -> Comparison:
     """The scene against the measured points t (s), y (m): offsets, RMS, and the fitted constants.
 
-    fit   names of constants to fit (check_names); empty compares with the constants as set.
-    sign  +1 or −1: the data's axis points the model's way or the other (--data-sign); None fits
-          each way whose start is not clearly worse, and keeps −1 only where it halves the misfit.
-    Raises FitError (one line) for a fit that cannot be made.
+    fit       names of constants to fit (lab/names.py); empty compares with the constants as set
+    sign      +1 or −1: the data's axis points the model's way or the other (--data-sign); None tries both
+    choose    the fit chooses the model's integrator and Δt (neither --integrator nor --set dt given)
+    given     the constants the user set (--set): the release is fitted unless it is among them
+    own_step  the data are this program's own --csv run, made at this Δt (lab/readers.py)
+    lines     each point's line in the file, to name a point left out
+    progress  progress(line) about once a second on a fit longer than a second
+    Raises FitError (one line) for a comparison or fit that cannot be made.
     """
     t, data = np.asarray(t, dtype=float), np.asarray(y, dtype=float)
     if sign not in (None, 1, -1):
         raise FitError(f"--data-sign {sign}: give 1 (the data's axis points the model's way) or -1 (the other way)")
-    y = data
     names = check_names(setup, fit) if fit else []
-    if len(t) < len(names) + 4:
-        raise FitError(f"{len(t)} points cannot fix {len(names) + 2} values (the constants and two offsets)")
-    m = float(setup.values.get("m", 1.0))
-    problem = _Problem(setup, t, y, names=names, integrator=integrator, axis=AXES[coordinate])
+    names, added = with_release(setup, names, set(given)) if names else ([], False)
+    _check_points(len(t), names)
+    if names:
+        try:
+            import scipy.optimize  # noqa: F401 (only the fit needs it)
+        except ImportError:
+            raise FitError(str(MissingScipy())) from None
+    axis = AXES[coordinate]
+    first = float(t[0])
+    left_out = outlier_rows.gross(t, data)
+    kept = np.setdiff1d(np.arange(len(t)), left_out)
+    if names:
+        return _fit(setup, t, data, kept, first, names=names, added=added, axis=axis, coordinate=coordinate,
+                    integrator=integrator, sign=sign, choose=choose, own_step=own_step, progress=progress,
+                    lines=lines)
+    return _offsets(setup, t, data, kept, first, axis=axis, coordinate=coordinate, integrator=integrator,
+                    sign=sign, lines=lines)
 
-    def start_from(omega):
-        """A start near the data's own swing at angular frequency omega, so the fit finds it."""
-        start = [_value(setup, name, AXES[coordinate]) for name in names]
-        for j, name in enumerate(names):
-            if name == "k" and omega:
-                start[j] = m * omega ** 2
-            elif name == "m" and omega and setup.values.get("k"):
-                start[j] = setup.values["k"] / omega ** 2
-            elif name == "b":
-                start[j] = start_search.decay(t, y, m) or start[j]
-        if RELEASE in names:
-            j = names.index(RELEASE)
-            start[j] = start_search.release(problem, start, j, t, y)
-        return start
 
-    candidates = start_search.frequencies(t, y) if {"k", "m"} & set(names) else []
-    starts = _within_range(setup, names, [(start_from(None), None)]
-                           + [(start_from(omega), omega) for omega in candidates])
-    still = problem.run(starts[0][0], 1.0)
-    if np.ptp(still.r) <= 1e-12 * (1.0 + np.max(np.abs(still.r))):
+def _period(setup, t, y) -> float:
+    """The swing's period, s: the data's strongest frequency, else the model's own (declared rates)."""
+    found = data_swing.frequencies(t, y)
+    if found:
+        return 2 * math.pi / found[0]
+    omega = float(rates(setup.build().forces, setup.build().state.m).omega[0])
+    return 2 * math.pi / omega if omega > 0 else max(float(t[-1] - t[0]), 1e-3)
+
+
+def _spacing(t) -> float:
+    gaps = np.diff(t)
+    return float(np.min(gaps)) / 4 if len(gaps) else 0.0
+
+
+def _slow_dt(setup, dt, t) -> tuple:
+    """(Δt, the data's sample interval, a round smaller Δt) where Δt is clearly longer than the
+    interval (by more than a thousandth), else ()."""
+    interval = float(np.median(np.diff(t)))
+    if not dt > 1.001 * interval:
+        return ()
+    return (dt, interval, f"{10 ** math.floor(math.log10(interval / 10)):g}")
+
+
+def _slow_dt_note(slow) -> str:
+    dt, interval, smaller = slow
+    return (f"note: the model's dt = {dt:.3g} s is longer than the data's sample interval {interval:.3g} s, so "
+            f"the integrator's own error is in the comparison; a smaller dt (--set dt={smaller}) follows the "
+            f"real motion more closely")
+
+
+def _offsets(setup, t, data, kept, first, *, axis, coordinate, integrator, sign, lines) -> Comparison:
+    """The comparison with the constants as set: t_offset and position_offset only (numpy only)."""
+    tt, y = t[kept] - first, data[kept]
+    runs = Runs(setup, integrator=integrator, axis=axis, spacing=_spacing(tt))
+    problem = Problem(runs, tt, y, nonlinear=[], mode="offset")
+    period = _period(setup, tt, y)
+    problem.reach = 1.1 * period
+    _check_length(problem, period, float(setup.values["dt"]))
+    still = problem.columns((), 0.0, tau=np.linspace(0.0, max(problem.span, 1.0), 200))[0]
+    if np.ptp(still) <= 1e-12 * (1.0 + np.max(np.abs(still))):
         raise FitError(f"the model's {coordinate} does not move in scene {setup.name!r}, so there is nothing "
                        f"to compare; choose the coordinate that moves with --coordinate")
-    best = {}
-    for way in (1, -1) if sign is None else (sign,):     # the data's axis up, then down
-        for start, omega in starts:       # the constants as set, or a candidate frequency: the best match
-            t_offset, position_offset, cost = start_search.start_offsets(problem, start, t, way * data)
-            if way not in best or cost < best[way][0]:
-                best[way] = (cost, start, omega, t_offset, position_offset)
-    lowest = min(found[0] for found in best.values())
-    fitted = {}
-    for way, (cost, *begin) in best.items():    # each way whose start is not clearly worse, fitted
-        if cost <= lowest / SIGN_MARGIN:
-            problem.y = way * data
-            try:
-                fitted[way] = _fit_from(problem, setup, *begin)
-            except FitError as problem_found:
-                fitted[way] = problem_found
-    sign = _better_way(fitted)
-    if isinstance(fitted[sign], FitError):
-        raise fitted[sign]
-    theta = fitted[sign][0]
-    y = problem.y = sign * data
-    J = problem.jacobian(theta)
-    residual = problem.residuals(theta)
-    scale = np.linalg.norm(J, axis=0)
-    if np.any(scale == 0) or not np.all(np.isfinite(J)):
-        stuck = [(names + ["t_offset", "position_offset"])[j] for j in np.flatnonzero(~(scale > 0))]
-        raise FitError(f"the data cannot fix {', '.join(stuck)}: changing it does not change the model "
-                       f"at the data's times")
-    _, singular, directions = np.linalg.svd(J / scale, full_matrices=False)
-    condition = singular[0] / singular[-1] if singular[-1] > 0 else math.inf
-    if condition > CONDITION_LIMIT:
-        together = np.abs(directions[-1])         # the change of values that changes nothing
-        tied = [(names + ["t_offset", "position_offset"])[j] for j in np.flatnonzero(together > 0.1 * together.max())]
-        raise FitError(f"{' and '.join(tied)} cannot be told apart from this data (the fit's Jacobian has "
-                       f"condition number {condition:.1e}): a change of one can be undone by a change of "
-                       f"the other{'s' if len(tied) > 2 else ''}; set {'it' if len(tied) == 1 else 'all but one'} "
-                       f"with --set")
-    dof = len(t) - len(theta)
-    s2 = float(residual @ residual) / dof if dof > 0 else math.nan
-    covariance = np.linalg.pinv((J / scale).T @ (J / scale)) / np.outer(scale, scale) * s2
-    sigma = np.sqrt(np.maximum(np.diag(covariance), 0.0))
-    fitted = {name: Estimate(float(theta[j]), float(sigma[j]), setup.constants[name].unit)
-              for j, name in enumerate(names)}
-    final = with_fitted(setup, {name: float(theta[j]) for j, name in enumerate(names)}, AXES[coordinate])
-    model = sign * (problem.residuals(theta) + y)
-    notes, slow_dt = [], ()
+    starts = offsets(problem, (), period=period, sign=sign, longest=MAX_STEPS_PER_RUN * float(setup.values["dt"]))
+    by_sign = {start.sign: start for start in starts}
+    chosen = sign if sign is not None else (
+        -1 if by_sign[-1].cost < SIGN_MARGIN * by_sign[1].cost else 1)
+    problem.sign = chosen
+    t_offset = offset_only(problem, by_sign[chosen].t_offset)
+    fitted = finish(problem, (), t_offset, chosen)
+    model = np.full(len(t), np.nan)
+    model[kept] = fitted.model
+    notes = _left_out_note(t, data, np.setdiff1d(np.arange(len(t)), kept), lines)
+    slow = _slow_dt(setup, float(setup.values.get("dt", 0.0)), tt)
+    if slow:
+        notes.append(_slow_dt_note(slow))
+    settings = ModelSettings(integrator=integrator, dt=float(setup.values.get("dt", math.nan)), chosen_by="user")
+    return Comparison(t=t[kept], data=y, model=fitted.model, coordinate=coordinate, fitted={},
+                      t_offset=Estimate(first + t_offset, fitted.uncertainty("t_offset"), "s"),
+                      position_offset=Estimate(fitted.value("position_offset"),
+                                               fitted.uncertainty("position_offset"), "m"),
+                      setup=setup, notes=notes, sign=chosen, slow_dt=slow, settings=settings, runs=runs.count,
+                      left_out=tuple(int(i) for i in np.setdiff1d(np.arange(len(t)), kept)))
+
+
+def _left_out_note(t, data, rows, lines=None) -> list:
+    """A note naming the points left out: each by its line in the file (where known), time and value."""
+    if not len(rows):
+        return []
+    shown = ", ".join((f"line {lines[i]} " if lines is not None else "") + f"(t = {t[i]:.4g} s, {data[i]:.3g} m)"
+                      for i in rows[:5])
+    more = f" and {len(rows) - 5} more" if len(rows) > 5 else ""
+    return [f"note: {len(rows)} point{'s' if len(rows) > 1 else ''} far off the data's swing left out "
+            f"(a sensor drop-out?): {shown}{more}"]
+
+
+def _settings(setup, *, integrator, choose, own_step) -> ModelSettings:
+    """Who chooses the model's integrator and Δt (lab/settings.py): the data (this program's own run),
+    the fit, or the user (--integrator, --set dt, or the page's menu and slider)."""
+    model = setup.build()
+    if choose and own_step:
+        return ModelSettings(integrator=model.methods(None)[0], dt=float(own_step), chosen_by="data")
+    if choose and model.integrators is None:
+        return ModelSettings(integrator=best_method(), dt=math.nan, chosen_by="fit")
+    return ModelSettings(integrator=model.methods(integrator)[0], dt=float(setup.values["dt"]), chosen_by="user")
+
+
+def _fit(setup, t, data, kept, first, *, names, added, axis, coordinate, integrator, sign, choose, own_step,
+         progress, lines) -> Comparison:
+    """The comparison with `names` fitted (see the module's docstring for the steps and their modules)."""
+    settings = _settings(setup, integrator=integrator, choose=choose, own_step=own_step)
+    tt, y = t[kept] - first, data[kept]
+    noise = data_swing.noise(y)
+    held = data_swing.held(tt, y, noise)         # where a record that starts with the mass held lets it go
+    swing = data_swing.damped(tt, y, start=held)
+    period = 2 * math.pi / swing.omega if swing else _period(setup, tt, y)
+    runs = Runs(setup, integrator=settings.integrator, axis=axis, spacing=_spacing(tt), progress=progress)
+    release = RELEASE in names
+    nonlinear = [name for name in names if name != RELEASE]
+    as_set = tuple(_value(setup, name, axis) for name in nonlinear)
+    start_constants = [as_set]
+    if swing and nonlinear:    # the swing's own frequency and decay, then the spectrum's other peaks (a
+        # drive's and the free swing's), whose decay is not known: damped at 2 and at 10 % of critical
+        others = [omega for omega in data_swing.frequencies(tt[tt >= held], y[tt >= held])
+                  if abs(omega - swing.omega) > 0.05 * swing.omega][:1]
+        for omega, decay in [(swing.omega, swing.decay)] + [(omega, ratio * omega) for omega in others
+                                                             for ratio in (0.02, 0.1)]:
+            found = matched(setup, nonlinear, as_set, omega=omega, decay=decay, axis=axis)
+            if found and all(not np.allclose(found, other, rtol=0.02) for other in start_constants):
+                start_constants.append(found)
+    base = {RELEASE: _value(setup, RELEASE, axis)} if release else {}
+    step = {RELEASE: max(float(np.ptp(y)) / 100, 1e-4)} if release else {}
+    problem = Problem(runs, tt, y, nonlinear=nonlinear, linear=list(base), base=base, step=step, mode="offset")
+    problem.reach = 1.1 * period
+    scene_dt = float(setup.values["dt"])
+    if settings.chosen_by == "fit":
+        estimate = min(noise, swing.rms) if swing else noise
+        main = start_constants[1] if len(start_constants) > 1 else start_constants[0]   # the swing's own
+        chosen = choose_dt(problem, main, order=order_of(settings.integrator, DEFAULT_INTEGRATOR),
+                           period=period, noise=estimate, scene_dt=scene_dt)
+        settings.dt, settings.error, settings.target = chosen.dt, chosen.error, chosen.target
+    problem.dt = settings.dt
+    _check_length(problem, period, settings.dt)
+    if release:
+        mode = linear_mode(problem, start_constants[-1 if len(start_constants) < 2 else 1], RELEASE)
+        if mode:
+            problem.mode = mode
+        else:          # the motion is not linear in the release: least squares fits it with the rest
+            problem = problem.copy(nonlinear=[*nonlinear, RELEASE], linear=[], base={}, step={})
+            start_constants = [(*constants, base[RELEASE]) for constants in start_constants]
+    fitted, sign_open, sign_said = _descend_from_starts(problem, start_constants, period=period, sign=sign,
+                                                        held=held)
+    problem = fitted.problem
+    moves, ratio = _moves(fitted, settings)
+    halvings = 0
+    while settings.chosen_by == "fit" and ratio > 1 / 3 and halvings < HALVINGS:
+        halvings += 1
+        settings.dt /= 2
+        fitted = _moved(fitted, moves, dt=settings.dt)
+        moves, ratio = _moves(fitted, settings)
+    wild = outlier_rows.in_residual(fitted.residual)
+    if len(wild):
+        keep = np.setdiff1d(np.arange(len(fitted.residual)), wild)
+        kept = kept[keep]
+        fitted = _again(fitted, keep=keep)
+        moves, ratio = _moves(fitted, settings)
+    constants = [name for name in fitted.names if name in names]
+    sigma = {name: fitted.uncertainty(name) for name in constants}
+    move_said = {name: moves[name] for name in constants} if settings.chosen_by != "data" else {}
+    advice, smaller_dt = _advice(settings, moves, sigma)
+    values = {name: fitted.value(name) for name in constants}
+    trust = judge(residual=fitted.residual, data=fitted.problem.y, model=fitted.model,
+                  samples_per_period=_samples_per_period(setup, values, axis, fitted.problem.t),
+                  at_edge=fitted.at_edge, sign_open=sign_said, moves=move_said, sigma=sigma, dt=settings.dt,
+                  advice=advice, smaller_dt=smaller_dt, settled=fitted.settled, runs=runs.count)
+    final = with_fitted(setup, values, axis).with_values(dt=settings.dt)
+    left = np.setdiff1d(np.arange(len(t)), kept)
+    notes = _left_out_note(t, data, left, lines) + [_settings_note(settings, noise=_noise_of(fitted),
+                                                                   ratio=ratio)]
+    estimates = {name: Estimate(values[name], sigma[name], setup.constants[name].unit)
+                 for name in [*[n for n in names if n != RELEASE], *([RELEASE] if release else [])]}
+    return Comparison(t=t[kept], data=data[kept], model=fitted.model, coordinate=coordinate, fitted=estimates,
+                      t_offset=Estimate(first + fitted.value("t_offset"), fitted.uncertainty("t_offset"), "s"),
+                      position_offset=Estimate(fitted.value("position_offset"),
+                                               fitted.uncertainty("position_offset"), "m"),
+                      setup=final, notes=notes, sign=fitted.sign, slow_dt=_slow_dt(setup, settings.dt, tt),
+                      trust=trust, settings=settings, moves={name: moves[name] for name in constants},
+                      runs=runs.count, release_fitted=added, sign_open=sign_open,
+                      left_out=tuple(int(i) for i in left))
+
+
+def _samples_per_period(setup, values, axis, t) -> float:
+    """How many of the data's samples the fitted spring's natural period spans (declared rates)."""
+    model = with_fitted(setup, values, axis).build()
+    omega = float(rates(model.forces, model.state.m).omega[0])
     interval = float(np.median(np.diff(t)))
-    dt = float(final.values.get("dt", 0.0))
-    if dt > interval:
-        slow_dt = (dt, interval, f"{10 ** math.floor(math.log10(interval / 10)):g}")    # a round Δt under it
-        notes.append(f"note: the model's dt = {dt:g} s is longer than the data's sample interval "
-                     f"{interval:.3g} s, so the integrator's own error is in the comparison; a smaller dt "
-                     f"(--set dt={slow_dt[2]}) follows the real motion more closely")
-    return Comparison(t=t, data=data, model=model, coordinate=coordinate, fitted=fitted,
-                      t_offset=Estimate(float(theta[-2]), float(sigma[-2]), "s"),
-                      position_offset=Estimate(sign * float(theta[-1]), float(sigma[-1]), "m"),
-                      setup=final, notes=notes, sign=sign, slow_dt=slow_dt)
+    return 2 * math.pi / (omega * interval) if omega > 0 and interval > 0 else math.inf
 
 
-def _within_range(setup, names, starts) -> list:
-    """The starts whose every value lies in its declared range. If the start from the constants as
-    set (b from the data's decay) or from the data's strongest frequency lies outside (a swing at a
-    kilohertz on a 10 kg mass asks for k = 4e8 N/m: the data's units are not what the file says, or
-    the scene's m is not the mass used), FitError says which constant, the value, its range and what
-    to check; another frequency's start outside is a weaker peak's, and is dropped."""
-    strongest = starts[1][1] if len(starts) > 1 else None
-    kept = []
-    for start, omega in starts:
-        wrong = [(name, value) for name, value in zip(names, start) if not DECLARED[name].allows(value)]
-        if not wrong:
-            kept.append((start, omega))
-        elif omega is None or omega == strongest:
-            raise FitError(_outside_said(setup, *wrong[0], omega))
-    return kept
+def _check_length(problem, period, dt) -> None:
+    """The data's span (and a period before them) must be a run the engine may take (one line if not,
+    whose suggested Δt is one this check accepts)."""
+    needed = 1.05 * problem.span + 1.1 * period + 0.05 * problem.span
+    if needed / dt > MAX_STEPS_PER_RUN:
+        raise FitError(too_long(needed, dt, f"the data span {problem.span:.4g} s: a run of the model over "
+                                            f"them and a period before is"))
 
 
-def _outside_said(setup, name, value, omega) -> str:
-    """One line: the value the data suggest for `name` (k, m from the swing's ω; b from its decay),
-    its declared range, and what to check."""
-    unit, values = setup.constants[name].unit, setup.values
-    how = {"k": f"a swing at ω = {omega or 0:.4g} rad/s with m = {values.get('m', 1.0):.4g} kg (k = m ω²)",
-           "m": f"a swing at ω = {omega or 0:.4g} rad/s with k = {values.get('k', 0.0):.4g} N/m (m = k / ω²)"}
-    other = "k" if name == "m" else "m"
-    return (f"--fit {name}: {how.get(name, 'how fast the data swing dies away')} suggests {name} = "
-            f"{value:.3g} {unit}, outside its range ({DECLARED[name].words(unit)}); check the data's units "
-            f"(time in s, position in m) and the scene's {other} (--set {other}=...)")
-
-
-def _fit_from(problem, setup, start, omega, t_offset, position_offset):
-    """(theta, Σ residual²): the offsets, then the constants, fitted from a start (problem.y is the
-    data as compared)."""
-    names = problem.names
-    # k and m may move a factor of 10 from the data's own frequency: further is a swing the data
-    # does not show, and a stiff spring there would cost the fit minutes of tiny steps.
-    reach = {j: (start[j] / 10, start[j] * 10) for j, name in enumerate(names)
-             if name in ("k", "m") and omega and start[j] > 0}
-    theta = offsets_only(problem, np.array([*start, t_offset, position_offset]))
-    if names:
-        low = np.array([DECLARED[name].low for name in names] + [-np.inf, -np.inf])
-        high = np.array([DECLARED[name].high for name in names] + [np.inf, np.inf])
-        for j, (lo, hi) in reach.items():
-            low[j], high[j] = max(low[j], lo), min(high[j], hi)
+def _descend_from_starts(problem, start_constants, *, period, sign, held=0.0):
+    """(Fitted, sign_open, why the sign is open or ""): least squares from the best start of each
+    sign not clearly worse than the other, never ending worse than any start (lab/start.py)."""
+    tried = []
+    longest = MAX_STEPS_PER_RUN * problem.dt
+    for constants in start_constants:
         try:
-            theta, _ = least_squares(problem, theta, low, high)
-        except MissingScipy as missing:
-            raise FitError(str(missing)) from None
-        if not np.all(np.isfinite(theta)):
-            raise FitError("the fit did not converge to finite values; check the constants set with --set")
-        for j, (lo, hi) in reach.items():
-            if not lo * 1.001 < theta[j] < hi / 1.001:
-                raise FitError(f"the fit of {names[j]} ran to {theta[j]:.4g} {setup.constants[names[j]].unit}, "
-                               f"ten times from what the data's frequency suggests ({start[j]:.4g}): the data "
-                               f"show too little of the swing to fit it; check --set m, r0 and the column read")
-    residual = problem.residuals(theta)
-    return theta, float(residual @ residual)
+            found = offsets(problem, constants, period=period, sign=sign, longest=longest, held=held)
+        except FitError:     # a start the model cannot run at this Δt (it blows up): not a start
+            continue
+        for start in found:
+            residual = problem.solve(constants, start.t_offset, start.sign)[0]
+            tried.append((float(residual @ residual), start))
+    if not tried:
+        raise FitError(f"the model blew up from every start the fit tried ({constants_said(problem.runs.setup)}); "
+                       f"set a smaller dt, or the constants not fitted with --set")
+    tried.sort(key=lambda pair: pair[0])
+    lowest = tried[0][0]
+    by_sign = {}
+    for cost, start in tried:
+        by_sign.setdefault(start.sign, (cost, start))
+    chosen = [by_sign[way] for way in sorted(by_sign, key=lambda way: by_sign[way][0])
+              if by_sign[way][0] <= lowest / SIGN_MARGIN or by_sign[way][0] == lowest]
+    if problem.mode == "scale":
+        chosen = chosen[:1]
+    results = {}
+    for cost, start in chosen:
+        if results:      # the other way of the axis: only where its start is as low as the fit's end
+            done = min(found.cost for found in results.values())
+            points = len(problem.t)
+            if cost > done + SIGN_TIE * done / max(points - len(problem.nonlinear) - 3, 1):
+                continue
+        way = problem.copy(sign=start.sign)
+        # two runs a candidate where the release does not only scale the swing: a budget that allows it
+        budget = max(BUDGET * (1 if problem.mode == "scale" else 2) - problem.runs.count - 6, 24)
+        constants, t_offset, found, converged = descend(way, start.constants, start.t_offset, budget=budget)
+        best = min([(found, constants, t_offset)] +
+                   [(c, s.constants, s.t_offset) for c, s in tried if s.sign == start.sign])
+        results[start.sign] = _finish(way, best[1], best[2], start.sign)
+        results[start.sign].settled = converged or best[0] < found
+    order = sorted(results, key=lambda way: results[way].cost)
+    fitted = results[order[0]]
+    if problem.mode == "scale":
+        return fitted, sign is None, ""
+    if len(order) < 2 or sign is not None:
+        return fitted, False, ""
+    other = results[order[1]]
+    s2 = fitted.cost / max(len(fitted.residual) - len(fitted.names), 1)
+    if other.cost - fitted.cost > SIGN_TIE * s2:
+        return fitted, False, ""
+    apart = [name for name in fitted.problem.nonlinear
+             if abs(fitted.value(name) - other.value(name)) > max(fitted.uncertainty(name), other.uncertainty(name))]
+    if not apart:
+        plus = results.get(1, fitted)
+        return plus, True, ""
+    differ = ", ".join(f"{name} = {fitted.value(name):.4g} or {other.value(name):.4g}" for name in apart)
+    return fitted, False, f"both ways of the data's axis fit alike, with {differ} (--data-sign says which)"
 
 
-def _better_way(fitted: dict) -> int:
-    """+1 or −1: the data's axis the model's way unless reversed fits clearly better (SIGN_MARGIN),
-    or the only way tried or that could be fitted."""
-    cost = {way: (math.inf if isinstance(found, FitError) else found[1]) for way, found in fitted.items()}
-    if 1 not in cost:
-        return -1
-    return -1 if -1 in cost and cost[-1] < SIGN_MARGIN * cost[1] else 1
+def _finish(problem, constants, t_offset, sign) -> Fitted:
+    """finish(), and where the release turns out not to only scale the swing, the fit again with two
+    runs a candidate."""
+    try:
+        return finish(problem, constants, t_offset, sign)
+    except _NotScale:
+        lines = problem.copy(mode="lines")
+        constants, t_offset, _, _ = descend(lines, constants, t_offset, budget=12)
+        return finish(lines, constants, t_offset, sign)
+
+
+def _again(fitted, *, dt=None, keep=None) -> Fitted:
+    """The fit again from where it ended: at a new Δt, or on the points `keep` only."""
+    problem = fitted.problem
+    changes = {}
+    if dt is not None:
+        changes["dt"] = dt
+    if keep is not None:
+        changes.update(t=problem.t[keep], y=problem.y[keep])
+    problem = problem.copy(**changes)
+    p = len(problem.nonlinear)
+    constants, t_offset, settled = tuple(fitted.values[:p]), fitted.value("t_offset"), True
+    if problem.nonlinear:
+        constants, t_offset, _, settled = descend(problem, constants, t_offset, budget=12)
+    again = _finish(problem, constants, t_offset, fitted.sign)
+    again.settled = settled and fitted.settled
+    return again
+
+
+def _moved(fitted, moves, *, dt) -> Fitted:
+    """The fit at Δt/2 from the Gauss-Newton step moves_at_half_dt already took there (the fit's valley
+    hardly moves: no new least squares), its values and uncertainties worked out again at that Δt."""
+    problem = fitted.problem.copy(dt=dt)
+    p = len(problem.nonlinear)
+    constants = tuple(fitted.values[j] + moves[name] for j, name in enumerate(fitted.names[:p]))
+    moved = _finish(problem, constants, fitted.value("t_offset") + moves["t_offset"], fitted.sign)
+    moved.settled = fitted.settled
+    return moved
+
+
+def _moves(fitted, settings):
+    """Each value's move at Δt/2, and the largest move of a fitted constant in its σ (0 where the data
+    are the program's own run: its model error is in the data too; NaN where a run at Δt/2 would be
+    longer than a run may be)."""
+    if settings.chosen_by == "data":
+        return {name: 0.0 for name in fitted.names}, 0.0
+    if (1.05 * fitted.problem.span + fitted.problem.reach) / (settings.dt / 2) > MAX_STEPS_PER_RUN:
+        return {name: math.nan for name in fitted.names}, math.nan
+    moves = moves_at_half_dt(fitted, settings.dt)
+    ratios = [abs(moves[name]) / fitted.uncertainty(name) for name in fitted.problem.nonlinear + fitted.problem.linear
+              if fitted.uncertainty(name) > 0]
+    return moves, max(ratios, default=0.0)
+
+
+def _noise_of(fitted) -> float:
+    return float(np.sqrt(np.mean(fitted.residual ** 2)))
+
+
+def _advice(settings, moves, sigma) -> tuple[str, float]:
+    """(what the command line would set instead, a Δt that would do, s), for a model whose Δt moves
+    the answer by more than σ."""
+    ratios = [abs(moves[name]) / sigma[name] for name in sigma if sigma[name] > 0 and math.isfinite(moves[name])]
+    worst = max(ratios, default=0.0)
+    if worst <= 1:
+        return "", math.nan
+    smaller = suggest_dt(settings.dt, worst, order_of(settings.integrator, DEFAULT_INTEGRATOR))
+    if settings.chosen_by == "fit":
+        return f"the finest Δt tried was {settings.dt:.3g} s", smaller
+    return (f"Δt = {smaller:.3g} s or the rk4 method would do; leave out --set dt and --integrator and the "
+            f"fit chooses", smaller)
+
+
+def _length(metres: float) -> str:
+    if 1e-4 <= metres < 1.0:
+        return f"{metres * 1000:.2g} mm"
+    if 1e-7 <= metres < 1e-4:
+        return f"{metres * 1e6:.2g} µm"
+    return f"{metres:.2g} m"
+
+
+def _settings_note(settings, *, noise, ratio) -> str:
+    """One line saying which integrator and Δt the fit's model ran with, and why they can be trusted."""
+    method = settings.integrator or "the scene's integrator"
+    if settings.chosen_by == "data":
+        return (f"note: the data are this program's own run at dt = {settings.dt:.6g} s, so the model runs the "
+                f"same way ({method}); --integrator or --set dt chooses another")
+    moved = (f"halving it moves no fitted value by more than {ratio:.2g}σ" if ratio <= 1 else
+             f"halving it moves a fitted value by {ratio:.2g}σ" if ratio > 1 else
+             "a run at half that Δt would be too long to check how far halving it moves the values")
+    if settings.chosen_by == "fit":
+        return (f"note: the fit chose {method} at dt = {settings.dt:.3g} s: its own error, about "
+                f"{_length(settings.error)}, is under a tenth of the data's noise ({_length(noise)}); {moved}")
+    return f"note: the model runs {method} at dt = {settings.dt:.3g} s, as set; {moved}"

@@ -5,14 +5,16 @@ spring and the tests' fixtures). Each writer takes t in s and a position in m an
                comma, semicolon or space; a decimal comma with ; or tab)
     vernier    Vernier Graphical Analysis CSV: `Latest: Time (s),Latest: Position (m)`
     pasco      PASCO Capstone CSV: `Time (s) Run #1,Position (m) Run #1,...`, several runs side by side
+               (with a European computer's settings: semicolons between cells, decimal commas)
     loggerpro  Logger Pro's text export: a title block, then names, symbols and units, tab-separated
     csv        this program's own --csv header `t,x,y,z,vx,...` (the other columns left empty)
+    plain      two columns of numbers, t in s and position in m, and no header at all
 """
 from __future__ import annotations
 
 from export.numbers import CSV_HEADER
 
-FORMATS = ("tracker", "vernier", "pasco", "loggerpro", "csv")
+FORMATS = ("tracker", "vernier", "pasco", "loggerpro", "csv", "plain")
 
 
 def _number(x: float, digits: int, comma: bool = False) -> str:
@@ -40,18 +42,23 @@ def vernier(t, y, *, time_unit="s", length_unit="m") -> str:
     return "\n".join(lines) + "\n"
 
 
-def pasco(runs) -> str:
+def pasco(runs, *, separator=",", decimal_comma=False) -> str:
     """PASCO Capstone: `runs` is a list of (t, y); a shorter run leaves its cells empty below its end."""
     header = []
     for number in range(1, len(runs) + 1):
         header += [f"Time (s) Run #{number}", f"Position (m) Run #{number}"]
-    lines = [",".join(header)]
+    lines = [separator.join(header)]
     for row in range(max(len(t) for t, _ in runs)):
         cells = []
         for t, y in runs:
-            cells += [f"{t[row]:.4f}", f"{y[row]:.4f}"] if row < len(t) else ["", ""]
-        lines.append(",".join(cells))
+            cells += [_number(t[row], 4, decimal_comma), _number(y[row], 4, decimal_comma)] if row < len(t) else ["", ""]
+        lines.append(separator.join(cells))
     return "\n".join(lines) + "\n"
+
+
+def plain(t, y) -> str:
+    """Two columns, t in s and position in m, separated by a space, with no header."""
+    return "".join(f"{time:.4f} {height:.5f}\n" for time, height in zip(t, y))
 
 
 def loggerpro(t, y) -> str:
@@ -75,4 +82,4 @@ def write_format(name: str, t, y) -> str:
     """The text of a run in format `name` (one of FORMATS), with each format's usual choices."""
     return {"tracker": lambda: tracker(t, y), "vernier": lambda: vernier(t, y),
             "pasco": lambda: pasco([(t, y)]), "loggerpro": lambda: loggerpro(t, y),
-            "csv": lambda: own_csv(t, y)}[name]()
+            "csv": lambda: own_csv(t, y), "plain": lambda: plain(t, y)}[name]()

@@ -1,11 +1,20 @@
-"""A mystery spring for class: a measured-looking run of a spring whose k and b the students find.
+"""A mystery spring for class: a measured-looking run of a spring whose hidden constants the students find.
 
-The program picks k and b (unless the teacher sets them with --set), runs the engine with rk4 and
-a small Δt (far closer to the exact motion than the noise), and writes what a motion detector
-would: a Vernier Graphical Analysis CSV, 20 to 50 samples a second, a few millimetres of noise,
-a clock that started before the release at an arbitrary reading, and a zero of its own (the
-detector's distance). Everything is drawn from one seed, so the same seed gives the same file and
-the same answer (--show-answer --seed N), and the answer is printed only when asked for.
+The scene declares what is hidden (LAB["hidden"] in its file, scenes/_hooks.py: k and b for vertical,
+damped and driven). The program picks their values from the seed (unless the teacher sets them with
+--set) over the whole stated range: a natural frequency ω₀ from 1/√2 to √2 times the scene's (k from
+half to twice the scene's) and a damping ratio ζ from 2 % to 12 % of critical, both uniform, turned
+into the hidden constants through the rates the forces declare (lab/start.py's `matched`, as the
+fit's start does), rounded to three digits. It runs the engine with rk4 and a small Δt (far closer
+to the exact motion than the noise), and writes what a motion detector would: a Vernier Graphical
+Analysis CSV, 20 to 50 samples a second, a few millimetres of noise, a clock that started before the
+release at an arbitrary reading, and a zero of its own (the detector's distance). Everything is
+drawn from one seed, so the same seed gives the same file and the same answer (--show-answer --seed
+N), and the answer is printed only when asked for.
+
+A mystery no class could solve is refused with one line, and no file is written: a compared
+coordinate that does not move, or a swing so fast that the detector takes fewer than 8 samples a
+period.
 """
 from __future__ import annotations
 
@@ -14,13 +23,17 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .compare import AXES, FitError, ModelRun
-from .formats import vernier
+from physics.stability import rates
 
-HIDDEN = ("k", "b")                   # what the students find
+from .formats import vernier
+from .model_run import AXES, FitError, ModelRun
+from .start import matched
+
 RATES = (20, 25, 30, 40, 50)          # samples per second a motion detector records
 DURATION = 15.0                       # s of recording after the release
 FINE_DT = 1e-3                        # s: the engine's Δt for the "real" spring (rk4)
+ZETA = (0.02, 0.12)                   # damping ratios drawn from
+LEAST_SAMPLES = 8                     # samples a period a class needs to see the swing
 
 
 @dataclass(frozen=True)
@@ -39,26 +52,54 @@ def _round(x: float, digits: int = 3) -> float:
     return float(f"{x:.{digits}g}")
 
 
+def hidden_names(setup) -> tuple:
+    """The constants the scene hides in a mystery (its LAB["hidden"]); FitError for a scene of more
+    than one mass, or one that hides none."""
+    count = setup.build().state.count
+    if count != 1:
+        raise FitError(f"scene {setup.name!r} has {count} masses; a mystery spring is a scene of one mass "
+                       f"(vertical, damped, driven)")
+    names = tuple(setup.hooks.lab.get("hidden", ()))
+    if not names or any(name not in setup.constants for name in names):
+        raise FitError(f"scene {setup.name!r} declares no constants to hide (LAB = {{\"hidden\": ...}} in its "
+                       f"file); a mystery spring needs a scene of one mass on a spring (vertical, damped, driven)")
+    return names
+
+
+def _natural(setup, values=None):
+    """(ω₀ rad/s, damping rate b/m 1/s) of the scene's mass, from its forces' declared rates."""
+    model = (setup if values is None else setup.with_values(**values)).build()
+    found = rates(model.forces, model.state.m)
+    return float(found.omega[0]), float(found.damping[0])
+
+
 def choose(setup, *, seed: int, given=()) -> dict:
-    """The hidden constants from the seed: k from half to twice the scene's, and b for a damping
-    ratio from 0.02 to 0.12 of critical (a swing that visibly dies away), at most one that leaves a
-    twentieth of the swing at the end of the record; `given` names the ones the teacher set, which
-    are kept."""
-    missing = [name for name in ("m", *HIDDEN) if name not in setup.constants]
-    if missing:
-        raise FitError(f"scene {setup.name!r} has no {' or '.join(missing)}; a mystery spring needs a scene "
-                       f"of one mass on a spring with m, k and b (vertical, damped, driven)")
-    if not float(setup.values["k"]) > 0:
-        raise FitError("a mystery spring needs a spring: k must be greater than 0 N/m")
+    """The hidden constants from the seed (see the module's docstring); `given` names the ones the
+    teacher set, which are kept."""
+    names = hidden_names(setup)
+    omega_scene, _ = _natural(setup)
+    if not omega_scene > 0:
+        raise FitError("a mystery spring needs a spring: the scene's spring has no stiffness")
     rng = np.random.default_rng(seed)
-    m, k_scene = float(setup.values["m"]), float(setup.values["k"])
-    k = _round(k_scene * 2.0 ** rng.uniform(-1.0, 1.0))
-    zeta = rng.uniform(0.02, 0.12)
-    k = float(setup.values["k"]) if "k" in given else k
-    # The swing must last most of the record to be measured: a decay rate ζω of at most 3/DURATION.
-    zeta = min(zeta, 3.0 / (DURATION * math.sqrt(k / m)))
-    b = float(setup.values["b"]) if "b" in given else _round(zeta * 2.0 * math.sqrt(m * k))
-    return {"k": k, "b": b}
+    omega0 = omega_scene * 2.0 ** (rng.uniform(-1.0, 1.0) / 2)
+    zeta = rng.uniform(*ZETA)
+    free = [name for name in names if name not in given]
+    if not free:
+        return {name: float(setup.values[name]) for name in names}
+    start = tuple(float(setup.values[name]) for name in free)
+    if not any(_natural(setup, {name: value * 1.01 + 1e-6})[0] != _natural(setup)[0]
+               for name, value in zip(free, start)):
+        omega0 = _natural(setup)[0]      # the teacher set what makes the swing's pace: only ζ is drawn
+    decay = zeta * omega0
+    try:
+        found = matched(setup, free, start, omega=omega0 * math.sqrt(1 - zeta ** 2), decay=decay, axis=0)
+    except FitError:
+        found = None
+    if found is None:
+        raise FitError(f"scene {setup.name!r}: no values of {', '.join(free)} give this spring a swing of "
+                       f"ω₀ = {omega0:.3g} rad/s damped at {zeta:.0%} of critical; set them with --set")
+    chosen = {name: _round(value) for name, value in zip(free, found)}
+    return {name: chosen.get(name, float(setup.values[name])) for name in names}
 
 
 def make(setup, *, seed: int, given=(), coordinate: str = "y") -> Mystery:
@@ -70,17 +111,28 @@ def make(setup, *, seed: int, given=(), coordinate: str = "y") -> Mystery:
     clock = _round(rng.uniform(0.5, 8.0), 3)      # its clock's reading at the first sample, s
     noise = _round(rng.uniform(0.001, 0.003), 2)  # m
     real = setup.with_values(dt=min(FINE_DT, float(setup.values["dt"])), **hidden)
+    omega0, damping = _natural(real)
+    omega_d = math.sqrt(max(omega0 ** 2 - (damping / 2) ** 2, 0.0))
+    if omega_d > 0 and 2 * math.pi * rate / omega_d < LEAST_SAMPLES:
+        raise FitError(f"this spring swings {omega_d / (2 * math.pi):.3g} times a second, so a detector's {rate} "
+                       f"samples a second are fewer than {LEAST_SAMPLES} a period, too few to see its swing; "
+                       f"set a softer spring or a heavier mass")
     run = ModelRun(real, integrator="rk4", axis=AXES[coordinate], until=DURATION + 1.0)
     samples = np.arange(0.0, before + DURATION, 1.0 / rate)
     tau = samples - before                        # model time: negative while the mass is held
     y, _ = run.at(tau)
+    if np.ptp(y) < 5 * noise:
+        raise FitError(f"in scene {setup.name!r} the mass hardly moves along {coordinate} (by {np.ptp(y):.2g} m, "
+                       f"less than 5 times the detector's noise); choose the coordinate that moves with "
+                       f"--coordinate, or a start position away from equilibrium")
     zero = -float(np.min(y)) + rng.uniform(0.2, 0.8)  # the detector below the lowest point
     reading = np.round(y + zero + rng.normal(0.0, noise, y.size), 4)
     t = np.round(clock + samples, 4)
-    units = {name: setup.constants[name].unit for name in ("k", "b", "m", "r0") if name in setup.constants}
+    units = {name: setup.constants[name].unit for name in (*hidden, "m", "r0") if name in setup.constants}
+    known = {name: (setup.values[name], units[name]) for name in ("m", "r0")
+             if name in units and setup.values[name] is not None}
     return Mystery(t=t, position=reading, answer={name: (value, units[name]) for name, value in hidden.items()},
-                   known={name: (setup.values[name], units[name]) for name in ("m", "r0") if name in units},
-                   rate=rate, noise=noise)
+                   known=known, rate=rate, noise=noise)
 
 
 def text(mystery: Mystery) -> str:

@@ -12,26 +12,39 @@ numbers. The reader finds
     the series    each position column (x, y, z, Position, Distance, ...) with the time column to its
                   left; several runs side by side (PASCO: `Position (m) Run #2`) are several series
     the units     from the header: s or ms, and m, cm or mm; a header with no unit is read as s and m
+    no header     two columns of numbers and nothing above them: t in s and position in m, and said so
+    numbers       a decimal point or a decimal comma, and thousands separators (1,600.7 or 1.600,7)
+                  read right where the file shows which is which; a cell such as 1,601 that could be
+                  either, in a file that never says, is refused
+    checks        before anything runs: the file is a regular file (a FIFO or a device is refused
+                  at once, and no read goes past MAX_BYTES whatever size the system reports), the
+                  samples are a plausible time apart for a spring (a spacing of 10⁷ is not seconds),
+                  the position column moves, and its values are lengths a spring can have
 
 Anything it cannot read is a :class:`DataError` whose message is one line naming the file and the
 line at fault. Nothing is loaded from a bad file.
 """
 from __future__ import annotations
 
-import math
 import os
 import re
-from dataclasses import dataclass
+import stat
+from dataclasses import dataclass, field
 
 import numpy as np
 
-from . import LabError
+from . import LabError, cells
+from export.numbers import CSV_HEADER
 
 MAX_BYTES = 64 * 1024 * 1024     # larger files are refused before they are read
 MAX_ROWS = 200_000               # rows of numbers a file may have (about an hour at 50 samples/s)
 TIME_UNITS = {"s": 1.0, "sec": 1.0, "ms": 1e-3}
 LENGTH_UNITS = {"m": 1.0, "cm": 1e-2, "mm": 1e-3}
 POSITION_WORDS = ("position", "distance", "displacement", "height", "pos")
+SPACING = (1e-5, 10.0)           # s between samples a motion detector or a video of a spring can have
+FARTHEST = 1e4                   # m: positions beyond this are no spring's (the constants' own range)
+LEAST_SWING = 1e-9               # m: a column that moves less than this does not move
+THOUSANDS = {",": re.compile(r"^[+-]?[1-9]\d{0,2}(,\d{3})+$"), ".": re.compile(r"^[+-]?[1-9]\d{0,2}(\.\d{3})+$")}
 
 
 class DataError(LabError):
@@ -53,7 +66,9 @@ class Measured:
     """The chosen series of a measured file: t in s and position in m, in the file's own clock and zero.
 
     points is the number of rows used; skipped the rows left out because a cell of the series was
-    empty; choice says in words which column was read and how to pick another.
+    empty; choice says in words which column was read and how to pick another; lines is each
+    point's line in the file; own_step is the Δt of this program's own --csv run (one row a step,
+    every column written), else None.
     """
 
     path: str
@@ -61,6 +76,8 @@ class Measured:
     position: np.ndarray
     choice: str
     skipped: int = 0
+    lines: np.ndarray = field(default=None, compare=False)
+    own_step: float | None = None
 
 
 def _fail(path: str, line: int | None, what: str):
@@ -97,39 +114,6 @@ def decode(raw: bytes, path: str) -> str:
             _fail(path, number, "not a text file of numbers (it holds binary data); "
                                 "export the data as text (CSV or tab-separated) and try again")
     return text
-
-
-def _separator(line: str) -> str | None:
-    """The separator a line uses: tab, semicolon, comma, or None for runs of spaces."""
-    for mark in ("\t", ";", ","):
-        if mark in line:
-            return mark
-    return None
-
-
-def _cells(line: str, separator: str | None) -> list[str]:
-    parts = line.split(separator) if separator else line.split()
-    return [part.strip().strip('"').strip() for part in parts]
-
-
-def _number(cell: str, decimal_comma: bool) -> float | None:
-    """A cell as a float, None if empty; raises ValueError for text (and for nan or inf)."""
-    if cell == "":
-        return None
-    if decimal_comma:
-        cell = cell.replace(",", ".")
-    value = float(cell)
-    if not math.isfinite(value):
-        raise ValueError(cell)
-    return value
-
-
-def _is_numbers(cells: list[str], decimal_comma: bool) -> bool:
-    try:
-        values = [_number(cell, decimal_comma) for cell in cells]
-    except ValueError:
-        return False
-    return sum(value is not None for value in values) >= 1
 
 
 # ---- the header ----
@@ -182,14 +166,24 @@ def read(path: str, *, column: str | None = None, run: int | None = None,
     Raises DataError with one line naming the file and the line at fault.
     """
     try:
+        mode = os.stat(path).st_mode            # follows links: a link to /dev/urandom is a device
+        if not stat.S_ISREG(mode):
+            kind = ("a folder" if stat.S_ISDIR(mode) else "a FIFO (a named pipe)" if stat.S_ISFIFO(mode) else
+                    "a device" if stat.S_ISCHR(mode) or stat.S_ISBLK(mode) else "a socket" if stat.S_ISSOCK(mode)
+                    else "not a regular file")
+            _fail(path, None, f"this is {kind}, not a file of measured data; give a file saved from the "
+                              f"data program (CSV or text)")
         size = os.path.getsize(path)
         if size > MAX_BYTES:
             _fail(path, None, f"the file is {size / 1e6:.0f} MB, more than the {MAX_BYTES // 2**20} MB "
                               f"this program reads; keep the part of the run you need")
         with open(path, "rb") as handle:
-            raw = handle.read()
+            raw = handle.read(MAX_BYTES + 1)     # whatever size the system reported
     except OSError as problem:
         _fail(path, None, f"cannot read it: {problem.strerror or problem}")
+    if len(raw) > MAX_BYTES:
+        _fail(path, None, f"the file holds more than the {MAX_BYTES // 2**20} MB this program reads; keep "
+                          f"the part of the run you need")
     return from_bytes(raw, path, column=column, run=run, coordinate=coordinate)
 
 
@@ -208,18 +202,14 @@ def _parse(lines, path, *, column, run, coordinate) -> Measured:
     # The rows: from the first line of two or more numbers to the end of the file.
     start = None
     for number, line in enumerate(lines):
-        separator = _separator(line)
-        comma = separator in ("\t", ";")
-        cells = _cells(line, separator)
-        if len(cells) >= 1 and line.strip() and _is_numbers(cells, comma):
+        if line.strip() and cells.is_numbers(cells.cells(line, cells.separator(line))):
             start = number
             break
     if start is None:
         _fail(path, max(1, len(lines)), "no rows of numbers found; the file needs a header "
                                         "(time and position) and then one row of numbers per sample")
-    separator = _separator(lines[start])
-    comma = separator in ("\t", ";")
-    width = len(_cells(lines[start], separator))
+    separator = cells.separator(lines[start])
+    width = len(cells.cells(lines[start], separator))
     if width < 2:
         _fail(path, start + 1, "only one column of numbers; the file needs time and position columns")
 
@@ -230,13 +220,21 @@ def _parse(lines, path, *, column, run, coordinate) -> Measured:
             if header_lines:
                 break
             continue
-        cells = _cells(line, separator)
-        if len(cells) < 2 and header_lines:
+        found = cells.cells(line, separator)
+        if len(found) < 2 and header_lines:
             break
-        header_lines.insert(0, (number, cells))
+        header_lines.insert(0, (number, found))
         if len(header_lines) == 3:
             break
-    names, units = _header(header_lines, width, path, start)
+    if separator == "," and header_lines and 2 <= len(header_lines[-1][1]) < width:
+        _fail(path, start + 1, f"{width} cells, but the header names {len(header_lines[-1][1])}: with commas "
+                               f"between the cells, a decimal comma (0,25) splits each number in two; export "
+                               f"with semicolons or tabs between the cells, or with a decimal point")
+    headerless = not header_lines and width == 2
+    if headerless:
+        names, units = ["t", "position"], ["", ""]
+    else:
+        names, units = _header(header_lines, width, path, start)
 
     rows_end = len(lines)
     while rows_end > start and not lines[rows_end - 1].strip():
@@ -244,30 +242,41 @@ def _parse(lines, path, *, column, run, coordinate) -> Measured:
     if rows_end - start > MAX_ROWS:
         _fail(path, start + MAX_ROWS + 1, f"more than {MAX_ROWS:,} rows of numbers, the most this program "
                                           f"reads; keep the part of the run you need (or sample less often)")
-    table = np.full((rows_end - start, width), np.nan)
-    for row, number in enumerate(range(start, rows_end)):
+    rows = []
+    for number in range(start, rows_end):
         line = lines[number]
         if not line.strip():
             _fail(path, number + 1, "an empty line among the rows of numbers")
-        cells = _cells(line, separator)
-        if _separator(line) != separator:
-            if len(line.split()) == 1 and _separator(line) is None:
+        found = cells.cells(line, separator)
+        if cells.separator(line) != separator and not (separator == "," and '"' in line):
+            if len(line.split()) == 1 and cells.separator(line) is None:
                 _fail(path, number + 1, f"only one cell, but the header and the first row have {width}")
-            _fail(path, number + 1, f"separated by {_said(_separator(line))}, but the lines above by "
+            _fail(path, number + 1, f"separated by {_said(cells.separator(line))}, but the lines above by "
                                     f"{_said(separator)} (mixed separators)")
-        if len(cells) > width:
-            _fail(path, number + 1, f"{len(cells)} cells, but the header and the first row have {width}")
-        for place, cell in enumerate(cells):
+        if len(found) > width:
+            _fail(path, number + 1, f"{len(found)} cells, but the header and the first row have {width}")
+        rows.append(found)
+    try:
+        style = cells.style_of(rows)
+    except cells.Ambiguous as problem:
+        row = next(n for n, found in enumerate(rows) if problem.cell in found)
+        _fail(path, start + row + 1, f"{problem.cell!r} could be {problem.cell.replace(',', '.')} or "
+                                     f"{problem.cell.replace(',', '')} (a decimal comma or a thousands "
+                                     f"separator), and the file never shows which; export the numbers without "
+                                     f"thousands separators")
+    table = np.full((len(rows), width), np.nan)
+    for row, found in enumerate(rows):
+        for place, cell in enumerate(found):
             try:
-                value = _number(cell, comma)
+                value = cells.number(cell, style)
             except ValueError:
-                _fail(path, number + 1, f"{cell[:20]!r} in column {place + 1} ({names[place]!r}) is not a number")
+                _fail(path, start + row + 1, f"{cell[:20]!r} in column {place + 1} ({names[place]!r}) is not a number")
             if value is not None:
                 table[row, place] = value
 
-    series = _series(names, path, header_lines[-1][0] + 1 if header_lines else start + 1)
-    chosen, said = _choose(series, names, column=column, run=run, coordinate=coordinate,
-                           path=path, line=header_lines[-1][0] + 1 if header_lines else start + 1)
+    where = header_lines[-1][0] + 1 if header_lines else start + 1
+    series = _series(names, path, where)
+    chosen, said = _choose(series, names, column=column, run=run, coordinate=coordinate, path=path, line=where)
     t_unit, x_unit = units[chosen.time], units[chosen.position]
     t = table[:, chosen.time] * TIME_UNITS[t_unit or "s"]
     x = table[:, chosen.position] * LENGTH_UNITS[x_unit or "m"]
@@ -280,15 +289,63 @@ def _parse(lines, path, *, column, run, coordinate) -> Measured:
     step = np.diff(t)
     if np.any(step <= 0):
         bad = int(np.flatnonzero(step <= 0)[0]) + 1
-        _fail(path, int(line_numbers[bad]), f"time {t[bad] / TIME_UNITS[t_unit or 's']:g} does not increase "
-                                            f"from the row above ({t[bad - 1] / TIME_UNITS[t_unit or 's']:g}); "
-                                            f"the rows must be in order of time")
+        shown = [cells_said(table[present][i, chosen.time]) for i in (bad, bad - 1)]
+        _fail(path, int(line_numbers[bad]), f"time {shown[0]} does not increase from the row above "
+                                            f"({shown[1]}); the rows must be in order of time")
+    _check_values(path, t, x, names, chosen, table[present], t_unit, x_unit, start, line_numbers)
     skipped = int(last[-1] + 1 - last.size)
-    if not t_unit or not x_unit:
+    if headerless:
+        said = "no header: read column 1 as t in s and column 2 as position in m"
+    elif not t_unit or not x_unit:
         said += "; no unit in the header, read as s and m"
     if skipped:
         said += f"; {skipped} row{'s' if skipped > 1 else ''} with an empty cell left out"
-    return Measured(path=path, t=t, position=x, choice=said, skipped=skipped)
+    return Measured(path=path, t=t, position=x, choice=said, skipped=skipped, lines=line_numbers,
+                    own_step=_own_step(names, table[present], t))
+
+
+def cells_said(value: float) -> str:
+    """A number from the file as a message shows it: its own digits, up to 12 significant."""
+    return f"{value:.12g}"
+
+
+def _check_values(path, t, x, names, chosen, table, t_unit, x_unit, start, line_numbers) -> None:
+    """The checks on the numbers themselves, before anything runs (see the module's docstring)."""
+    spacing = float(np.median(np.diff(t)))
+    if not SPACING[0] <= spacing <= SPACING[1]:
+        unit = t_unit or "s"
+        hint = ("if the times are not in seconds, name their unit in the header, like Time (ms)" if not t_unit
+                else f"check the time column's unit (the header says {unit})")
+        _fail(path, start + 1, f"the rows are {spacing / TIME_UNITS[unit]:.3g} {unit} apart (the median), and "
+                               f"no motion detector or video records a spring "
+                               f"{'that seldom' if spacing > SPACING[1] else 'that often'}; {hint}")
+    name = names[chosen.position]
+    farthest = float(np.max(np.abs(x)))
+    if farthest > FARTHEST:
+        row = int(line_numbers[int(np.argmax(np.abs(x)))])
+        _fail(path, row, f"column {name!r} reads {farthest:.3g} m, far beyond any spring (this program's "
+                         f"positions stay within {FARTHEST:g} m); check the column and its unit")
+    swing = float(np.ptp(x))
+    if swing < LEAST_SWING:
+        moving = [other for other, column in enumerate(table.T)
+                  if other not in (chosen.position, chosen.time) and _coordinate(names[other]) is not None
+                  and np.nanmax(column) - np.nanmin(column) >= LEAST_SWING]
+        other = f"; the file's {names[moving[0]]!r} moves: --data-column {names[moving[0]]}" if moving else ""
+        amount = (f"every row reads {x[0]:.6g} m" if swing == 0 else f"it moves by {swing:.2g} m at most, far less "
+                  f"than any measurement")
+        _fail(path, start + 1, f"column {name!r} does not move ({amount}), so there is nothing to "
+                               f"compare{other}")
+
+
+def _own_step(names, table, t) -> float | None:
+    """The Δt of this program's own --csv run (its header, every column written, one row a step)."""
+    if tuple(names) != tuple(CSV_HEADER) or np.isnan(table).any() or len(t) < 3:
+        return None
+    steps = np.diff(t)
+    middle = float(np.median(steps))
+    if np.max(np.abs(steps - middle)) > 1e-6 * middle:
+        return None
+    return float(f"{middle:.6g}")
 
 
 def _said(separator) -> str:
@@ -302,14 +359,14 @@ def _header(header_lines, width, path, start):
                                "columns (time and position, e.g. t,x or Time (s),Position (m))")
     names = [""] * width
     units = [""] * width
-    for number, cells in reversed(header_lines):     # the line nearest the numbers names best
-        cells = (cells + [""] * width)[:width]
-        if all(cell in TIME_UNITS or cell in LENGTH_UNITS or cell == "" or "/" in cell for cell in cells) \
-                and any(cells) and number == header_lines[-1][0] and len(header_lines) > 1:
+    for number, found in reversed(header_lines):     # the line nearest the numbers names best
+        found = (found + [""] * width)[:width]
+        if all(cell in TIME_UNITS or cell in LENGTH_UNITS or cell == "" or "/" in cell for cell in found) \
+                and any(found) and number == header_lines[-1][0] and len(header_lines) > 1:
             units = [cell if cell in TIME_UNITS or cell in LENGTH_UNITS else "?" + cell if cell else ""
-                     for cell in cells]
+                     for cell in found]
             continue
-        for place, cell in enumerate(cells):
+        for place, cell in enumerate(found):
             if cell and not names[place]:
                 names[place] = cell
     for place, name in enumerate(names):
@@ -347,7 +404,7 @@ def _series(names, path, line) -> list[Series]:
 def _choose(series, names, *, column, run, coordinate, path, line):
     """The series asked for (or the first, preferring the scene's coordinate), and a sentence saying so."""
     if column is not None:
-        if column.strip().isdigit():
+        if column.strip().isdecimal():   # not isdigit: "²" is a digit int() cannot read
             place = int(column) - 1
             if not 0 <= place < len(names):
                 _fail(path, line, f"--data-column {column}: the file has columns 1 to {len(names)}")

@@ -8,12 +8,14 @@ of every force law in components would be fast, but it would be a second copy to
 
 How: the one copy of the physics (forces.py, integrators.py) writes the fast copy.
 
-1. Trace. Take one tick of the engine (physics/simulate.py: the integrator's step and the work
-   meter) on numbers that are :class:`Traced`: each
+1. Trace. Take one tick of the engine (physics/simulate.py: the integrator's step, the forces'
+   stop rules and the work meter) on numbers that are :class:`Traced`: each
    +, −, ×, ÷, √ or cos of them works out its value and also writes one line of Python on a
    :class:`Tape`, such as ``_7 = _5 * 0.0001``. numpy's object arrays do the broadcasting, so the
    force and integrator code runs unchanged. Where the code decides something from a number
-   (Spring asks whether |L| is zero before it divides by |L|), the tape records a guard.
+   (Spring asks whether |L| is zero before it divides by |L|), the tape records a guard. Where a
+   force chooses between two values at every step (friction: moving or at rest), it writes
+   physics.forces.where, which the tape writes as ``_9 = (_7 if _8 else 0.0)``: no guard.
 2. Compile. The tape becomes the body of a loop over plain Python floats, one local variable per
    component: the page's update as a hand calculation would write it (``loop.source`` shows it).
 3. Run. The loop takes steps until it has done the number asked, or a guard fails, or the
@@ -189,6 +191,18 @@ class Traced:
         return self.tape.write(f"abs({self.name})", abs(self.value))
 
     __hash__ = None
+
+    def choose(self, a, b):
+        """`a if self else b`, written as that (physics/forces/base.py's where): a choice made at
+        every step of the loop, so no guard, and no retrace when it goes the other way."""
+        tape = self.tape
+        value = _value(a) if self.value else _value(b)
+        if a is True and b is False or (isinstance(a, np.bool_) and a and isinstance(b, (bool, np.bool_)) and not b):
+            return self                                   # `True if c else False` is c itself
+        if not isinstance(a, Traced) and not isinstance(b, Traced) and _value(a) == _value(b) and \
+                math.copysign(1.0, _value(a)) == math.copysign(1.0, _value(b)):
+            return a                                      # the same constant either way
+        return tape.write(f"({tape.operand(a)} if {self.name} else {tape.operand(b)})", value)
 
     def __bool__(self):
         # The step decides something from this number: the loop must check it decides alike.

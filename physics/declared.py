@@ -36,6 +36,8 @@ class Declared:
               default (Δt: so that t reads 0.1, 0.2, 0.3 s, not 8.4645 s)
     numerical  how a run is computed (Δt, the question time), not the physical case: a scenario
               preset, which sets its whole case, leaves it as chosen
+    default   a force's constant: the value a scene with no line for it takes (None: it has none)
+    switch    the default switches its force off (b = 0: no damping; F0 = 0: no drive)
     """
 
     unit: str
@@ -52,6 +54,8 @@ class Declared:
     slider_round: bool = False
     numerical: bool = False
     meaning: str = ""
+    default: object = None
+    switch: bool = False
 
     def allows(self, value) -> bool:
         numbers = value if isinstance(value, tuple) else (value,)

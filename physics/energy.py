@@ -12,6 +12,8 @@ accuracy of its integrator, which makes it a good check on the integrator.
 """
 from __future__ import annotations
 
+from dataclasses import dataclass
+
 import numpy as np
 
 from .rows import row_dot
@@ -95,3 +97,36 @@ def rest_potential(state: State, forces, *, rtol: float = 1e-9) -> float | None:
     if float(np.max(np.abs(np.sum(pulls, axis=0)))) > rtol * max(scale, 1e-300):
         return None
     return float(np.sum(potential(state, forces)))
+
+
+@dataclass(frozen=True)
+class EnergyPart:
+    """One bar of an energy bar chart, J, summed over the masses: K, one force's U, or the energy
+    the non-conservative forces took (−W_nc); `force` is the force whose U it is (else None)."""
+
+    kind: str          # "K", "U" or "taken"
+    value: float
+    force: object = None
+
+
+def energy_parts(state: State, forces, work, *, reference=None) -> list[EnergyPart]:
+    """The energy split as PhET's bar chart splits it, J, summed over the masses:
+
+        K                    kinetic
+        U of each force      each conservative force's potential energy (spring, gravity, ...),
+                             less its value at `reference` ((N, D) m, the equilibrium) if given
+        −W_nc                the energy the non-conservative forces took (damping, drag,
+                             friction; a drive that adds energy makes it negative)
+
+    Their sum is E − W_nc (less U at the reference), which stays level wherever the energy
+    principle holds: K + ΣU − W_nc = E(0) − W_nc(0).
+    """
+    parts = [EnergyPart("K", float(np.sum(kinetic(state))))]
+    for force in forces:
+        if force.conservative:
+            U = float(np.sum(force.potential_energy(state.r, state.m)))
+            if reference is not None:
+                U -= float(np.sum(force.potential_energy(np.asarray(reference, dtype=float), state.m)))
+            parts.append(EnergyPart("U", U, force))
+    parts.append(EnergyPart("taken", -float(np.sum(work))))
+    return parts

@@ -199,9 +199,11 @@ def _dots(a, b) -> np.ndarray:
     return np.matmul(a[..., None, :], b[..., :, None])[..., 0, 0]
 
 
-def single_mass_motion(*, m, k, L0, g, b, C, F0, omega, drive_axis, anchor, r0, v0):
+def single_mass_motion(*, m, k=0.0, L0=0.0, g=0.0, b=0.0, C=0.0, F0=0.0, omega=0.0, drive_axis=(1.0, 0.0, 0.0),
+                       anchor=(0.0, 0.0, 0.0), r0, v0):
     """The exact motion of one mass on a spring, or None where no closed form applies: row_motion
-    for a row of one mass.
+    for a row of one mass. A term left out is not there (no gravity, no damping, no drive): the
+    forces' closed_form() give the terms present (physics/forces/).
 
     Returns a function t -> (r, v), arrays of shape (len(t), 3) in m and m/s. It is valid while
     the mass stays on its side of the anchor (the spring never turns inside out).
@@ -218,7 +220,7 @@ def single_mass_motion(*, m, k, L0, g, b, C, F0, omega, drive_axis, anchor, r0, 
     return one_mass
 
 
-def row_motion(*, m, k, L0, g, b, C, F0, omega, drive_axis, anchors, r0, v0):
+def row_motion(*, m, k, L0, g, b, C, F0, omega, drive_axis, anchors, r0, v0, covered=True):
     """The exact motion of a row of masses, each on its own spring from its own anchor, all at once.
 
     A closed form exists for a mass when its motion stays on one straight line through its anchor
@@ -229,7 +231,8 @@ def row_motion(*, m, k, L0, g, b, C, F0, omega, drive_axis, anchors, r0, v0):
     :func:`oscillator`.
 
     anchors and r0 are (N, 3) m; v0 (m/s) and b, C, F0, ω one value or one per mass; m, k, L0, g
-    and the drive's direction are the row's. Returns (known, motion): which masses have a closed
+    and the drive's direction are the row's. `covered` (one value or one per mass) is False for a
+    mass on which a force acts that the closed form does not cover (quadratic drag, friction). Returns (known, motion): which masses have a closed
     form, (N,) bool, and t -> (r, v) of shape (len(t), N, 3) in m and m/s, NaN ("not known") for a
     mass that has none. Each mass's is valid while it stays on its side of its anchor.
     """
@@ -241,7 +244,7 @@ def row_motion(*, m, k, L0, g, b, C, F0, omega, drive_axis, anchors, r0, v0):
     drive = np.asarray(drive_axis, dtype=float)
     unit = drive / lengths(drive) if np.any(F0 != 0) else np.zeros(3)
     drive = np.where((F0 != 0)[:, None], unit, 0.0)
-    known = (C == 0) & (k > 0)
+    known = (C == 0) & (k > 0) & np.broadcast_to(np.asarray(covered, dtype=bool), (count,))
     if known.any():
         line = _in_3d if L0 == 0 else _on_lines
         known, parameters, place = line(known, m=m, k=k, L0=L0, g=g, b=b, F0=F0, omega=omega, drive=drive,

@@ -16,6 +16,10 @@ out when, for every mass,
     point_i = r_i        every point sits level with it along i (so L_i = r_i − point_i = +0),
     direction_i = 0      no direction has a part along i.
 
+A "surface" (friction's mask of the axes along a table, 1 or 0 each) says nothing about which axes
+move: the force pushes only along v within them, so it is cut with the others and never keeps an
+axis in the step.
+
 Then every force's part along i is a signed zero (a number per mass times +0), so p_i stays +0
 and r_i stays r_i, step after step, whatever the integrator: the axis never moves. (Only once
 the motion has blown up to inf does stepping every axis turn r_i into NaN, as inf × 0; the run
@@ -43,6 +47,8 @@ def moving_axes(r: np.ndarray, p: np.ndarray, forces) -> tuple[int, ...] | None:
     still = np.all((p == 0) & ~np.signbit(p), axis=0) & ~np.any((r == 0) & np.signbit(r), axis=0)
     for force in forces:
         for name, kind in force.VECTORS.items():
+            if kind == "surface":        # the axes it acts along: within them it pushes only along v
+                continue
             vector = np.broadcast_to(getattr(force, name), r.shape)
             still &= np.all(vector == r, axis=0) if kind == "point" else np.all(vector == 0, axis=0)
     axes = tuple(int(i) for i in np.flatnonzero(~still))

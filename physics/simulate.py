@@ -7,8 +7,10 @@ the benchmarks all ask it for steps. It owns
 
     the state        r and p of every mass, and the step count n (so t = t0 + n·Δt exactly:
                      time is never a running sum t = t + Δt, which drifts by round-off)
-    the tick         one step of the chosen integrator (physics/integrators.py), and the work
-                     meter W_nc = ∫ P_nc dt (trapezoid rule) where a force is not conservative
+    the tick         one step of the chosen integrator (physics/integrators.py), then each force's
+                     stop rule where one has one (static friction holds a mass, Force.stop), and
+                     the work meter W_nc = ∫ P_nc dt (trapezoid rule) where a force is not
+                     conservative
     the recording    which steps to keep: every step, every n-th, a time grid, or only the end
                      (the schedules and the recorder are in physics/recording.py)
     the checks       every CHUNK steps: a state that stopped being finite, or a mass far beyond
@@ -39,6 +41,7 @@ import numpy as np
 from .motion_axes import columns, cut, moving_axes, put_back
 from .compiled import MAX_COMPONENTS, MAX_TRACES, compile_loop
 from .energy import nonconservative_power, report, work_step
+from .forces import settle
 from .integrators import DEFAULT_INTEGRATOR, INTEGRATORS, methods_for
 from .stability import fastest_angular_frequency, judge, rates
 from .state import State, velocity
@@ -102,6 +105,7 @@ class Simulation:
         self.axes = moving_axes(state.r, state.p, self.forces) if cut_axes else None
         self._stepped_forces = self.forces if self.axes is None else cut(self.forces, self.axes)
         self._columns = None if self.axes is None else columns(self.axes)    # their index, worked out once
+        self._stops = any(getattr(force, "stops", False) for force in self.forces)
         self.restart()
 
     # ---- where the engine is ----
@@ -206,6 +210,10 @@ class Simulation:
         if pick is not None:              # only the axes the motion uses; the others stay as they are
             r, p = r[:, pick], p[:, pick]
         new = self._step(State(t=t, r=r, p=p, m=self.start.m), self._stepped_forces, self.dt)
+        if self._stops:                   # a force's stop rule (static friction) has the last word
+            r_f, p_f = settle(self._stepped_forces, t=t, r=r, p=p, m=self.start.m, dt=self.dt,
+                              r_f=new.r, p_f=new.p)
+            new = State(t=new.t, r=r_f, p=p_f, m=new.m)
         if self.metered:
             power_next = nonconservative_power(State(t=t_next, r=new.r, p=new.p, m=self.start.m),
                                                self._stepped_forces)

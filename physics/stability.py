@@ -18,6 +18,14 @@ needs no new formula. Two classic results come out of it:
 
 The largest stable Δt is found by bisection on Δt. Driving forces do not change M (they add to
 the motion, they do not multiply it), so they do not limit Δt.
+
+Exactly at the limit (ω·Δt = 2 for euler-cromer and verlet, undamped) M has the eigenvalue −1
+twice and is not −I, so the motion neither decays nor grows exponentially: the position flips
+sign at every step, x_n = (A + B n)(−1)ⁿ, and grows linearly unless B = 0, which takes one
+start (the eigenvector of M). Which start that is, is again read from the method's own M
+(:func:`at_limit`): for verlet it is rest, x_n = x0 (−1)ⁿ (Langtangen's fdm-book tests exactly
+this), and from a moving start x_n = (−1)ⁿ (x0 − n v0 Δt); for euler-cromer it is v0 = 2 x0/Δt,
+and from rest x_n = x0 (1 + 2n)(−1)ⁿ. Such a Δt runs, with a sentence saying which it is.
 """
 from __future__ import annotations
 
@@ -39,10 +47,11 @@ BISECTIONS = 60
 BOUNDARY = 1e-6        # the growth counted for a step exactly at the limit (an eigenvalue of −1)
 
 
-def amplification(method: str, *, omega, rate, dt: float) -> np.ndarray:
-    """ρ(M): how much one step of `method` multiplies the oscillation x'' = −ω² x − γ x', per pair.
+def step_matrix(method: str, *, omega, rate, dt: float) -> np.ndarray:
+    """M, (..., 2, 2): one step of `method` on x'' = −ω² x − γ x' maps (x, v) to M (x, v).
 
-    omega (rad/s) and rate γ (s⁻¹) are numbers or arrays of the same shape; returns an array.
+    omega (rad/s) and rate γ (s⁻¹) are numbers or arrays of the same shape. The columns of M are
+    what one step makes of the unit states (x, v) = (1, 0) and (0, 1).
     """
     omega, rate = np.broadcast_arrays(np.atleast_1d(np.asarray(omega, float)),
                                       np.atleast_1d(np.asarray(rate, float)))
@@ -55,17 +64,66 @@ def amplification(method: str, *, omega, rate, dt: float) -> np.ndarray:
     forces = (Spring(k=k, L0=0.0, anchor=(0.0,)), LinearDamping(b=b))
     with np.errstate(over="ignore", invalid="ignore"):
         after = INTEGRATORS[method](make_state(r=x0, v=v0, m=1.0), forces, float(dt))
-        x, v = after.r[:, 0].reshape(count, 2), after.p[:, 0].reshape(count, 2)
-        # M = [[x(1,0), x(0,1)], [v(1,0), v(0,1)]]; its eigenvalues are (tr ± √(tr² − 4 det)) / 2.
-        trace = x[:, 0] + v[:, 1]
-        det = x[:, 0] * v[:, 1] - x[:, 1] * v[:, 0]
+    x, v = after.r[:, 0].reshape(count, 2), after.p[:, 0].reshape(count, 2)
+    return np.stack([x, v], axis=1).reshape(*omega.shape, 2, 2)
+
+
+def amplification(method: str, *, omega, rate, dt: float) -> np.ndarray:
+    """ρ(M): how much one step of `method` multiplies the oscillation x'' = −ω² x − γ x', per pair.
+
+    omega (rad/s) and rate γ (s⁻¹) are numbers or arrays of the same shape; returns an array.
+    """
+    M = step_matrix(method, omega=omega, rate=rate, dt=dt)
+    with np.errstate(over="ignore", invalid="ignore"):
+        # the eigenvalues of M are (tr ± √(tr² − 4 det)) / 2
+        trace = M[..., 0, 0] + M[..., 1, 1]
+        det = M[..., 0, 0] * M[..., 1, 1] - M[..., 0, 1] * M[..., 1, 0]
         root = np.sqrt((trace * trace - 4.0 * det).astype(complex))
         radius = np.maximum(np.abs(trace + root), np.abs(trace - root)) / 2.0
         # An eigenvalue of exactly −1 (1 + tr + det = 0) is the limit itself, ω·Δt = 2 for euler-cromer:
-        # the motion flips sign each step without decaying, and with no damping grows linearly.
-        radius = np.where(np.abs(1.0 + trace + det) <= 1e-12 * (1.0 + np.abs(trace) + np.abs(det)),
-                          np.maximum(radius, 1.0 + BOUNDARY), radius)
-    return np.where(np.isfinite(radius), radius, np.inf).reshape(omega.shape)
+        # the motion flips sign each step without decaying, and from most starts grows linearly.
+        radius = np.where(_minus_one(trace, det), np.maximum(radius, 1.0 + BOUNDARY), radius)
+    return np.where(np.isfinite(radius), radius, np.inf)
+
+
+def _minus_one(trace, det):
+    """Whether −1 is an eigenvalue of a 2 × 2 matrix with this trace and determinant (to round-off)."""
+    return np.abs(1.0 + trace + det) <= 1e-12 * (1.0 + np.abs(trace) + np.abs(det))
+
+
+@dataclass(frozen=True)
+class Limit:
+    """What a step exactly at a method's stability limit does (an eigenvalue −1 of M).
+
+    from_rest    True if a start from rest stays bounded (flips sign at every step, x_n = x0 (−1)ⁿ)
+    any_start    True if every start stays bounded; else all but one grow linearly
+    """
+
+    from_rest: bool
+    any_start: bool
+
+
+def at_limit(method: str, *, omega: float, rate: float, dt: float) -> Limit | None:
+    """What `method` does at this Δt if Δt is exactly its stability limit, else None.
+
+    At the limit M has the eigenvalue −1. If its other eigenvalue, det M / −1, is smaller in size,
+    every start stays bounded: the flipping part neither grows nor dies. If it is −1 too and M is
+    not −I, M + I sends every start to the one eigenvector, and x_n = (A + B n)(−1)ⁿ grows by the
+    same amount each step unless the start is itself that eigenvector: a start from rest, (1, 0),
+    stays bounded exactly when M + I sends it to zero.
+    """
+    M = step_matrix(method, omega=omega, rate=rate, dt=dt)[0]
+    trace, det = M[0, 0] + M[1, 1], M[0, 0] * M[1, 1] - M[0, 1] * M[1, 0]
+    if not np.all(np.isfinite(M)) or not _minus_one(trace, det):
+        return None
+    other = -det                                   # the eigenvalues multiply to det M
+    if abs(other) > 1.0 + TOLERANCE:
+        return None                                # past the limit: the other eigenvalue grows
+    N = M + np.eye(2)
+    scale = 1e-12 * (1.0 + float(np.max(np.abs(M))))
+    if abs(other) < 1.0 - 1e-9 or np.all(np.abs(N) <= scale):
+        return Limit(from_rest=True, any_start=True)
+    return Limit(from_rest=bool(np.all(np.abs(N[:, 0]) <= scale)), any_start=False)
 
 
 def largest_stable_dt(method: str, *, omega: float, rate: float) -> float:
@@ -190,6 +248,8 @@ class Verdict:
     method    the method of the worst mass
     cause     what limits Δt: "spring", "damping", "drag", "spring and damping", or "" if stable
     message   one sentence naming Δt, the cause and the limit it implies (None if stable)
+    at_limit  True if Δt is exactly the method's limit (see at_limit): stable is then whether
+              this start stays bounded, and message says what the motion does
     """
 
     stable: bool
@@ -198,11 +258,12 @@ class Verdict:
     method: str
     cause: str
     message: str | None
+    at_limit: bool = False
 
     @property
     def past_limit(self) -> bool:
         """Unstable although a smaller Δt would be stable: Δt is past the method's limit."""
-        return not self.stable and self.dt_max > 0
+        return not self.stable and self.dt_max > 0 and not self.at_limit
 
 
 def judge(forces, m, methods, dt: float, v=None, *, ignore=()) -> Verdict:
@@ -226,6 +287,13 @@ def judge(forces, m, methods, dt: float, v=None, *, ignore=()) -> Verdict:
     if not _grows(growth[worst], dt * scale):
         return Verdict(True, float(growth[worst]), math.inf, method, "", None)
     omega, damping, drag = (float(x[worst]) for x in (r.omega, r.damping, r.drag))
+    limit = at_limit(method, omega=omega, rate=damping + drag, dt=dt) if method in INTEGRATORS else None
+    if limit is not None:
+        at_rest = v is None or not np.any(np.asarray(v, dtype=float)[worst])
+        bounded = limit.any_start or (limit.from_rest and at_rest)
+        return Verdict(bounded, 1.0, dt, method, "spring" if damping + drag == 0 else "spring and damping",
+                       _limit_message(method, dt=dt, omega=omega, rate=damping + drag, bounded=bounded,
+                                      limit=limit, at_rest=at_rest), at_limit=True)
     dt_max = largest_stable_dt(method, omega=omega, rate=damping + drag)
     cause = _cause(method, omega=omega, damping=damping, drag=drag, dt_max=dt_max)
     return Verdict(False, float(growth[worst]), dt_max, method, cause,
@@ -267,6 +335,21 @@ def _cause(method, *, omega, damping, drag, dt_max) -> str:
         return close[0]
     present = [name for name, rate in (("spring", omega), ("damping", damping), ("drag", drag)) if rate > 0]
     return " and ".join(present)
+
+
+def _limit_message(method, *, dt, omega, rate, bounded, limit: Limit, at_rest) -> str:
+    """The one sentence for a Δt exactly at the limit: what the motion will do, started as it is."""
+    where = (f"dt = {dt:g} s is exactly {method}'s stability limit for the spring (ω = {omega:.4g} rad/s, "
+             f"ω·dt = {omega * dt:.4g}{f', b/m = {rate:.4g} s⁻¹' if rate else ''})")
+    if limit.any_start:
+        return f"{where}: the motion keeps a part that flips sign at every step, neither growing nor dying away"
+    if bounded:
+        return (f"{where}: started from rest, as here, the position flips sign at every step and stays "
+                f"bounded (from a moving start it would grow by the same amount every step)")
+    start = ("started from rest, as here" if at_rest else "started moving, as here" if limit.from_rest else
+             "started moving, as here (from all but one start)")
+    return (f"{where}: {start}, the position flips sign at every step and its swing grows by the same "
+            f"amount every step (linearly, not exponentially); a dt below {dt:g} s keeps it bounded")
 
 
 def _message(method, *, dt, dt_max, cause, growth, omega, damping, drag, speed) -> str:

@@ -20,6 +20,7 @@ import numpy as np
 
 from physics.accuracy import judge_dt
 from physics.integrators import describe
+from physics.period import record_window
 from physics.recording import Trajectory, every, steps_to_reach, time_grid, trajectory
 from physics.run_cost import RunTooLong, check_cost
 from physics.simulate import BlowUpError, Simulation
@@ -39,7 +40,8 @@ class TooManySteps(ConstantError):
 @dataclass(frozen=True)
 class Result:
     """A finished headless run: the scene's setup and model, the method of each mass, the
-    recorded steps (every step, or the start, the measuring window and the end) and the count."""
+    recorded steps (every step, or the start, the measuring window, the motion often enough to
+    time its period, and the end) and the count."""
 
     setup: Setup
     model: Model
@@ -118,8 +120,9 @@ def plan(setup: Setup, *, model: Optional[Model] = None, integrator: Optional[st
          until: Optional[float] = None, every_step: bool = True) -> Plan:
     """Check a run of `setup` to `until` (default: its question time) once, before any step.
 
-    every_step  record every step (for --csv and --plot); else only the end, and the window a
-                scene measures in (resonance: the steady-state amplitudes)
+    every_step  record every step (for --csv and --plot); else the end, the window a scene
+                measures in (resonance: the steady-state amplitudes), and enough of the motion to
+                time its period (physics/period.py's record_window)
     Raises TooManySteps if the run would take longer than MAX_RUN_SECONDS on this computer (the
     engine's own measured cost, plus ROW_SECONDS for each row recorded), naming the count and the
     longest --until that fits. (That the run reaches the end of the scene's measuring window is
@@ -139,8 +142,12 @@ def plan(setup: Setup, *, model: Optional[Model] = None, integrator: Optional[st
     if every_step:
         record = every(1)
     else:
-        record = None if window is None else time_grid(model.dt, t0=model.state.t, dt=model.dt,
-                                                       start=window[0], end=window[1])
+        measuring = None if window is None else time_grid(model.dt, t0=model.state.t, dt=model.dt,
+                                                          start=window[0], end=window[1])
+        # the motion, often enough to time its crossings of the centre (the period, reports/periods.py)
+        period = record_window(model.forces, model.state.m, model.dt, t0=model.state.t, until=until)
+        timing = None if period is None else time_grid(period[0], t0=model.state.t, dt=model.dt, start=period[1])
+        record = either(measuring, timing)
     return Plan(setup=setup, model=model, engine=engine, until=until, record=record)
 
 
@@ -152,6 +159,14 @@ def _check_window(run: Plan) -> None:
             f"the scene measures from t = {number(window[0])} s to {number(window[1])} s (settle, then "
             f"{number(run.setup.values['periods'])} periods of the slowest drive), after the run ends at "
             f"t = {number(run.until)} s; set until to at least {number(window[1])} s, or a smaller settle")
+
+
+def either(*schedules):
+    """A schedule recording every step any of these records (physics/recording.py); None for none."""
+    kept = [schedule for schedule in schedules if schedule is not None]
+    if len(kept) < 2:
+        return kept[0] if kept else None
+    return lambda done: min(schedule(done) for schedule in kept)
 
 
 # ---- the run ----
@@ -233,6 +248,8 @@ def stability_warning(model: Model, methods) -> Optional[str]:
     for verdict in verdicts:
         if verdict.past_limit:
             raise BlowUpError(f"the run would blow up, past the stability limit: {verdict.message}")
+        if verdict.at_limit:   # exactly at the limit: it runs, and the sentence says what it does
+            return f"warning: {verdict.message}"
         if not verdict.stable:
             return f"warning: expect the motion to grow: {verdict.message}"
     return f"warning: {judgement.advice}" if judgement.advice else None

@@ -20,6 +20,7 @@ from export.numbers import clean_time
 from export.step_update import cleaned
 
 from .headless import Result
+from .periods import period_json, periods
 
 UNITS = {"t": "s", "dt": "s", "r": "m", "v": "m/s", "p": "kg·m/s", "F_net": "N", "energy": "J",
          "exact_valid_until": "s"}
@@ -44,10 +45,14 @@ def as_json(result: Result) -> dict:
     closed form at the final time and the size of the error, where a closed form exists. Where
     it stopped holding before the final time, "exact" is left out and "exact_note" says why, with
     "exact_valid_until" the time it stopped holding, s (null, with a line in "notes", where it
-    holds to the end or there is no closed form). F_net is the net force at the final time. In a row each mass is judged on its own:
-    a body whose closed form stopped holding has no "exact" but its own "exact_note" and
-    "exact_valid_until", and the top-level ones count such masses and give the first time. A scene
-    may add its own keys with a function extra_json(result) -> dict (scenes/_hooks.py).
+    holds to the end or there is no closed form). Where a force present has no closed form
+    (friction, drag), "exact" is null and that line names the force: "no closed form with drag".
+    F_net is the net force at the final time. In a row each mass is judged on its own: a body
+    whose closed form stopped holding has no "exact" but its own "exact_note" and
+    "exact_valid_until", and the top-level ones count such masses and give the first time.
+    "period" is the period measured from the motion and the formula's (reports/periods.py), per
+    body in a row. A scene may add its own keys with a function extra_json(result) -> dict
+    (scenes/_hooks.py).
     """
     traj, model, setup = result.trajectory, result.model, result.setup
     single = len(traj.m) == 1
@@ -62,8 +67,8 @@ def as_json(result: Result) -> dict:
         **{key: pick(state[key]) for key in ("r", "p", "v", "F_net")},
     }
     entries = _exact_entries(result)
-    if single and entries[0] is not None:
-        out["exact"] = entries[0]
+    if single and (entries[0] is not None or model.no_closed_form):
+        out["exact"] = entries[0]          # null where a force present has no closed form
     _exact_validity(out, result)
     bodies = None if single else _bodies(result, state, entries)   # cleaned already, array by array
     if bodies is not None:
@@ -71,9 +76,10 @@ def as_json(result: Result) -> dict:
     final_energy = traj.energy_at([-1])            # the last sample's alone, not the whole run's
     if final_energy is not None:
         out["energy"] = {key: float(values[0]) for key, values in final_energy.items()}
+    _periods(out, result)
     out["constants"] = {name: {"value": _plain(setup.values[name]), "unit": c.unit, "meaning": c.meaning}
                         for name, c in setup.constants.items()}
-    out["units"] = UNITS
+    out["units"] = {**UNITS, "period": "s"} if "period" in out else UNITS
     # to 15 digits, all but what is so already: the final state and the bodies, array by array
     out = {key: value if key in _CLEANED else cleaned(value) for key, value in out.items()}
     if setup.hooks.extra_json is not None:  # a scene's own results, e.g. a resonance curve
@@ -82,7 +88,26 @@ def as_json(result: Result) -> dict:
     return out
 
 
-_CLEANED = ("r", "p", "v", "F_net", "bodies")   # the keys as_json's own steps give to 15 digits already
+_CLEANED = ("r", "p", "v", "F_net", "bodies")
+
+
+def _periods(out: dict, result: Result) -> None:
+    """"period": {"measured", "spread", "cycles", "formula"} (s, s, count, s or null) for one
+    mass, null with a note where the motion gives none; several masses: each body has its own
+    "period", and "period_note" where it is null or has no formula."""
+    reports = periods(result)
+    if len(reports) == 1:
+        out["period"] = period_json(reports[0])
+        if out["period"] is None:
+            out.setdefault("notes", []).append(f"period: null, {reports[0].measured_note}")
+        elif reports[0].formula is None:
+            out.setdefault("notes", []).append(f"period.formula: null, {reports[0].formula_note}")
+        return
+    for body, report in zip(out["bodies"], reports):
+        body["period"] = None if period_json(report) is None else cleaned(period_json(report))
+        note = report.measured_note if report.measured is None else report.formula_note if report.formula is None else ""
+        if note:
+            body["period_note"] = note   # the keys as_json's own steps give to 15 digits already
 
 
 def _final_state(result: Result) -> dict:
@@ -102,9 +127,10 @@ def _exact_validity(out: dict, result: Result) -> None:
         out["exact_valid_until"] = result.exact_valid_until()
     else:
         out["exact_valid_until"] = None
+        model = result.model
         out.setdefault("notes", []).append(
-            "exact_valid_until: null, " + ("the closed form holds up to the final time"
-                                           if result.model.exact is not None else "this scene has no closed form"))
+            "exact_valid_until: null, " + ("the closed form holds up to the final time" if model.exact is not None
+                                           else model.no_closed_form or "this scene has no closed form"))
 
 
 def _bodies(result: Result, state: dict, entries: list) -> list[dict]:
@@ -114,9 +140,12 @@ def _bodies(result: Result, state: dict, entries: list) -> list[dict]:
     r, p, v, F_net = (state[key] for key in ("r", "p", "v", "F_net"))
     bodies = [{"label": label, "m": m[i], "r": r[i], "p": p[i], "v": v[i], "F_net": F_net[i]}
               for i, label in enumerate(result.labels)]
-    for body, entry, note, until in zip(bodies, entries, notes, valid_until):
+    reasons = result.model.no_closed_form_each or ("",) * len(bodies)
+    for body, entry, note, until, reason in zip(bodies, entries, notes, valid_until, reasons):
         if entry is not None:
             body["exact"] = entry
+        elif reason:              # a force on this mass has no closed form: null, and which
+            body.update(exact=None, exact_note=reason, exact_valid_until=None)
         if note:
             body.update(exact_note=note, exact_valid_until=until)
     return bodies

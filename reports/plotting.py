@@ -17,7 +17,7 @@ import sys
 
 import numpy as np
 
-from export.files import OutputError, atomic_file
+from export.files import FIGURE_MARK_KEYS, MARK, OutputError, atomic_file
 from export.palette import (ENERGY_COLOURS, EXACT_COLOUR, curve_colour, energy_label, mass_colours, shade,
                             simulation_width)
 from physics.energy import kinetic, potential, rest_potential
@@ -151,15 +151,20 @@ def energy_panel(ax, result, *, colours) -> None:
 
 
 def save_figure(fig, path: str) -> None:
-    """Write a matplotlib figure to path whole, in the format its extension names, and close it.
+    """Write a matplotlib figure to path whole, in the format its extension names, marked as ours
+    (export/files.py FIGURE_MARK_KEYS), and close it.
 
     A temporary file renamed into place: a failure part-way leaves the old figure as it was.
     """
+    import matplotlib
     import matplotlib.pyplot as plt
 
+    kind = path.rsplit(".", 1)[-1].lower()
+    key = FIGURE_MARK_KEYS.get(kind)
+    metadata = {key: f"{MARK} (with Matplotlib {matplotlib.__version__})"} if key else None
     try:
         with atomic_file(path, what="figure") as temporary:
-            fig.savefig(temporary, dpi=110, format=path.rsplit(".", 1)[-1].lower())
+            fig.savefig(temporary, dpi=110, format=kind, metadata=metadata)
     finally:
         plt.close(fig)
 

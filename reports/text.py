@@ -7,7 +7,8 @@ The final state is written in Matter & Interactions vector notation,
     r = < 0, -1.73088, 0 > m
     p = < 0, -15.288, 0 > kg·m/s
 
-with the energy and, where a closed form exists, the exact answer and the error of the iteration.
+with the energy and, where a closed form exists, the exact answer and the error of the iteration,
+and the period measured from the motion beside the formula's (reports/periods.py).
 """
 from __future__ import annotations
 
@@ -21,6 +22,7 @@ from export.step_update import number, vector
 from scenes import ConstantError, Setup, catalog, format_value
 
 from .headless import Result
+from .periods import period_text, periods
 
 
 def plural(count: int, noun: str) -> str:
@@ -37,20 +39,26 @@ def final_report(result: Result) -> str:
     extra_text = result.setup.hooks.extra_text  # a scene's own results first (resonance's amplitude
     if extra_text is not None:                  # table), then each of its masses
         lines.append(extra_text(result))
-    lines += _masses(result)
+    reports = periods(result)
+    lines += _masses(result, reports)
     if len(m) == 1 and result.exact_note():
         lines.append(f"exact: none at t = {number(t)} s: {result.exact_note()}")
+    elif len(m) == 1 and model.no_closed_form:
+        lines.append(f"exact: none ({model.no_closed_form})")
     energy = traj.energy_at([0, -1])                # the start's and the end's alone
     if energy is not None:
         e = {key: values[-1] for key, values in energy.items()}
         lines.append(f"energy: K = {number(e['K'])} J, U = {number(e['U'])} J, E = {number(e['E'])} J, "
                      f"W_nc = {number(e['W_nc'])} J, E − W_nc = {number(e['E_minus_W_nc'])} J "
                      f"({number(energy['E_minus_W_nc'][0])} J at the start)")
+    if len(m) == 1:
+        lines.append(f"period: {period_text(reports[0])}")
     return "\n".join(lines)
 
 
-def _masses(result: Result) -> list[str]:
-    """Each mass's r, v, p and F_net at the final time, and its exact answer and error where known."""
+def _masses(result: Result, reports) -> list[str]:
+    """Each mass's r, v, p and F_net at the final time, its exact answer and error where known,
+    and (several masses) its period."""
     traj, model = result.trajectory, result.model
     t, r, p, m = traj.t[-1], traj.r[-1], traj.p[-1], traj.m
     v = velocity(p, m)
@@ -73,6 +81,10 @@ def _masses(result: Result) -> list[str]:
                       f"|v − v_exact| = {number(np.linalg.norm(v[i] - v_exact), 4)} m/s"]
         elif notes[i] and not single:
             lines.append(f"{indent}exact: none at t = {number(t)} s: {notes[i]}")
+        elif model.no_closed_form_each and model.no_closed_form_each[i] and not single:
+            lines.append(f"{indent}exact: none ({model.no_closed_form_each[i]})")
+        if not single:
+            lines.append(f"{indent}period: {period_text(reports[i])}")
     return lines
 
 

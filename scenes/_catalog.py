@@ -43,6 +43,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from physics.exact import critical_damping
+from physics.forces import declared_constants
 
 from ._hooks import SceneHooks
 from ._constants import (DECLARED, END_OF_CONSTANTS, ConstantError, Constant, check_value, parse_assignments,
@@ -375,15 +376,30 @@ class Setup:
         return self.with_values(**find_preset(self, name)[1])
 
 
+def force_constants(module, constants: dict[str, Constant]) -> dict[str, Constant]:
+    """The forces' constants a scene takes beyond its constants block, at their declared defaults
+    (each switches its force off: mu_k = 0): every force's, where the scene's build takes any
+    constant it is given (`build(**constants)` handing them to build_single_mass), else none.
+    `--set` may give them; the scene shows those it lists, and those set."""
+    if _keywords(module.build)[1] is not None:
+        return {}
+    return {name: Constant(name, declared.default, declared.unit, declared.meaning)
+            for name, declared in declared_constants().items()
+            if name not in constants and declared.default is not None}
+
+
 def configure(name: str, *, assignments=(), scenario: int | None = None, preset: str | None = None) -> Setup:
     """Defaults from the scene file, then the scenario's changes, the preset's, and `--set NAME=VALUE` ones.
 
-    A preset's b = None (critical damping) is worked out last, from the final m and k.
+    A preset's b = None (critical damping) is worked out last, from the final m and k. The setup's
+    constants are the scene's block and any other force constant set; its values hold every
+    constant the scene takes (force_constants).
     """
     module = load(name)
     constants = read_constants(module)
     check_build(module, constants)
-    values = {key: constant.value for key, constant in constants.items()}
+    offered = {**constants, **force_constants(module, constants)}
+    values = {key: constant.value for key, constant in offered.items()}
     if scenario is not None:
         options = scenarios(module)
         if not options:
@@ -393,7 +409,9 @@ def configure(name: str, *, assignments=(), scenario: int | None = None, preset:
         values.update(options[scenario - 1][1])
     if preset is not None:
         values.update(find_preset(module, preset)[1])
-    values.update(parse_assignments(assignments, constants))
+    assigned = parse_assignments(assignments, offered)
+    values.update(assigned)
     for key, value in values.items():  # the file's own values and the presets' obey the same ranges
-        check_value(key, tuple(value) if isinstance(value, list) else value, constants[key].unit)
-    return Setup(name, module, constants, resolve(values))
+        check_value(key, tuple(value) if isinstance(value, list) else value, offered[key].unit)
+    shown = {**constants, **{key: offered[key] for key in assigned if key not in constants}}
+    return Setup(name, module, shown, resolve(values))

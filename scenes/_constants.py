@@ -18,12 +18,13 @@ import io
 import math
 import numbers
 import os
+import sys
 import tokenize
 from collections.abc import Mapping
 from dataclasses import dataclass
 
 from physics.declared import NONZERO, SMALLEST, Declared, _short  # noqa: F401  (scenes import them from here)
-from physics.forces import declared_constants
+from physics.forces import FORCES, declared_constants
 
 
 class ConstantError(ValueError):
@@ -76,6 +77,20 @@ class _Declarations(Mapping):
 
 
 DECLARED = _Declarations()
+
+
+def idle(values: dict) -> set[str]:
+    """The constants of the forces these values switch off, which then do nothing (drive_axis and
+    ω where F0 = 0): a caption leaves them out. A constant another force that is on uses (g for
+    friction) is not idle."""
+    off, used = set(), set()
+    for cls in FORCES:
+        declared = {name: d for name, d in cls.CONSTANTS.items() if name in values}
+        if not declared:
+            continue
+        is_off = any(d.switch and values[name] == d.default for name, d in declared.items())
+        (off if is_off else used).update(declared)
+    return off - used
 
 
 @dataclass(frozen=True)
@@ -273,7 +288,14 @@ def format_value(value, unit: str = "") -> str:
     if value is None:
         text = "(derived)"
     elif isinstance(value, (tuple, list)):
-        text = "< " + ", ".join(f"{float(x):.6g}" for x in value) + " >"
+        text = "< " + ", ".join(_six_digits(x) for x in value) + " >"
     else:
-        text = f"{float(value):.6g}"
+        text = _six_digits(value)
     return f"{text} {unit}".rstrip() if unit and unit != "1" else text
+
+
+def _six_digits(x) -> str:
+    """x to 6 significant digits; a number below the normal doubles (1e-320) as typed, since its
+    binary value has fewer digits than that and .6g shows the error (9.99989e-321)."""
+    x = float(x)
+    return repr(x) if 0 < abs(x) < sys.float_info.min else f"{x:.6g}"

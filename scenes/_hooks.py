@@ -11,6 +11,10 @@ which the front ends call instead of probing the module for them:
     extra_text(result) -> str                the scene's own lines at the end of `--headless`
     view_graph(setup) -> dict                the page's own graph (browser/graphs.py)
 
+and, as data, LAB: what the lab does with the scene's constants when it is compared with a real
+spring (lab/), e.g. LAB = {"fit": ("k", "b"), "hidden": ("k", "b")}: the constants the page's Fit
+button fits unless --fit names others, and those a mystery spring hides from the class.
+
 :class:`SceneHooks` holds them, None where the scene defines none; ``Setup.hooks``
 (scenes/_catalog.py) is filled in from the module once. A name that is there but not a function
 (or, for VIEW, not a dict) is an error naming the scene file.
@@ -47,6 +51,7 @@ class SceneHooks:
     extra_json: Optional[ExtraJson] = None
     extra_text: Optional[ExtraText] = None
     view_graph: Optional[Callable[[Any], dict]] = None
+    lab: Mapping[str, Any] = field(default_factory=dict)
 
     @classmethod
     def of(cls, module) -> "SceneHooks":
@@ -60,7 +65,10 @@ class SceneHooks:
         for name, hook in found.items():
             if hook is not None and not callable(hook):
                 raise ConstantError(f"{where}: {name} must be a function (see scenes/_hooks.py)")
-        return cls(view=view, **found)
+        lab = vars(module).get("LAB", {})
+        if not isinstance(lab, Mapping):
+            raise ConstantError(f"{where}: LAB must be a dict, like LAB = {{\"fit\": (\"k\", \"b\")}}")
+        return cls(view=view, lab=lab, **found)
 
     def measuring(self, values: Mapping[str, Any]) -> Optional[tuple[float, float]]:
         """The measuring window (start, end), s, for these constants; None if the scene has none."""

@@ -32,6 +32,10 @@ class Model:
     exact_valid_until  None if the closed form holds at all times, else T -> the first time up to T
              at which it stops holding, s (math.inf if it holds all the way to T)
     exact_limit  why the closed form can stop holding, one sentence
+    no_closed_form  where exact is None because a force present has no closed form, why, naming
+             it: "no closed form with friction" ("" otherwise)
+    no_closed_form_each  () where every mass's closed form covers its forces, else for each mass
+             why it has none ("no closed form with drag"; "" for a mass that has one)
     per_mass  None, or how the scene's build makes its lists of one value per mass, as data the
              handed-out program writes out (scenes/_row.py's MassLoop)
     """
@@ -49,6 +53,8 @@ class Model:
     default_integrator: Optional[str] = None
     may_run_away: tuple = ()
     per_mass: Optional[object] = None
+    no_closed_form: str = ""
+    no_closed_form_each: tuple = ()
 
     def __post_init__(self):
         for force in self.forces:   # a plain callable, not a physics.forces.Force, declares nothing

@@ -185,26 +185,37 @@ class EachMassValidity:
         return float(self.each(T).min())
 
 
-def exact_row(*, anchors, r0, m, k, L0, g, b=0.0, C=0.0, F0=0.0, omega=0.0, drive_axis=DOWN) -> dict:
+def exact_row(*, forces, anchors, r0, m, k, L0, g, b=0.0, F0=0.0, omega=0.0, drive_axis=DOWN) -> dict:
     """The row's closed form, as the Model takes it: exact, exact_valid_until and exact_limit.
 
     exact is t -> (r, v) of shape (len(t), N, 3), the single-mass closed form of every mass at once
-    (physics.exact.row_motion), NaN ("not known") for a mass that has none (quadratic drag, C ≠ 0);
-    None if no mass has one.
+    (physics.exact.row_motion), NaN ("not known") for a mass that has none: one on which a force
+    acts that the closed form does not cover (quadratic drag; each force's closed_form() and
+    acts_on() say); None if no mass has one, with no_closed_form naming such a force.
     Every parameter but m, k, L0 and g may be one number or one value per mass. The masses start
     at rest at r0. With L0 > 0 each mass's closed form holds until it reaches its anchor
     (:class:`EachMassValidity`); with L0 = 0 the spring is linear in 3-D and it always holds.
     """
     anchors, r0 = np.asarray(anchors, dtype=float), np.asarray(r0, dtype=float)
     count = len(anchors)
-    b, C, F0, omega = (np.broadcast_to(np.asarray(x, dtype=float), (count,)) for x in (b, C, F0, omega))
+    b, F0, omega = (np.broadcast_to(np.asarray(x, dtype=float), (count,)) for x in (b, F0, omega))
+    C = np.zeros(count)
+    uncovered = [force for force in forces if force.closed_form() is None]
+    acting = [force.acts_on(count) for force in uncovered]
+    covered = ~np.any(acting, axis=0) if uncovered else np.ones(count, bool)
+    # each mass's reason, where a force the closed form does not cover acts on it: "no closed form with drag"
+    each = {"no_closed_form_each": tuple(next((f"no closed form with {force.LABEL or type(force).__name__}"
+                                               for force, on in zip(uncovered, acting) if on[i]), "")
+                                         for i in range(count))} if uncovered else {}
     known, exact = row_motion(m=m, k=k, L0=L0, g=g, b=b, C=C, F0=F0, omega=omega, drive_axis=drive_axis,
-                              anchors=anchors, r0=r0, v0=(0.0, 0.0, 0.0))
-    if not known.any():
-        return {"exact": None}
+                              anchors=anchors, r0=r0, v0=(0.0, 0.0, 0.0), covered=covered)
+    if not known.any():    # named only where such a force acts on every mass (not drag on one ball of two)
+        why = next((f"no closed form with {force.LABEL or type(force).__name__}" for force in uncovered
+                    if force.acts_on(count).all()), "")
+        return {"exact": None, "no_closed_form": why, **each}
 
     if L0 == 0:
-        return {"exact": exact}
+        return {"exact": exact, **each}
 
     def crossing(i):
         if not known[i]:
@@ -223,4 +234,4 @@ def exact_row(*, anchors, r0, m, k, L0, g, b=0.0, C=0.0, F0=0.0, omega=0.0, driv
         # s = s_eq + x reaches the anchor (s = 0) only if |x| can grow to s_eq by T
         return displacement_bound(T, m=m, k=k, b=b, x0=s0 - s_eq, v0=0.0, F0=drive_u, omega=omega) >= s_eq
     return {"exact": exact, "exact_valid_until": EachMassValidity(crossing_of=crossing, may_reach=may_reach),
-            "exact_limit": ANCHOR_LIMIT}
+            "exact_limit": ANCHOR_LIMIT, **each}

@@ -1,13 +1,16 @@
-"""One mass on a spring, with every force of the page available: the build function the
-single-mass scenes share.
+"""One mass on a spring, with every known force available: the build function the single-mass
+scenes share.
 
-Every single-mass scene accepts m, k, L0, g, b, C, A, rho, F0, omega, drive_axis, anchor, r0, v0,
-dt and until. A force whose constant is 0 is left out, so one scene can pose any of the usual
-homework variants (a mass falling with drag is k = 0, C > 0).
+A single-mass scene takes m, r0, v0, dt and until, and the constants of every force
+(physics/forces/: each force's CONSTANTS); its constants block lists those it shows, and any other
+force's constants keep their declared defaults, which switch that force off (b = 0, mu_k = 0), so
+`--set mu_k=0.2` works in every such scene. A force whose switch is at its default is left out, so
+one scene can pose any of the usual homework variants (a mass falling with drag is k = 0, C > 0).
 
-The closed form (physics.exact.single_mass_motion) follows the mass along the line of its spring.
-With a relaxed length L0 > 0 it holds only while the mass stays on its own side of the anchor:
-see :class:`AnchorCrossing`.
+The closed form (physics.exact.single_mass_motion) is used only where it covers every force
+present (each force's closed_form()); otherwise the model has none, and says which force has none.
+It follows the mass along the line of its spring. With a relaxed length L0 > 0 it holds only while
+the mass stays on its own side of the anchor: see :class:`AnchorCrossing`.
 """
 from __future__ import annotations
 
@@ -16,17 +19,29 @@ import math
 import numpy as np
 
 from physics.exact import single_mass_motion
-from physics.forces import PAGE_FORCES
+from physics.forces import switched_on
 from physics.state import make_state
 
 from ._model import Model
 
 
 def forces_for(**constants) -> tuple:
-    """The forces that are switched on (non-zero constants), in the order the page adds them
-    (physics.forces.PAGE_FORCES; each force's switched_on reads its own constants)."""
-    forces = (cls.switched_on(**constants) for cls in PAGE_FORCES)
-    return tuple(force for force in forces if force is not None)
+    """The forces the constants switch on, in the order they were defined, the page's first
+    (spring, gravity, damping, drag, driving; physics.forces.switched_on: each force's switched_on
+    reads its own constants)."""
+    return switched_on(**constants)
+
+
+def closed_form_terms(forces) -> tuple[dict | None, str]:
+    """The closed form's parameters from the forces (each force's closed_form()), and "" ; or None
+    and why not, naming the first force it does not cover: "no closed form with drag"."""
+    terms = {}
+    for force in forces:
+        own = force.closed_form()
+        if own is None:
+            return None, f"no closed form with {force.LABEL or type(force).__name__}"
+        terms.update(own)
+    return terms, ""
 
 
 class AnchorCrossing:
@@ -87,21 +102,21 @@ ANCHOR_LIMIT = ("when the mass reaches its spring's anchor; past the anchor a sp
                 "flips over, which the closed form does not follow")
 
 
-def build_single_mass(*, m, k, L0, g, b, C, A, rho, F0, omega, drive_axis, anchor, r0, v0, dt,
-                      until, label="mass", **_scene_specific) -> Model:
-    """A Model of one mass from the shared single-mass constants (units as in the scene files)."""
-    forces = forces_for(k=k, L0=L0, anchor=anchor, g=g, b=b, C=C, A=A, rho=rho, F0=F0,
-                        omega=omega, drive_axis=drive_axis)
-    motion = single_mass_motion(m=m, k=k, L0=L0, g=g, b=b, C=C * A * rho, F0=F0, omega=omega,
-                                drive_axis=drive_axis, anchor=anchor, r0=r0, v0=v0)
+def build_single_mass(*, m, r0, v0, dt, until, anchor, label="mass", **constants) -> Model:
+    """A Model of one mass from its constants (units as in the scene files): m, r0, v0, dt, until
+    and the anchor the view draws the spring from, and every force's constants by name."""
+    forces = forces_for(anchor=anchor, **constants)
+    terms, no_closed_form = closed_form_terms(forces)
+    motion = None if terms is None else single_mass_motion(m=m, r0=r0, v0=v0, **terms)
 
     def exact(t):
         r, v = motion(t)
         return r[:, None, :], v[:, None, :]
 
     crossing = None
-    if motion and L0 > 0:
-        crossing = AnchorCrossing(motion, anchor=anchor, r0=r0, m=m, k=k, b=b, F0=F0, omega=omega)
+    if motion and terms["L0"] > 0:
+        crossing = AnchorCrossing(motion, anchor=anchor, r0=r0, m=m, k=terms["k"], b=terms.get("b", 0.0),
+                                  F0=terms.get("F0", 0.0), omega=terms.get("omega", 0.0))
 
     return Model(
         state=make_state(r=r0, v=v0, m=m),
@@ -113,4 +128,5 @@ def build_single_mass(*, m, k, L0, g, b, C, A, rho, F0, omega, drive_axis, ancho
         labels=(label,),
         exact_valid_until=crossing,
         exact_limit=ANCHOR_LIMIT if crossing else "",
+        no_closed_form=no_closed_form,
     )

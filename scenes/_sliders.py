@@ -12,16 +12,15 @@ from physics.rounding import ROUND_STEPS
 
 from ._constants import DECLARED
 
-SLIDER_CHOICES = ("m", "k", "b", "F0", "omega")
-
-
 def slider_names(setup, view: dict) -> list[str]:
-    """The constants that get a slider: VIEW["sliders"], else m and k and the forces switched on.
+    """The constants that get a slider, as the scene lists them: VIEW["sliders"] always, and
+    VIEW["sliders_when_on"] where the value is not 0 (b, F0, ω: their force is on, set by a preset
+    or --set). A scene that lists none gets none.
 
     Only plain numbers get one (a vector, or None meaning "derived", does not).
     """
-    names = view.get("sliders") or [name for name in SLIDER_CHOICES
-                                    if name in ("m", "k") or setup.values.get(name)]
+    names = list(view.get("sliders") or []) + [name for name in view.get("sliders_when_on") or []
+                                                 if setup.values.get(name)]
     return [name for name in names if name in setup.constants
             and isinstance(setup.values[name], (int, float)) and not isinstance(setup.values[name], bool)]
 

@@ -32,4 +32,6 @@ def build(**constants):
     return build_single_mass(**constants)
 
 
-VIEW = {"support": "ceiling", "plot": "y", "arrows": ("p", "F_net")}
+VIEW = {"support": "ceiling", "plot": "y", "arrows": ("p", "F_net"),
+        "sliders": ["m", "k"], "sliders_when_on": ["b", "F0", "omega"]}
+LAB = {"fit": ("k", "b"), "hidden": ("k", "b")}   # what Fit fits, what a mystery spring hides

@@ -48,4 +48,6 @@ def build(*, x0, r0, anchor, L0, **constants):
     return build_single_mass(r0=r0, anchor=anchor, L0=L0, **constants)
 
 
-VIEW = {"support": "wall", "plot": "x", "arrows": ("p", "F_net")}
+VIEW = {"support": "wall", "plot": "x", "arrows": ("p", "F_net"),
+        "sliders": ["m", "k"], "sliders_when_on": ["b", "F0", "omega"]}
+LAB = {"fit": ("k", "b"), "hidden": ("k", "b")}   # what Fit fits, what a mystery spring hides

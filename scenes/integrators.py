@@ -39,12 +39,13 @@ def build(*, m, k, L0, x0, spacing, dt, until):
     """Four horizontal springs on a wall, each stepped by its own integrator."""
     anchors = anchors_in_a_row(count=len(METHODS), spacing=spacing, along=ALONG_WALL)
     r0 = start_positions(anchors=anchors, direction=OUT_OF_WALL, L0=L0, m=m, k=k, g=0.0, x0=x0)
+    forces = (Spring(k=k, L0=L0, anchor=anchors),)
     return Model(
         state=make_state(r=r0, m=m),
-        forces=(Spring(k=k, L0=L0, anchor=anchors),),
+        forces=forces,
         dt=float(dt),
         until=float(until),
-        **exact_row(anchors=anchors, r0=r0, m=m, k=k, L0=L0, g=0.0),
+        **exact_row(forces=forces, anchors=anchors, r0=r0, m=m, k=k, L0=L0, g=0.0),
         anchors=anchors,
         labels=METHODS,
         integrators=METHODS,

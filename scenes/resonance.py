@@ -170,7 +170,7 @@ def build(*, m, k, L0, g, F0, b, b_ratio, curves, omega_min, omega_max, count, s
         forces=tuple(forces),
         dt=float(dt),
         until=float(until),
-        **exact_row(anchors=anchors, r0=r0, m=m, k=k, L0=L0, g=g, b=b_all, F0=F0, omega=omega_all,
+        **exact_row(forces=forces, anchors=anchors, r0=r0, m=m, k=k, L0=L0, g=g, b=b_all, F0=F0, omega=omega_all,
                     drive_axis=DRIVE_AXIS),
         anchors=anchors,
         labels=tuple(f"b = {b_j:.3g} kg/s, ω = {w:.3g} rad/s" for b_j, w in zip(b_all, omega_all)),

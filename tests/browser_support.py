@@ -46,10 +46,16 @@ def require_browser():
 
 
 @contextlib.contextmanager
-def launched(sync_api, *extra_args):
-    """Headless Chromium with the arguments that make its 3-D canvas draw, closed afterwards."""
+def launched(sync_api, *extra_args, scrollbars: bool = False):
+    """Headless Chromium with the arguments that make its 3-D canvas draw, closed afterwards.
+
+    scrollbars  draw scrollbars that take room, as a desktop browser does (Playwright hides them
+                by default, and so hid that the page scrolled sideways at 1280 × 800)
+    """
+    hidden = ["--hide-scrollbars"] if scrollbars else []
     with sync_api.sync_playwright() as playwright:
-        chromium = playwright.chromium.launch(executable_path=CHROMIUM, args=CHROMIUM_ARGS + list(extra_args))
+        chromium = playwright.chromium.launch(executable_path=CHROMIUM, args=CHROMIUM_ARGS + list(extra_args),
+                                              ignore_default_args=hidden)
         try:
             yield patient(chromium)
         finally:
@@ -124,3 +130,17 @@ def curve_pixels(image) -> int:
     """
     image = image.crop((0, 0, int(0.4 * image.width), image.height))
     return sum(n for rgb, n in colours(image).items() if max(rgb) - min(rgb) > 80)
+
+
+def shaded_like(image, colour) -> int:
+    """Pixels of `colour` (r, g, b from 0 to 1) lit or shaded, or seen through on black (a mass
+    drawn see-through under its arrows): a multiple of it from a third to all of its brightness."""
+    import numpy as np
+    target = np.array(colour, dtype=float) * 255
+    count = 0
+    for n, rgb in image.getcolors(maxcolors=1 << 24):
+        pixel = np.array(rgb[:3], dtype=float)
+        scale = pixel @ target / (target @ target)
+        if 0.3 <= scale <= 1.1 and np.abs(pixel - scale * target).sum() <= 40:
+            count += n
+    return count

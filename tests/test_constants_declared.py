@@ -114,8 +114,8 @@ def integrators_with(line: str) -> str:
 
 
 @pytest.mark.parametrize("source, problem", [
-    (vertical_without("b"), "the constants block has no line for b (build needs it); "
-                            "add one like `b = value  # kg/s: meaning`"),
+    (vertical_without("m"), "the constants block has no line for m (build needs it); "
+                            "add one like `m = value  # kg: meaning`"),
     (vertical_without("r0"), "the constants block has no line for r0 (build needs it)"),
     (integrators_with("b = 1.0   # kg/s: damping"), "the constants block has a line for b, which build does not take"),
 ])
@@ -125,6 +125,21 @@ def test_a_constants_block_that_does_not_fit_build_is_named_before_anything_runs
     with pytest.raises(ConstantError) as error:
         catalog.check_build(module, read_constants(module))
     assert str(error.value).startswith(f"scenes/a_teachers_edit.py: {problem}")
+
+
+def test_a_single_mass_scene_without_a_line_for_a_force_constant_has_that_force_off():
+    """Single-mass scenes take the forces' constants from the forces: b left out of vertical's block
+    takes its declared default, 0, which switches damping off (physics/forces/: Declared.default)."""
+    module = scene_from(vertical_without("b"))
+    constants = read_constants(module)
+    catalog.check_build(module, constants)
+    offered = catalog.force_constants(module, constants)
+    assert offered["b"].value == 0.0 and offered["b"].unit == "kg/s"
+    values = {**{name: c.value for name, c in offered.items()}, **{name: c.value for name, c in constants.items()}}
+    labels = [force.LABEL for force in module.build(**values).forces]
+    assert labels == ["spring", "gravity"]
+    with_b = module.build(**{**values, "b": 2.0}).forces
+    assert [force.LABEL for force in with_b] == ["spring", "gravity", "damping"]
 
 
 def test_every_scene_has_a_line_for_each_constant_its_build_needs_and_no_other():
@@ -187,7 +202,7 @@ def test_a_broken_file_in_a_teachers_folder_is_one_line_naming_it_and_the_other_
 
 
 @pytest.mark.parametrize("edit, expected", [
-    (lambda source: without("b", source), "novel.py: the constants block has no line for b (build needs it)"),
+    (lambda source: without("m", source), "novel.py: the constants block has no line for m (build needs it)"),
     (lambda source: source.replace("k = 40.0 ", 'k = "40" '), "novel.py, line 10: k needs a number"),
 ])
 def test_a_teachers_constants_block_that_does_not_fit_is_one_line_naming_the_file(tmp_path, edit, expected):

@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import subprocess
 import sys
+import threading
 import time
 from pathlib import Path
 
@@ -81,19 +82,44 @@ def fitting(spring) -> MeasuredData:
 
 
 def test_fit_gives_the_command_lines_values_and_says_fitting_meanwhile(spring):
+    """The page fits with its own integrator and Δt (Euler-Cromer at 0.1 s), as `--data FILE --fit k,b
+    --integrator euler-cromer --set dt=0.1` does: the same values. Halving that Δt moves them by
+    many σ, so the page shows the values without ± figures and, in their place, the sentence saying
+    the numbers cannot be trusted and why (the lesson: the model's own error)."""
     setup, _ = spring
     data = fitting(spring)
     assert "fitting k, b…" in data.text()
     result = answer(data)
     expected = compare.compare(setup, data.measured.t, data.measured.position, integrator="euler-cromer",
                                coordinate="y", fit=("k", "b"))
+    assert not expected.trust.trusted and "halving Δt = 0.1 s moves k by" in expected.trust.sentence
+    text = data.text()
     for name in ("k", "b"):
         assert result.fitted[name].value == pytest.approx(expected.fitted[name].value, rel=1e-9)
-        assert f"{name} = {expected.fitted[name]}".replace(" ± ", "\u00a0±\u00a0") in data.text()
-    # The fitted constants are what the page now runs: comparing them again is not needed.
-    fitted = setup.with_values(**{name: estimate.value for name, estimate in result.fitted.items()})
+        assert f"{name} = {expected.fitted[name].plain}" in text
+    assert "±" not in text.split("Fit:")[1].split("\n")[0]          # no ± figures for untrusted numbers
+    assert "These numbers cannot be trusted: halving Δt = 0.1 s moves k by" in text
+    # The fitted constants are what the page now runs (the fitted release too, as its vector):
+    # comparing them again is not needed.
+    assert set(result.fitted) == {"k", "b", "r0"}
+    fitted = setup.with_values(**{name: result.setup.values[name] for name in result.fitted})
     data.compare(fitted, "euler-cromer")
     assert data.working == "" and data.finished() is False
+
+
+def test_a_fit_with_a_fine_model_shows_its_figures_with_their_uncertainties(spring):
+    """rk4 at Δt = 0.002 s: the fit can be trusted, and the page shows each value ± its σ."""
+    setup, raw = spring
+    fine = setup.with_values(dt=0.002)
+    data = MeasuredData()
+    data.load(raw, "spring.csv", fine, "rk4")
+    answer(data)
+    data.compare(fine, "rk4", fit=True)
+    result = answer(data)
+    assert result.trust.trusted
+    for name in ("k", "b"):
+        assert f"{name} = {result.fitted[name]}".replace(" ± ", "\u00a0±\u00a0") in data.text()
+    assert "cannot be trusted" not in data.text()
 
 
 def test_data_read_mirrored_shows_its_dots_on_the_model_and_says_the_axis_points_down():
@@ -140,7 +166,9 @@ def test_an_answer_overtaken_by_a_newer_request_is_dropped(spring):
     data.compare(moved, "euler-cromer")          # a slider moved while the fit ran
     result = answer(data)
     assert not result.fitted and result.setup.values["k"] == 50.0
-    time.sleep(0.5)
+    for thread in threading.enumerate():     # the overtaken fit has finished too, not just 0.5 s passed
+        if thread.name == "measured-data-fit":
+            thread.join(timeout=120)
     assert data.finished() is False and data.result is result
 
 

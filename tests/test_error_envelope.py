@@ -51,8 +51,8 @@ def test_the_error_graph_axis_spans_the_methods_not_the_first_period_from_zero()
     for _ in range(12):                                            # 12 s, about 10 periods
         graphs.plot(live.advance(round(1.0 / model.dt)), live, matter=[1, 2, 3])
     period = max(periods(model))
-    errors = [(t, y) for curve, _, what in graphs.curves if what[0] == "error"
-              for t, y in curve.points if math.isfinite(y)]
+    errors = [(t, y) for curve in graphs.curves if curve.series.kind == "error"
+              for t, y in curve.line.points if math.isfinite(y)]
     whole = [y for t, y in errors if t >= period]
     low, high = graphs.error_graph.ymin, graphs.error_graph.ymax
     assert low <= min(whole) and max(whole) <= high                # every whole-period error on the axis

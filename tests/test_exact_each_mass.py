@@ -45,8 +45,8 @@ def test_the_page_keeps_the_other_masses_exact_curves_and_error_after_one_mass_c
     graphs.plot(live.restart(), live, matter=matter, redraw=True)
     crossing = model.exact_valid_until_each(10.0)[0]
     graphs.plot(live.advance(round(6.0 / model.dt)), live, matter=matter)
-    ends = {what[1]: max(point[0] for point in curve.points)
-            for curve, _, what in graphs.curves if what[0] == "exact"}
+    ends = {curve.series.mass: max(point[0] for point in curve.line.points)
+            for curve in graphs.curves if curve.series.kind == "exact"}
     assert ends[0] <= crossing < ends[0] + 0.05                  # stops where it crosses
     assert ends[1] == ends[2] == max(ends.values()) and math.isclose(ends[1], live.state.t, abs_tol=0.05)
     readout = graphs.error_readout(live, matter=matter)

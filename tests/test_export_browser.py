@@ -88,14 +88,19 @@ def test_exported_program_draws_with_the_real_vpython(browser, tmp_path):
         assert process.poll() is None, process.stderr.read()
         wait_for(lambda: any("r = <" in line for line in output), timeout=60,
                  what="the program's final print")
-        page.wait_for_timeout(1500)   # the last frame and graph points reach the page
         SCREENSHOTS.mkdir(exist_ok=True)
-        page.screenshot(path=str(SCREENSHOTS / "vertical-program.png"), full_page=True)
-        box = page.locator("canvas").first.bounding_box()
-        whole = Image.open(SCREENSHOTS / "vertical-program.png")
-        bottom = box["y"] + box["height"]
-        scene = whole.crop((box["x"], box["y"], box["x"] + box["width"], bottom))
-        plot = whole.crop((box["x"], bottom, box["x"] + box["width"], whole.height))   # the graph is below
+
+        def drawn():
+            """The page as it is now, once the graph's points have reached it (a fixed wait of 1.5 s
+            read it at a wall-clock time; on a busy computer the frames come later)."""
+            page.screenshot(path=str(SCREENSHOTS / "vertical-program.png"), full_page=True)
+            box = page.locator("canvas").first.bounding_box()
+            whole = Image.open(SCREENSHOTS / "vertical-program.png")
+            bottom = box["y"] + box["height"]
+            scene = whole.crop((box["x"], box["y"], box["x"] + box["width"], bottom))
+            plot = whole.crop((box["x"], bottom, box["x"] + box["width"], whole.height))   # the graph is below
+            return (scene, plot) if count(plot, orange) > 200 and count(plot, black) > 200 else None
+        scene, plot = wait_for(drawn, timeout=120, what="the program's graph on its page")
         assert count(scene, dim_orange) > 200, "the sphere (see-through: vertical shows its arrows)"
         assert count(scene, light_grey) > 300, "the helix and the support"
         assert count(plot, orange) > 200, "the position curve, in the sphere's colour"

@@ -167,7 +167,7 @@ def test_each_mass_is_answered_once_with_rounded_labels(stand_in, tmp_path):  # 
 
 # ---- the answer's digits, the same in Python and in Web VPython (export/program_answer.py) ----
 
-RSRUN = Path(__file__).parent / "glowscript" / "RSrun.3.2.min.js"   # Web VPython 3.2's str.format
+RSRUN = Path(__file__).parent.parent / "export" / "glowscript" / "RSrun.3.2.min.js"   # Web VPython 3.2's str.format
 
 
 def edge_values() -> list[float]:

@@ -1,15 +1,17 @@
 """The Web VPython program in GlowScript 3.2 itself: compiled by its RapydScript compiler and run in
 headless Chromium, it prints the command line's answer digit for digit, and its arrow lines run.
 
-GlowScript's offline package (GlowScriptOffline3.2.zip in github.com/vpython/glowscript, about
-4 MB unzipped) is not kept in this repository: unzip it and set GLOWSCRIPT_OFFLINE to its
-GlowScriptOffline folder (the one with GlowScript.html) to run these tests; they are skipped
-without it. tests/test_handout.py checks the answer's digits with GlowScript's str.format under
-node on every run.
+GlowScript's files are the repository's own copy (export/glowscript/, pinned by sha256 in
+export/offline_page.py): jQuery, jQuery UI, glow, RSrun and RScompiler, the five the offline page
+holds. GlowScript's own editor page (GlowScript.html) would need its editor, split and font files
+too; a page of a few lines loads the five and compiles the program as that page does
+(`glowscript_compile(source, {lang: 'vpython', version: '3.2'})`, then `__main__()`), with
+print() caught. tests/test_handout.py checks the answer's digits with GlowScript's str.format under
+node as well.
 """
 from __future__ import annotations
 
-import os
+import json
 from pathlib import Path
 
 import pytest
@@ -20,28 +22,50 @@ from test_handout import headless_answer
 
 pytestmark = pytest.mark.browser
 sync_api, Image = require_browser()
-OFFLINE = Path(os.environ.get("GLOWSCRIPT_OFFLINE", "")).expanduser()
-if not os.environ.get("GLOWSCRIPT_OFFLINE") or not (OFFLINE / "GlowScript.html").is_file():
-    pytest.skip("set GLOWSCRIPT_OFFLINE to an unzipped GlowScriptOffline3.2 folder (github.com/vpython/glowscript)",
-                allow_module_level=True)
+GLOWSCRIPT = Path(__file__).resolve().parent.parent / "export" / "glowscript"
+LIBRARIES = ("jquery.min.js", "jquery-ui.custom.min.js", "glow.3.2.min.js", "RSrun.3.2.min.js",
+             "RScompiler.3.2.min.js")
+
+RUNNER = """<!DOCTYPE html><html><head><meta charset="utf-8"></head><body>
+<div id="glowscript" class="glowscript"></div>
+%(scripts)s
+<script>
+window.printed = []; window.failed = null; window.ended = false;
+window.GSprint = function () { window.printed.push(Array.prototype.slice.call(arguments).join(" ")); };
+var source = %(source)s;
+try {
+  var compiled = window.glowscript_compile(source, {lang: "vpython", version: "3.2"});
+  window.__context = {glowscript_container: $("#glowscript")};
+  eval(compiled);
+  __main__().then(function () { window.ended = true; }, function (e) { window.failed = String(e); });
+} catch (e) { window.failed = String(e); }
+</script></body></html>
+"""
 
 
-def run_in_glowscript(page, program: str, answers: int) -> str:
-    """Run `program` in GlowScript's offline page; its printed text once `answers` answers are in."""
+def run_in_glowscript(page, program: str, answers: int, folder: Path) -> list[str]:
+    """Run `program` in GlowScript 3.2; its printed lines once `answers` answers are in."""
     errors = []
     page.on("pageerror", lambda error: errors.append(str(error)))
-    page.goto((OFFLINE / "GlowScript.html").as_uri())
-    page.wait_for_function("typeof GSedit !== 'undefined' && GSedit.editarea !== null")
-    page.evaluate("source => GSedit.setValue(source)", program)
-    page.evaluate("runCode()")
+    scripts = "\n".join(f'<script src="{(GLOWSCRIPT / name).as_uri()}"></script>' for name in LIBRARIES)
+    runner = folder / "runner.html"
+    runner.write_text(RUNNER % {"scripts": scripts, "source": json.dumps(program).replace("</", "<\\/")},
+                      encoding="utf-8")
+    page.goto(runner.as_uri())
 
     def printed():
-        failed = page.evaluate("() => document.getElementById('gserrors').innerText").strip()
+        failed = page.evaluate("window.failed")
         assert not failed and not errors, (failed, errors)
-        text = page.evaluate("() => { const p = document.getElementById('print'); return p ? p.value : '' }")
-        return text if text.count("kg·m/s") >= answers else None
+        lines = page.evaluate("window.printed")
+        return lines if sum("kg·m/s" in line for line in lines) >= answers else None
 
     return wait_for(printed, timeout=240, what="the program's answer in GlowScript")
+
+
+@pytest.fixture(scope="module")
+def chromium():
+    with launched(sync_api) as browser:
+        yield browser
 
 
 @pytest.mark.parametrize("case, program", [
@@ -52,13 +76,16 @@ def run_in_glowscript(page, program: str, answers: int) -> str:
     # p = 1.632e-05 kg·m/s: Web VPython's own '{:.6g}' wrote 1.63200e-5
     (("vertical", "--set", "m=0.00001", "--set", "k=0.0004"), ("--until", "1")),
 ])
-def test_the_web_vpython_program_answers_as_the_command_line_in_glowscript(case, program):
+def test_the_web_vpython_program_answers_as_the_command_line_in_glowscript(case, program, chromium, tmp_path):
     """The question's command line (case) and what only the program is given (program)."""
     done = main_py(*case, *program, "--webvpython", "-")
     assert done.returncode == 0, done.stderr
-    with launched(sync_api, "--allow-file-access-from-files") as chromium:
-        page = chromium.new_page(viewport={"width": 1280, "height": 800})
-        text = run_in_glowscript(page, done.stdout, answers=1)
-        page.wait_for_timeout(3000)   # the run goes on to t_end: its arrow lines run without error
-        assert not page.evaluate("() => document.getElementById('gserrors').innerText").strip()
-    assert text.strip().splitlines() == [headless_answer(*case)]
+    page = chromium.new_page(viewport={"width": 1280, "height": 800})
+    try:
+        lines = run_in_glowscript(page, done.stdout, answers=1, folder=tmp_path)
+        # the run goes on to t_end (--until 1: 1 s): its arrow lines run without error to its end
+        page.wait_for_function("window.failed !== null || window.ended")
+        assert page.evaluate("window.failed") is None
+    finally:
+        page.close()
+    assert lines == [headless_answer(*case)]

@@ -35,7 +35,7 @@ BAD_FILES = {
     "mixed separators": (b"t,y\n0,1\n0.1,2\n0.2;3\n0.3,4\n", 4, "mixed separators"),
     "NaN in the middle": (b"t,y\n0,1\n0.1,NaN\n0.2,3\n0.3,4\n", 3, "'NaN' in column 2"),
     "text in the middle": (b"t,y\n0,1\n0.1,2\n0.2,oops\n0.3,4\n", 4, "'oops' in column 2"),
-    "no header": (b"0,1\n0.1,2\n0.2,3\n", 1, "no header line"),
+    "no header, three columns": (b"0,1,5\n0.1,2,5\n0.2,3,5\n", 1, "no header line"),
     "binary": (bytes(range(256)) * 8, 1, "not a text file"),
     "too many rows": (("t,y\n" + _rows(200_001)).encode(), 200_002, "more than 200,000 rows"),
     "no time column": (b"a,y\n0,1\n1,2\n2,3\n", 1, "no time column"),
@@ -97,7 +97,8 @@ def test_the_mystery_spring_round_trips_and_its_fit_recovers_the_answer(tmp_path
         entry = out["fit"][name]
         assert abs(entry["value"] - float(found[name])) <= 3 * entry["uncertainty"], (name, entry, found)
     assert out["fit"]["k"]["unit"] == "N/m" and out["fit"]["b"]["unit"] == "kg/s"
-    assert set(out["fit"]) == {"k", "b", "t_offset", "position_offset"}
+    assert set(out["fit"]) == {"k", "b", "r0", "t_offset", "position_offset"}    # the release is fitted too
+    assert out["trusted"] is True and out["trust_reason"] is None and out["release_fitted"] is True
     assert out["data_points"] == len(path.read_text().splitlines()) - 1
     assert 0.0005 < out["rms_residual"] < 0.004    # the file's noise: 1 to 3 mm
 
@@ -122,14 +123,18 @@ def test_the_teachers_set_values_are_the_mystery(tmp_path):
 def test_text_report_has_one_line_each_with_units(tmp_path):
     path = tmp_path / "m.csv"
     assert cli("vertical", "--mystery", str(path), "--seed", "2").returncode == 0
-    done = cli("vertical", "--data", str(path), "--fit", "k,b", "--set", "dt=0.002")
+    done = cli("vertical", "--data", str(path), "--fit", "k,b")
     assert done.returncode == 0, done.stderr
     lines = done.stdout.splitlines()
     assert lines[0].startswith(f"data: {path}: read 'Latest: Position (m)'")
     assert re.match(r"k = [\d.]+ ± [\d.]+ N/m$", lines[1]) and re.match(r"b = [\d.]+ ± [\d.]+ kg/s$", lines[2])
-    assert lines[3].startswith("t_offset = ") and " s  (" in lines[3]
-    assert lines[4].startswith("position_offset = ") and " m  (" in lines[4]
-    assert re.match(r"RMS residual = [\d.e-]+ m \([\d.e-]+ mm\) over \d+ points$", lines[5])
+    assert re.match(r"r0 = -[\d.]+ ± [\d.]+ m  \(where the mass was let go, along y; --set r0 gives it", lines[3])
+    assert lines[4].startswith("t_offset = ") and " s  (" in lines[4]
+    assert lines[5].startswith("position_offset = ") and " m  (" in lines[5]
+    assert re.match(r"RMS residual = [\d.e-]+ m \([\d.e-]+ mm\) over \d+ points$", lines[6])
+    assert lines[7].startswith("data_sign = +1")
+    assert re.search(r"note: the fit chose rk4 at dt = [\d.e-]+ s: its own error, about [\d.]+ .m, is under a "
+                     r"tenth of the data's noise", done.stderr), done.stderr
 
 
 def test_plot_draws_the_data_and_the_model(tmp_path):
@@ -174,9 +179,11 @@ def test_the_example_files_are_the_programs_own_and_each_reads(tmp_path):
     assert committed == sorted(p.name for p in tmp_path.iterdir())
     for name in committed:
         assert (tmp_path / name).read_bytes() == (ROOT / "examples" / "data" / name).read_bytes(), name
-    done = cli("damped", "--data", "examples/data/pasco.csv", "--fit", "k,b", "--set", "dt=0.005", "--json")
-    out = json.loads(done.stdout)
-    assert abs(out["fit"]["k"]["value"] - 55.0) < 0.1 and abs(out["fit"]["b"]["value"] - 2.5) < 0.02
+    done = cli("damped", "--data", "examples/data/pasco.csv", "--fit", "k,b", "--set", "m=0.5", "--json")
+    assert done.returncode == 0, done.stderr
+    out = json.loads(done.stdout)                  # the spring the files record: k = 20 N/m, b = 0.1 kg/s
+    for name, truth in (("k", 20.0), ("b", 0.1)):
+        assert abs(out["fit"][name]["value"] - truth) <= 3 * out["fit"][name]["uncertainty"], out["fit"]
 
 
 WITHOUT_SCIPY = ("import runpy, sys\n"
@@ -190,8 +197,8 @@ def test_without_scipy_the_comparison_runs_and_fit_says_what_to_install():
     def run(*args):
         return subprocess.run([sys.executable, "-c", WITHOUT_SCIPY, *args], cwd=ROOT, capture_output=True,
                               text=True, timeout=120)
-    compared = run("damped", "--data", "examples/data/vernier.csv", "--set", "k=55", "--set", "b=2.5",
-                   "--set", "dt=0.005")
+    compared = run("damped", "--data", "examples/data/vernier.csv", "--set", "m=0.5", "--set", "k=20", "--set",
+                   "b=0.1", "--set", "r0=0,-1.325,0", "--set", "dt=0.005")
     assert compared.returncode == 0, compared.stderr
     assert "RMS residual = 0.00" in compared.stdout
     fitted = run("damped", "--data", "examples/data/vernier.csv", "--fit", "k,b", "--set", "dt=0.005")
@@ -202,27 +209,35 @@ def test_without_scipy_the_comparison_runs_and_fit_says_what_to_install():
 
 def test_a_file_whose_swing_needs_a_spring_stiffer_than_the_range_is_one_line(tmp_path):
     """A Vernier file whose times are seconds but whose header says ms: its swing is 1000 times too
-    fast, so it asks for k = 5.5e7 N/m on the 10 kg mass. One line names k, the value with its unit,
+    fast, so it asks for k = 2e7 N/m on its 0.5 kg mass. One line names k, the value with its unit,
     k's range and what to check; exit status 2, no traceback, nothing written."""
     path = tmp_path / "ms.csv"
     path.write_text((ROOT / "examples" / "data" / "vernier.csv").read_text().replace("Time (s)", "Time (ms)", 1))
-    done = cli("damped", "--data", str(path), "--fit", "k", "--set", "dt=0.00001")
+    done = cli("damped", "--data", str(path), "--fit", "k", "--set", "m=0.5", "--set", "dt=0.00001")
     assert done.returncode == 2 and done.stdout == "", done.stderr
     assert done.stderr.count("\n") == 1 and "Traceback" not in done.stderr
-    found = re.match(r"error: --fit k: a swing at ω = \S+ rad/s with m = 10 kg \(k = m ω²\) suggests "
+    found = re.match(r"error: --fit k: the data's swing \(ω = \S+ rad/s, dying away at \S+ per s\) asks for "
                      r"k = (\S+) N/m, outside its range \(from 0 to 1e6 N/m\); check the data's units", done.stderr)
     assert found, done.stderr
-    assert float(found.group(1)) == pytest.approx(55.0 * 1e6, rel=0.02)      # 55 N/m, ω a thousand times
+    assert float(found.group(1)) == pytest.approx(20.0 * 1e6, rel=0.02)      # 20 N/m, ω a thousand times
     assert sorted(p.name for p in tmp_path.iterdir()) == ["ms.csv"]
 
 
-def test_the_command_line_notes_a_fit_whose_model_misses_the_data(tmp_path):
+def test_the_command_line_flags_a_fit_whose_model_misses_the_data(tmp_path):
+    """The release given (--set r0) where the data swing 1 m and the model 1.95 m: the fit of k
+    misses. Its first line says the numbers cannot be trusted and why, the figures follow, and the
+    exit status is 3; JSON says "trusted": false with the reason."""
     import numpy as np
     t = np.arange(0.0, 5.0, 0.02)
     data = tmp_path / "swing.csv"
     data.write_text("t (s),y (m)\n" + "".join(f"{a:.3f},{0.7 + np.cos(2 * a):.6f}\n" for a in t))
-    done = cli("vertical", "--data", str(data), "--fit", "k", timeout=300)
-    assert done.returncode == 0, done.stderr
-    notes = [line for line in done.stderr.splitlines() if "the model misses by" in line]
-    assert len(notes) == 1 and re.match(r"note: the model misses by \d+% of the data's half swing \(1 m\), so the ± figures "
-                                        r"mean little", notes[0]), notes
+    done = cli("vertical", "--data", str(data), "--fit", "k", "--set", "r0=0,-1.5,0", timeout=300)
+    assert done.returncode == 3, done.stderr
+    lines = done.stdout.splitlines()
+    assert re.match(r"these numbers cannot be trusted: the model misses by \d+% of the data's half swing", lines[0])
+    assert lines[1].startswith(f"data: {data}") and re.match(r"k = \S+ ± \S+ N/m$", lines[2])
+    assert "r0" not in done.stdout.split("RMS")[0]          # the release was given, not fitted
+    as_json = cli("vertical", "--data", str(data), "--fit", "k", "--set", "r0=0,-1.5,0", "--json", timeout=300)
+    assert as_json.returncode == 3
+    out = json.loads(as_json.stdout)
+    assert out["trusted"] is False and out["trust_reason"] == lines[0]

@@ -160,7 +160,7 @@ def test_constants_the_data_cannot_separate_are_found_from_the_jacobian():
     """g and L0 both only move the equilibrium (by mg/k and L0), so x(t) fixes L0 + mg/k alone."""
     t, y = engine_run(["dt=0.01"], span=6.0, rate=25)
     setup = catalog.configure("damped", assignments=["dt=0.01"])
-    with pytest.raises(FitError, match="g and L0 cannot be told apart from this data"):
+    with pytest.raises(FitError, match="g, L0 and r0 cannot be told apart from this data"):
         compare(setup, t, y + np.random.default_rng(1).normal(0, 0.001, t.size), fit=["g", "L0"])
 
 
@@ -194,34 +194,46 @@ def test_a_model_run_read_every_few_steps_follows_the_one_read_every_step(integr
 
 @pytest.mark.parametrize("seed", [1, 2, 3])
 def test_mystery_data_read_mirrored_is_fitted_as_well_as_the_upright_run(seed):
-    """The same mystery run with its axis reversed (a detector above the mass): the fit keeps the
-    reversed sign, finds the same k, b and t_offset, and the position offset mirrored."""
+    """The same mystery run with its axis reversed (a detector above the mass). With the release
+    given (--set r0), the fit keeps the reversed sign, finds the same k, b and t_offset, and the
+    position offset mirrored. With the release fitted (the default), a reversed axis is the same
+    motion let go on the other side of equilibrium: both ways fit alike, with the same k and b, and
+    the comparison says the sign is open."""
     from lab import mystery
 
     setup = catalog.configure("damped", assignments=["dt=0.01"])
     run = mystery.make(setup, seed=seed)
-    upright = compare(setup, run.t, run.position, fit=["k", "b"])
-    down = compare(setup, run.t, -run.position, fit=["k", "b"])
-    assert (upright.sign, down.sign) == (1, -1)
+    upright = compare(setup, run.t, run.position, fit=["k", "b"], given={"r0"})
+    down = compare(setup, run.t, -run.position, fit=["k", "b"], given={"r0"})
+    assert (upright.sign, down.sign) == (1, -1) and not upright.sign_open and not down.sign_open
     assert down.rms == pytest.approx(upright.rms, rel=1e-6) and down.rms < 2 * run.noise
     for name in ("k", "b"):
         assert down.fitted[name].value == pytest.approx(upright.fitted[name].value,
                                                         abs=0.01 * upright.fitted[name].uncertainty)
     assert down.position_offset.value == pytest.approx(-upright.position_offset.value, abs=1e-6)
     assert np.allclose(down.model, -upright.model, atol=1e-6)
-    forced = compare(setup, run.t, -run.position, fit=["k", "b"], sign=-1)
+    forced = compare(setup, run.t, -run.position, fit=["k", "b"], sign=-1, given={"r0"})
     assert forced.fitted["k"].value == pytest.approx(down.fitted["k"].value, rel=1e-9)
+    released_up = compare(setup, run.t, run.position, fit=["k", "b"])
+    released = compare(setup, run.t, -run.position, fit=["k", "b"])
+    assert released.sign_open and "either way fits alike" in released.sign_said
+    for name in ("k", "b"):
+        assert released.fitted[name].value == pytest.approx(released_up.fitted[name].value, rel=1e-6)
+    assert released.rms == pytest.approx(released_up.rms, rel=1e-6)
 
 
 def test_a_release_other_than_the_scenes_biases_k_b_and_fit_r0_recovers_all_three_within_their_uncertainties():
-    """The student let the mass go from y = −1.3 m, not the scene's −1.5 m. Fitting k and b alone
-    is biased (the swing's size ties to k through the sag mg/k); `--fit k,b,r0` also fits where the
-    mass was let go, and recovers k, b and r0's y within 2σ in at least 45 of 50 noisy sets."""
+    """The student let the mass go from y = −1.3 m, not the scene's −1.5 m. Fitting k and b with
+    the scene's release given (--set r0) is biased (the swing's size ties to k through the sag
+    mg/k); `--fit k,b` fits where the mass was let go too (as `--fit k,b,r0` does), and recovers k,
+    b and r0's y within 2σ in at least 45 of 50 noisy sets."""
     t, y = engine_run(["dt=0.02", "k=40", "b=3", "r0=0,-1.3,0"], span=4.0, rate=20)
     guess = catalog.configure("damped", assignments=["dt=0.02", "k=30", "b=1"])
     truth = {"k": 40.0, "b": 3.0, "r0": -1.3}
-    biased = fit_once(0, truth=truth, guess=guess, t=t, y=y, sigma=0.01)
+    noisy = y + 0.3 + np.random.default_rng(0).normal(0.0, 0.01, t.size)
+    biased = compare(guess, t + 1.1, noisy, fit=["k", "b"], given={"r0"})
     assert abs(biased.fitted["b"].value - 3.0) > 5 * biased.fitted["b"].uncertainty
+    assert set(fit_once(0, truth=truth, guess=guess, t=t, y=y, sigma=0.01).fitted) == {"k", "b", "r0"}
     within2 = dict.fromkeys(truth, 0)
     for seed in range(50):
         result = fit_once(seed, truth=truth, guess=guess, t=t, y=y, sigma=0.01, names=("k", "b", "r0"))
@@ -252,7 +264,7 @@ def _swing(omega, *, periods=8, points=500):
 ])
 def test_a_start_the_data_suggest_outside_the_range_is_one_line_saying_what_to_check(name, omega, suggested,
                                                                                        declared):
-    """The data's own frequency asks for a constant outside its declared range (the file's time in ms
+    """The data's own swing asks for a constant outside its declared range (the file's time in ms
     read as s, or the scene's mass not the one used): FitError names the constant, the value with its
     unit, the range, and what to check (the old code said 'the fit went out of range')."""
     t, y = _swing(omega)
@@ -260,8 +272,8 @@ def test_a_start_the_data_suggest_outside_the_range_is_one_line_saying_what_to_c
     with pytest.raises(FitError) as found:
         compare(setup, t, y, fit=[name])
     said = str(found.value)
-    assert "\n" not in said and said.startswith(f"--fit {name}: a swing at ω = ")
-    value, unit = re.search(rf"suggests {name} = (\S+) (\S+), outside", said).groups()
+    assert "\n" not in said and said.startswith(f"--fit {name}: the data's swing (ω = ")
+    value, unit = re.search(rf"asks for {name} = (\S+) (\S+), outside", said).groups()
     assert (float(value), unit) == (pytest.approx(suggested[0], rel=0.02), suggested[1])
     assert declared in said and "units" in said and "--set" in said
 
@@ -283,13 +295,15 @@ def test_a_swing_much_smaller_or_larger_than_the_scenes_is_fitted_with_r0(amplit
 
 
 def test_a_model_that_misses_the_data_says_the_uncertainties_mean_little():
-    """The page's spring as set (a 1.95 m swing from r0 = −1.5 m) against a 1 m swing, fitting k
-    alone: the fit gives a k with a small ± although the model misses by 0.4 m. The comparison says
-    so, naming r0; a model that follows the data says nothing."""
+    """The page's spring as set (a 1.95 m swing from r0 = −1.5 m, given with --set r0) against a 1 m
+    swing, fitting k alone: the fit gives a k with a small ± although the model misses by 0.4 m. The
+    comparison says so, naming r0, and the fit's verdict says its numbers cannot be trusted; a model
+    that follows the data (the release fitted, as --fit does unless r0 is given) says nothing."""
     t = np.arange(0.0, 5.0, 0.02)
     y = 0.7 + 1.0 * np.cos(2.0 * t)
     setup = catalog.configure("vertical", assignments=["dt=0.01"])
-    missed = compare(setup, t, y, fit=("k",))
+    missed = compare(setup, t, y, fit=("k",), given={"r0"})
     assert missed.rms > 0.1 and "the model misses by" in missed.misfit and "r0" in missed.misfit
-    followed = compare(setup, t, y, fit=("k", "r0"))
-    assert followed.rms < 1e-3 and followed.misfit == ""
+    assert not missed.trust.trusted and "the model misses by" in missed.trust.sentence
+    followed = compare(setup, t, y, fit=("k",))
+    assert followed.rms < 1e-3 and followed.misfit == "" and "r0" in followed.fitted

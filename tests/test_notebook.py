@@ -238,7 +238,9 @@ def look(where, **parts):
     from PIL import Image
 
     where.evaluate("element => element.scrollIntoView({block: 'start'})")
-    time.sleep(0.3)  # a frame or two, so the canvas is drawn at its new place
+    # two frames drawn at its new place: the browser's own signal (at 2-3 frames a second in software
+    # WebGL, the 0.3 s this once slept was less than one frame)
+    where.page.evaluate("() => new Promise(done => requestAnimationFrame(() => requestAnimationFrame(done)))")
     boxes = {name: locator.bounding_box() for name, locator in parts.items()}
     viewport = where.page.viewport_size
     left = max(0, min(box["x"] for box in boxes.values()))
@@ -344,7 +346,7 @@ def test_the_notebook_shows_the_arrows_and_its_check_boxes_reach_the_kernel(page
     setup = catalog.configure("vertical")
     scales = choose_scales(setup.build(), view={**DEFAULT_VIEW, **setup.hooks.view})
     assert scales.legend() in cell.inner_text()   # an arrow of 1 m = 20 kg·m/s for p, 20 N for forces
-    boxes = cell.locator("input[type=checkbox]")
+    boxes = cell.locator(":not(.sm-measure) > input[type=checkbox]")   # not the Measure panel's
     assert boxes.count() == 4                      # p, F_net, forces, F∥ and F⊥
     assert [boxes.nth(n).is_checked() for n in range(4)] == [True, True, False, False]
     orange = tuple(round(255 * c) for c in mass_colour(0))
@@ -457,3 +459,39 @@ def test_after_the_page_has_gone_show_says_so_in_one_line_not_a_traceback():
     assert len(shown) == 1, shown
     assert shown[0].startswith("PageGone: the notebook page vpython was connected to has gone")
     assert "restart the kernel" in shown[0] and "Traceback" not in shown[0]
+
+
+@browser
+@needs_browser
+def test_the_measure_panel_works_in_the_notebook(page):
+    """Issue 30, item 8: the Measure panel in a cell: closed at first; opened, its stopwatch
+    counts, the period shows when ticked, the energy bars take the energy graph's place and add up,
+    and a click on the position graph reads a point of it."""
+    cell = running_scene_cell(page, "vertical")
+    panel = cell.locator(".sm-measure")
+    assert panel.evaluate("e => getComputedStyle(e).display") == "none"
+    cell.locator(".sm-measure-toggle").click()
+    panel.wait_for(state="visible")
+    cell.get_by_role("button", name="Start (S)").click()
+    cell.get_by_role("button", name="Stop (S)").wait_for()
+    panel.locator("span").filter(has_text=re.compile(r"^ ?period")).first.locator(
+        "xpath=preceding-sibling::input[1]").check()
+    wait_for(lambda: cell.locator(".sm-period").count() and "formula 2π/ω" in cell.locator(".sm-period").inner_text(),
+             timeout=120.0, what="the period's line")
+    panel.locator("select").select_option("energy bars")
+    wait_for(lambda: cell.locator(".sm-bar-value").count() == 5, timeout=120.0, what="the energy bars")
+    joules = [float(v) for v in cell.locator(".sm-bar-value").evaluate_all("cells => cells.map(c => c.dataset.joules)")]
+    assert joules[-1] == pytest.approx(sum(joules[:-1]), rel=1e-12, abs=1e-12)
+    watch = wait_for(lambda: (value := float(cell.locator(".sm-stopwatch").inner_text().replace("\u00a0", " ")
+                                             .split()[0])) > 0 and value, timeout=120.0, what="the stopwatch to count")
+    assert watch > 0
+    overlay = cell.locator(".glowscript-graph canvas.overlay").first
+    overlay.scroll_into_view_if_needed()
+    place = overlay.bounding_box()
+    overlay.click(position={"x": 0.4 * place["width"], "y": 0.5 * place["height"]})
+    read = wait_for(lambda: cell.locator(".sm-read").count() and cell.locator(".sm-read").first.inner_text(),
+                    timeout=120.0, what="the graph's reading").replace("\u00a0", " ")
+    assert read.startswith("Read: t = ") and " s, y (" in read and read.endswith(" m")
+    look(cell, cell=cell)["cell"].save(SCREENSHOT.parent / "notebook-measure.png")
+    panel.locator("select").select_option("energy graph")
+    cell.locator(".sm-measure-toggle").click()

@@ -7,6 +7,7 @@ vpython: the view's rebuild and switch are replaced by recorders.
 """
 from types import SimpleNamespace
 
+from browser.messages import ChooseIntegrator, ChoosePreset, ChooseScene, SetConstant
 from browser.view import SceneView
 from scenes import catalog
 
@@ -23,7 +24,7 @@ def view_with_clicks(*clicks):
 
 
 def test_an_integrator_chosen_just_before_a_preset_still_holds_after_it():
-    view, done = view_with_clicks(("integrator", "verlet"), ("preset", "Moon gravity"))
+    view, done = view_with_clicks(ChooseIntegrator("verlet"), ChoosePreset("Moon gravity"))
     view._apply_commands(now=0.0)
     (kind, setup, preset), = done
     assert (kind, preset) == ("switch", "Moon gravity")
@@ -32,11 +33,11 @@ def test_an_integrator_chosen_just_before_a_preset_still_holds_after_it():
 
 
 def test_a_slider_value_set_just_before_a_preset_stays_unless_the_preset_sets_it():
-    view, done = view_with_clicks(("set", "k", 60.0), ("preset", "Moon gravity"))
+    view, done = view_with_clicks(SetConstant("k", 60.0), ChoosePreset("Moon gravity"))
     view._apply_commands(now=0.0)
     (kind, setup, preset), = done
     assert setup.values["k"] == 60.0 and setup.values["g"] == 1.62
-    view, done = view_with_clicks(("set", "m", 20.0), ("preset", "critical damping"))
+    view, done = view_with_clicks(SetConstant("m", 20.0), ChoosePreset("critical damping"))
     view._apply_commands(now=0.0)
     (kind, setup, preset), = done
     m, k = setup.values["m"], setup.values["k"]
@@ -44,7 +45,7 @@ def test_a_slider_value_set_just_before_a_preset_stays_unless_the_preset_sets_it
 
 
 def test_an_integrator_alone_rebuilds_the_run_with_it():
-    view, done = view_with_clicks(("integrator", "rk4"))
+    view, done = view_with_clicks(ChooseIntegrator("rk4"))
     view._apply_commands(now=0.0)
     assert done == [("rebuild", {}, "rk4")]
 
@@ -70,9 +71,9 @@ def test_a_broken_scene_chosen_in_the_scene_menu_is_a_sentence_on_the_page(monke
         raise ConstantError(f"scenes/{name}.py, line 13: invalid syntax")
 
     said, refused = [], []
-    view, done = view_with_clicks(("scene", "damped"))
+    view, done = view_with_clicks(ChooseScene("damped"))
     view.controls.say = said.append
-    view.controls.choice_refused = lambda kind, scene, preset=None: refused.append((kind, scene))
+    view.controls.show_scene = lambda scene: refused.append(("scene", scene))
     monkeypatch.setattr(catalog, "configure", broken)
     view._apply_commands(now=0.0)
     assert done == [] and view.setup.name == "vertical"
@@ -82,13 +83,14 @@ def test_a_broken_scene_chosen_in_the_scene_menu_is_a_sentence_on_the_page(monke
 
 def test_a_scene_or_preset_that_cannot_be_built_puts_its_menu_back():
     """The menu showed the refused scene's name while the old scene ran on (issue 20, item 6)."""
-    for click in (("scene", "damped"), ("preset", "Moon gravity")):
+    for click in (ChooseScene("damped"), ChoosePreset("Moon gravity")):
         refused = []
         view, done = view_with_clicks(click)
         view._switch = lambda setup, preset=None: False   # it said why, and built nothing
-        view.controls.choice_refused = lambda kind, scene, preset=None: refused.append((kind, scene))
+        view.controls.show_scene = lambda scene: refused.append(("scene", scene))
+        view.controls.show_preset = lambda preset: refused.append(("preset", preset))
         view._apply_commands(now=0.0)
-        assert refused == [(click[0], "vertical")]
+        assert refused == ([("scene", "vertical")] if isinstance(click, ChooseScene) else [("preset", None)])
 
 
 def test_what_the_page_says_stays_on_it_until_the_next_run_starts():
@@ -104,7 +106,7 @@ def test_what_the_page_says_stays_on_it_until_the_next_run_starts():
     assert controls.status_text.text == "<b>Cannot open that:</b> scenes/damped.py, line 13: invalid syntax"
     controls.show_status(problem="it blew up", runaways=[], slow_dt=None)   # a stopped run says so first
     assert controls.status_text.text == "<b>Stopped:</b> it blew up"
-    controls.choice_refused("scene", "vertical")
+    controls.show_scene("vertical")
     assert controls.scene_menu.selected == "vertical"
 
 
@@ -115,7 +117,7 @@ def test_a_refused_preset_puts_the_menu_back_on_the_preset_that_runs():
 
     controls = Controls.__new__(Controls)
     controls.preset_menu = SimpleNamespace(selected="Jupiter gravity")
-    controls.choice_refused("preset", "vertical", "Moon gravity")
+    controls.show_preset("Moon gravity")
     assert controls.preset_menu.selected == "Moon gravity"
-    controls.choice_refused("preset", "vertical", None)
+    controls.show_preset(None)
     assert controls.preset_menu.selected == PRESET_PROMPT

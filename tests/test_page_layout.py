@@ -114,7 +114,7 @@ def keys_work(page, scene: str) -> None:
     """Real key presses with the focus on the page: Space pauses, → steps one Δt, R resets to 0,
     + speeds up, − slows down again, Space runs again."""
     dt = catalog.configure(scene).build().dt
-    page.locator("body").click(position={"x": 5, "y": 790})      # the focus on the page itself
+    page.evaluate("() => document.activeElement && document.activeElement.blur()")      # the focus on the page itself
     page.keyboard.press("Space")
     page.get_by_role("button", name="Run").wait_for(timeout=KEY_PATIENCE_MS)
     paused = shown_time(page)
@@ -134,7 +134,7 @@ def keys_work(page, scene: str) -> None:
 
 def projector_mode(page) -> None:
     """Key P: every text at least PROJECTOR_PX, the ticks still one line each; P again to leave it."""
-    page.locator("body").click(position={"x": 5, "y": 790})
+    page.evaluate("() => document.activeElement && document.activeElement.blur()")
     page.keyboard.press("p")
     single_line_ticks(page, font=PROJECTOR_PX)
     m = wait_for(lambda: (m := page.evaluate(MEASURE)) and m["fonts"]["buttons"] >= PROJECTOR_PX and m,
@@ -166,7 +166,7 @@ def test_keys_tab_and_projector_mode(browser):
         wait_for(lambda: shown_time(page) >= 1.0, timeout=90.0, what="t to reach 1 s")
         laid_out(page, graphs=2)
         widths = line_widths(page)
-        page.locator("body").click(position={"x": 5, "y": 790})      # the focus on the page itself
+        page.evaluate("() => document.activeElement && document.activeElement.blur()")      # the focus on the page itself
 
         page.keyboard.press("Space")
         page.get_by_role("button", name="Run").wait_for(timeout=30_000)
@@ -197,7 +197,7 @@ def test_keys_tab_and_projector_mode(browser):
         assert {"BUTTON:Step", "BUTTON:Reset", "BUTTON:Download CSV"} <= reached, reached
         assert any(name.startswith("SELECT") for name in reached) and any(name.startswith("SPAN") for name in reached)
 
-        page.locator("body").click(position={"x": 5, "y": 790})
+        page.evaluate("() => document.activeElement && document.activeElement.blur()")
         page.keyboard.press("p")
         m = wait_for(lambda: (m := page.evaluate(MEASURE)) and m["fonts"]["buttons"] >= PROJECTOR_PX and m,
                      timeout=120.0, what="projector mode's larger text")

@@ -54,8 +54,9 @@ def program():
     errors: list[str] = []
     lines: queue.Queue = queue.Queue()
     threading.Thread(target=lambda: [lines.put(line) for line in process.stdout], daemon=True).start()
-    threading.Thread(target=lambda: [errors.append(line) for line in process.stderr], daemon=True).start()
-    process.errors = errors
+    reader = threading.Thread(target=lambda: [errors.append(line) for line in process.stderr], daemon=True)
+    reader.start()
+    process.errors, process.errors_read = errors, reader    # join errors_read: every line is in errors
     process.url = f"http://127.0.0.1:{port}/"
     process.port = port
     try:
@@ -210,7 +211,7 @@ def test_ctrl_c_while_the_page_runs_is_one_line_and_status_130(browser, program)
     running_past(page, 0.5)
     program.send_signal(signal.SIGINT)
     assert program.wait(timeout=10) == 130
-    time.sleep(0.5)  # the reader thread takes the last line
+    program.errors_read.join(timeout=30)   # stderr closed: the reader has taken the last line
     lines = [line for line in program.errors if line.strip()]
     assert lines == ["stopped: interrupted (Ctrl-C); no file was left half-written\n"], lines
     page.close()

@@ -168,7 +168,7 @@ def test_each_row_of_resonance_springs_has_the_colour_of_its_b_line():
     setup, model, scene, graphs = resonance_page()
     line_colour = {series.label: tuple(series.color) for series in graphs.scene_series}
     assert sorted(line_colour.values()) == sorted(CURVE_COLOURS[:3])
-    positions = {what[1]: curve.color for curve, _, what in graphs.curves if what[0] == "r"}
+    positions = {curve.series.mass: curve.line.color for curve in graphs.curves if curve.series.kind == "position"}
     b = model.forces[1].b.ravel()
     assert len(scene.masses) == len(b) == 39
     assert len(positions) == 3                                # one chosen spring per row (issue 18)

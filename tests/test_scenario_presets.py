@@ -8,6 +8,7 @@ from types import SimpleNamespace
 
 import pytest
 
+from browser.messages import ChoosePreset, SetConstant
 from browser.view import SceneView
 from scenes import catalog
 from scenes._constants import DECLARED
@@ -36,7 +37,7 @@ def page_after(setup, *clicks):
 def test_on_the_page_a_scenario_sets_m_and_k_back_to_the_books_case():
     book = catalog.configure("driven", scenario=5)
     moved = catalog.configure("driven").with_values(m=6.97, k=50.0, L0=2.0, dt=0.02)
-    for clicks in ([("preset", SCENARIO_5)], [("set", "m", 3.3), ("preset", SCENARIO_5)]):
+    for clicks in ([ChoosePreset(SCENARIO_5)], [SetConstant("m", 3.3), ChoosePreset(SCENARIO_5)]):
         (setup, preset), = page_after(moved, *clicks)
         assert preset == SCENARIO_5
         assert setup.values["m"] == 4.0 and setup.values["k"] == 100.0

@@ -67,8 +67,8 @@ def test_the_integrators_scene_dt_slider_sends_only_round_values_or_the_default(
     assert values[round(dt_slider.value)] == 0.06
     for place in np.linspace(dt_slider.min, dt_slider.max, 25):   # wherever the handle is dragged
         dt_slider.bind(SimpleNamespace(value=float(place)))
-    sent = [command for command in controls.clicks() if command[:2] == ("set", "dt")]
-    assert len(sent) == 25 and {command[2] for command in sent} == set(values)
-    assert all(is_round(command[2]) or command[2] == 0.06 for command in sent)
+    sent = [message.value for message in controls.clicks() if message.name == "dt"]
+    assert len(sent) == 25 and set(sent) == set(values)
+    assert all(is_round(value) or value == 0.06 for value in sent)
     m_slider = vp.sliders[1]                                      # m keeps its continuous span
     assert (m_slider.min, m_slider.max) == slider_range("m", 1.0)[:2]

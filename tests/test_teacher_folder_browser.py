@@ -3,8 +3,9 @@
 The folder holds a good scene (heavy.py), a scene named catalog.py (that crashed the page:
 AttributeError ... SCENE_NAMES), a .py file that is not a scene (notes.py, which sleeps: run in the
 page's process it froze the clock) and a scene that fails as it loads (fails.py). The page starts,
-lists neither catalog.py nor notes.py, says why fails.py cannot open and keeps that sentence while
-the scene shown runs on with its name back in the menu, and opens heavy.py.
+lists neither catalog.py nor notes.py and says why beside the menu (issue 28, item 7), says why
+fails.py cannot open and keeps that sentence while the scene shown runs on with its name back in
+the menu, and opens heavy.py.
 """
 from __future__ import annotations
 
@@ -74,6 +75,12 @@ def test_a_teachers_folder_in_the_scene_menu(program):
         names = menu.locator("option").all_inner_texts()
         assert "heavy" in names and "fails" in names and "vertical" in names, names
         assert "catalog" not in names and "notes" not in names, names
+        # issue 28, item 7: the page says why those two are not in the menu
+        page.locator(".sm-left-out summary").click()
+        left_out = page.locator(".sm-left-out").inner_text()
+        assert "2 files not in the menu" in left_out, left_out
+        assert "catalog.py" in left_out and "taken by the simulator's own code" in left_out, left_out
+        assert "notes.py is not a scene" in left_out and "build function" in left_out, left_out
 
         menu.select_option("fails")
         said = wait_for(lambda: next((line for line in page.inner_text("body").splitlines()

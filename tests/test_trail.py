@@ -52,7 +52,7 @@ def stand_in_vpython():
     vector = lambda x, y, z: np.array([x, y, z], dtype=float).view(Vec)     # noqa: E731
     return SimpleNamespace(scene=SimpleNamespace(), vector=vector, box=Shape, helix=Shape, sphere=Shape,
                            curve=Shape, label=Shape, color=SimpleNamespace(white=vector(1, 1, 1)),
-                           graph=Shape, gcurve=Series, gdots=Series)
+                           graph=Shape, gcurve=Series, gdots=Series, wtext=Shape)
 
 
 def test_the_trail_gets_every_graph_sample_however_few_frames_the_page_draws():

@@ -66,10 +66,18 @@ class Refusals:
                   file=self.stream or sys.stderr, flush=True)
 
 
+@dataclass(frozen=True)
+class Upload:
+    """A file the page's Load data button sent: its name (as the student's computer calls it) and bytes."""
+
+    name: str
+    raw: bytes
+
+
 class Uploads:
     """Files the page sent (its Load data button: POST /data), waiting for the frame loop.
 
-    The HTTP server's threads put (name, bytes); the frame loop takes them between frames. Only
+    The HTTP server's threads put an Upload; the frame loop takes them between frames. Only
     the newest file counts, so a student who picks twice in quick succession gets the second.
     """
 
@@ -77,10 +85,10 @@ class Uploads:
         self.waiting: queue.SimpleQueue = queue.SimpleQueue()
 
     def put(self, name: str, raw: bytes) -> None:
-        self.waiting.put((name, raw))
+        self.waiting.put(Upload(name=name, raw=raw))
 
-    def newest(self) -> tuple[str, bytes] | None:
-        """The newest file sent since the last call (name, bytes), None if none."""
+    def newest(self) -> Upload | None:
+        """The newest file sent since the last call, None if none."""
         newest = None
         while True:
             try:
@@ -152,6 +160,6 @@ class ServerInfo:
         """
         self.life.scene_built(load)
 
-    def uploaded(self) -> tuple[str, bytes] | None:
-        """The newest file the page's Load data button sent since the last call: (name, bytes)."""
+    def uploaded(self) -> Upload | None:
+        """The newest file the page's Load data button sent since the last call, None if none."""
         return self.uploads.newest()

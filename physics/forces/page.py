@@ -1,6 +1,6 @@
-"""Forces on N point masses. Each is a pure function of (t, r, v, m) returning an (N, 3) array, in N.
+"""The page's forces: a spring, gravity, linear damping, quadratic air drag and a driving force.
 
-A force is a small frozen object holding its parameters; calling it gives the force on every mass:
+Each is a pure function of (t, r, v, m) returning an (N, 3) array, in N:
 
     F = force(t, r, v, m)        t in s, r in m (N, 3), v in m/s (N, 3), m in kg (N,)
 
@@ -16,12 +16,13 @@ v = None.
 For motion along one line, give r the shape (N, 1) and the forces 1-component vectors:
 Spring(anchor=(0.0,)), Gravity(direction=(-1.0,)), Driving(axis=(1.0,)).
 
-Each force is one declaration (a subclass of :class:`Force`): beside its law it gives the constants
-of that law with their units and ranges (CONSTANTS, which scenes/_constants.py's DECLARED reads),
-the rates the stability judgement needs (:meth:`Force.rates`, read by physics/stability.py), and
-its line in the handed-out VPython program (PROGRAM, plain text that export/ fills in with the
+Each force is one declaration (a subclass of physics/forces/base.py's Force): beside its law it
+gives its label, the constants of that law with their units, ranges and defaults (CONSTANTS, which
+scenes/_constants.py's DECLARED reads), the rates the stability judgement needs (rates, read by
+physics/stability.py), its terms in the closed form (closed_form, read by the scenes' builders)
+and its line in the handed-out VPython program (PROGRAM, plain text that export/ fills in with the
 program's names). Nothing else in the project chooses by the kind of force; docs/architecture.md
-gives the recipe for a new one, and tests/test_new_force.py adds one from a folder of its own.
+gives the recipe for a new one, and physics/forces/friction.py is one in a module of its own.
 """
 from __future__ import annotations
 
@@ -29,97 +30,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .declared import Declared
-from .rows import magnitude
-
-
-def _per_mass(value) -> np.ndarray | float:
-    """A scalar parameter, or an (N,) array reshaped to (N, 1) so it multiplies (N, 3) rows."""
-    array = np.asarray(value, dtype=float)
-    return float(array) if array.ndim == 0 else array.reshape(-1, 1)
-
-
-def _new_like(r: np.ndarray) -> np.ndarray:
-    """An empty array laid out like r, of floats (or of traced numbers, see physics/compiled.py)."""
-    return np.empty_like(r, dtype=np.result_type(r, float))
-
-
-def _unit(vector) -> np.ndarray:
-    vector = np.asarray(vector, dtype=float)
-    length = np.linalg.norm(vector)
-    if length == 0:
-        raise ValueError("a direction must not be the zero vector")
-    return vector / length
-
-
-FORCES: list[type] = []     # every force class, in the order defined (ours, then any a scene brings)
-
-
-class Force:
-    """What every force declares, beside its law (its __call__).
-
-    CONSTANTS  the constants of its law, by the name the scenes and the program give them, each
-               with its unit, range and meaning (scenes/_constants.py's DECLARED reads them)
-    TERM       the program's name for the force: Fspring, Fdamping
-    PROGRAM    its line(s) in the program, (code, comment) pairs; the code names the constants
-               and {t}, {r}, {v}, {m} (time, position, velocity and mass as the program spells
-               them) in braces, filled in by export/ with str.format
-    conservative, uses_velocity   whether it has a potential energy, whether it reads v
-    VECTORS    its vectors by attribute: "point" where it pushes along r − point (a spring from
-               its anchor), "direction" where it pushes along it (gravity); else it pushes only
-               along v, with numbers per mass. None (the default): it may push along any axis.
-               The engine steps only the axes a motion uses (physics/motion_axes.py) where all say so.
-
-    A class that subclasses Force is known by that alone (FORCES), wherever it is defined.
-    """
-
-    CONSTANTS: dict[str, Declared] = {}
-    TERM = ""
-    PROGRAM: tuple[tuple[str, str], ...] = ()
-    conservative = False
-    uses_velocity = False
-    VECTORS: dict[str, str] | None = None
-
-    def __init_subclass__(cls, **options):
-        super().__init_subclass__(**options)
-        FORCES.append(cls)
-
-    def rates(self, m: np.ndarray, speed: np.ndarray) -> dict:
-        """What the force adds to the stability judgement (physics/stability.py), per mass, at the
-        present speeds |v| (m/s): any of
-
-            "stiffness"  k, N/m: a spring from a fixed anchor (ω² = Σk/m)
-            "joint"      (i, j, k): a spring of k N/m between masses i and j
-            "damping"    γ = b/m, s⁻¹: a force near −γ m v, the same at every speed
-            "drag"       γ, s⁻¹: the slope of a force that grows with speed, at the present speed
-
-        A force that only adds to the motion without multiplying it (gravity, driving) adds
-        nothing: {}.
-        """
-        return {}
-
-    def tether(self):
-        """(anchor, length) in m where the force ties each mass to a fixed point, None where it ties
-        none: the engine counts a mass far beyond its tether's reach as blown up."""
-        return None
-
-    def undefined_at(self, r: np.ndarray) -> np.ndarray:
-        """Which masses sit where the law has no value, (N,) bool: a scene refuses to start there."""
-        return np.zeros(len(r), dtype=bool)
-
-    def program_values(self) -> dict:
-        """The values of CONSTANTS this force holds, by name: a number, or an (N,) or (N, 3) array
-        of one per mass. Raises ValueError where the program cannot write the force as it is."""
-        return {name: getattr(self, name) for name in self.CONSTANTS}
-
-    def program(self) -> tuple[tuple[str, str], ...]:
-        """Its PROGRAM lines, as they apply to this force (Spring: a shorter law where L0 = 0)."""
-        return self.PROGRAM
-
-
-def _column(value, count: int) -> np.ndarray:
-    """A parameter as one number per mass, (count,)."""
-    return np.broadcast_to(np.asarray(value, dtype=float).reshape(-1, 1), (count, 1))[:, 0]
+from ..declared import Declared
+from ..rows import magnitude
+from .base import Force, _column, _new_like, _per_mass, _unit
 
 
 @dataclass(frozen=True, eq=False)
@@ -135,10 +48,12 @@ class Spring(Force):
     anchor: object = (0.0, 0.0, 0.0)
     conservative = True
     uses_velocity = False
+    LABEL = "spring"
+    TIED = ((("m", "k"), "the motion depends on k/m, not on k and m apart (gravity gives every mass the same g)"),)
     CONSTANTS = {
-        "k": Declared("N/m", 0, 1e6, meaning="spring constant"),
-        "L0": Declared("m", 0, 1e4, meaning="relaxed length of the spring"),
-        "anchor": Declared("m", -1e4, 1e4, vector=True, meaning="fixed end of the spring"),
+        "k": Declared("N/m", 0, 1e6, meaning="spring constant", default=0.0),
+        "L0": Declared("m", 0, 1e4, meaning="relaxed length of the spring", default=0.0),
+        "anchor": Declared("m", -1e4, 1e4, vector=True, meaning="fixed end of the spring", default=(0.0, 0.0, 0.0)),
     }
     TERM = "Fspring"
     VECTORS = {"anchor": "point"}
@@ -178,13 +93,11 @@ class Spring(Force):
         _, length = self.stretch(r)
         return (0.5 * self.k * (length - self.L0) ** 2)[..., 0]
 
-    @classmethod
-    def switched_on(cls, *, k, L0, anchor, **_others):
-        """The spring of the single-mass scenes' constants (always there: k = 0 is a spring of no stiffness)."""
-        return cls(k=k, L0=L0, anchor=anchor)
-
     def rates(self, m, speed):
         return {"stiffness": _column(self.k, len(m))}
+
+    def closed_form(self):
+        return {"k": self.k, "L0": self.L0, "anchor": self.anchor}
 
     def tether(self):
         return self.anchor, self.L0
@@ -216,6 +129,7 @@ class SpringBetween(Force):
     j: int
     conservative = True
     uses_velocity = False
+    LABEL = "spring"
 
     def _stretch(self, r):
         L = r[self.i] - r[self.j]
@@ -255,8 +169,10 @@ class Gravity(Force):
     direction: object = (0.0, -1.0, 0.0)
     conservative = True
     uses_velocity = False
+    LABEL = "gravity"
     CONSTANTS = {"g": Declared("m/s²", 0, 1e3, note="it is a magnitude; gravity acts along −y",
-                               slider_from_zero=True, meaning="strength of gravity, along −y")}
+                               slider_from_zero=True, meaning="strength of gravity, along −y",
+                               default=0.0, switch=True)}
     TERM = "Fgravity"
     VECTORS = {"direction": "direction", "g_vector": "direction"}
     PROGRAM = (("Fgravity = {m}*vector(0, -{g}, 0)", "gravity: F = m g, down (−y)"),)
@@ -273,9 +189,8 @@ class Gravity(Force):
         """U = m g h, with h measured up from the origin, J."""
         return -m * self.g * (r @ self.direction)
 
-    @classmethod
-    def switched_on(cls, *, g, **_others):
-        return cls(g=g) if g else None
+    def closed_form(self):
+        return {"g": self.g} if np.array_equal(self.direction, (0.0, -1.0, 0.0)) else None
 
     def program_values(self):
         if not np.array_equal(self.direction, (0.0, -1.0, 0.0)):
@@ -293,8 +208,10 @@ class LinearDamping(Force):
     b: object = 0.0
     conservative = False
     uses_velocity = True
+    LABEL = "damping"
+    TIED = ((("m", "b"), "the motion depends on b/m, not on b and m apart"),)
     CONSTANTS = {"b": Declared("kg/s", 0, 1e6, none="critical damping, b = 2√(mk)", slider_from_zero=True,
-                               meaning="linear damping constant in F = −b v")}
+                               meaning="linear damping constant in F = −b v", default=0.0, switch=True)}
     TERM = "Fdamping"
     VECTORS = {}
     PROGRAM = (("Fdamping = -{b}*{v}", "linear damping: F = −b v"),)
@@ -306,12 +223,11 @@ class LinearDamping(Force):
     def __call__(self, t, r, v, m):
         return self._minus_b * v
 
-    @classmethod
-    def switched_on(cls, *, b, **_others):
-        return cls(b=b) if b else None
-
     def rates(self, m, speed):
         return {"damping": _column(self.b, len(m)) / m}      # F = −b v = −(b/m) m v
+
+    def closed_form(self):
+        return {"b": self.b}
 
 
 @dataclass(frozen=True, eq=False)
@@ -327,10 +243,12 @@ class QuadraticDrag(Force):
     rho: object = 0.0
     conservative = False
     uses_velocity = True
+    LABEL = "drag"
+    TIED = ((("C", "A", "rho"), "drag depends on the product C·A·ρ only"),)
     CONSTANTS = {
-        "C": Declared("1", 0, 100, slider_from_zero=True, meaning="drag coefficient"),
-        "A": Declared("m²", 0, 1e3, meaning="cross-section area, for drag"),
-        "rho": Declared("kg/m³", 0, 1e5, symbol="ρ", meaning="air density, for drag"),
+        "C": Declared("1", 0, 100, slider_from_zero=True, meaning="drag coefficient", default=0.0, switch=True),
+        "A": Declared("m²", 0, 1e3, meaning="cross-section area, for drag", default=0.0, switch=True),
+        "rho": Declared("kg/m³", 0, 1e5, symbol="ρ", meaning="air density, for drag", default=0.0, switch=True),
     }
     TERM = "Fdrag"
     VECTORS = {}
@@ -344,9 +262,8 @@ class QuadraticDrag(Force):
         speed = magnitude(v)
         return -0.5 * self.C * self.A * self.rho * speed * v
 
-    @classmethod
-    def switched_on(cls, *, C, A, rho, **_others):
-        return cls(C=C, A=A, rho=rho) if C and A and rho else None
+    def acts_on(self, count):
+        return _column(self.C * self.A * self.rho, count) != 0
 
     def rates(self, m, speed):
         # the slope of ½ C A ρ |v| v with respect to v is ρ C A |v|
@@ -366,12 +283,15 @@ class Driving(Force):
     axis: object = (1.0, 0.0, 0.0)
     conservative = False
     uses_velocity = False
+    LABEL = "driving"
+    TIED = ((("m", "F0"), "the motion depends on F0/m, not on F0 and m apart"),)
     CONSTANTS = {
-        "F0": Declared("N", -1e6, 1e6, slider_from_zero=True, meaning="driving force amplitude in F = F0 cos(ω t)"),
+        "F0": Declared("N", -1e6, 1e6, slider_from_zero=True, meaning="driving force amplitude in F = F0 cos(ω t)",
+                       default=0.0, switch=True),
         "omega": Declared("rad/s", 0, 1e4, symbol="ω", slider_from_zero=True,
-                          meaning="driving angular frequency ω (rad/s, not Hz)"),
+                          meaning="driving angular frequency ω (rad/s, not Hz)", default=0.0),
         "drive_axis": Declared("1", -1e6, 1e6, vector=True, nonzero=True,
-                               meaning="direction of the driving force (a unit vector)"),
+                               meaning="direction of the driving force (a unit vector)", default=(1.0, 0.0, 0.0)),
     }
     TERM = "Fdrive"
     VECTORS = {"axis": "direction"}
@@ -404,41 +324,13 @@ class Driving(Force):
         return value
 
     @classmethod
-    def switched_on(cls, *, F0, omega, drive_axis, **_others):
-        return cls(F0=F0, omega=omega, axis=drive_axis) if F0 else None
+    def from_constants(cls, *, F0, omega, drive_axis):
+        return cls(F0=F0, omega=omega, axis=drive_axis)
 
     def program_values(self):
         return {"F0": self.F0, "omega": self.omega, "drive_axis": self.axis}
 
-
-# The page's forces, in the order it adds them: what the single-mass scenes switch on from their
-# constants (each class's switched_on gives the force, or None where its constant is 0).
-PAGE_FORCES = (Spring, Gravity, LinearDamping, QuadraticDrag, Driving)
+    def closed_form(self):
+        return {"F0": self.F0, "omega": self.omega, "drive_axis": self.axis}
 
 
-def declared_constants() -> dict[str, Declared]:
-    """Every force's CONSTANTS, by name. Raises ValueError where two forces declare one name differently."""
-    declared: dict[str, Declared] = {}
-    for cls in FORCES:
-        for name, declaration in cls.CONSTANTS.items():
-            if declared.setdefault(name, declaration) != declaration:
-                raise ValueError(f"two forces declare the constant {name} differently ({cls.__name__} is one)")
-    return declared
-
-
-def uses_velocity(forces) -> bool:
-    """Whether any force in the list depends on v (damping, drag). If none does, the integrators
-    may pass v = None."""
-    return any(force.uses_velocity for force in forces)
-
-
-def net_force(forces, t, r, v, m) -> np.ndarray:
-    """F_net = the sum of every force in the list, shape (N, 3), N (zero for an empty list)."""
-    F_net = None
-    for force in forces:
-        F = force(t, r, v, m)
-        if F_net is None:
-            F_net = F          # each force returns a new array, so we may add into it
-        else:
-            F_net += F
-    return np.zeros_like(r) if F_net is None else F_net

@@ -1,0 +1,223 @@
+"""Issue 28, items 1 and 2: where an output file may go, run as a user runs main.py.
+
+1. No file of the program's own tree is ever written, with or without --overwrite. The tree is
+   found from the folder main.py is in (export/files.py own_tree), not from a list, so a copy of
+   it without .git is protected the same way; ./out/, which the tree's .gitignore gives to the
+   user, and new files beside main.py (the README's `--csv damped.csv`) are the user's; a
+   teacher's scene folder takes no Python file.
+2. A file the program did not write is replaced only with --overwrite; its own outputs are known
+   by their mark (the CSV header, the programs' header line, the figures' metadata). The --data
+   file is never written, by name, through a symbolic link or a hard link.
+"""
+from __future__ import annotations
+
+import os
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(ROOT))
+
+from export import files  # noqa: E402
+from export.numbers import CSV_HEADER  # noqa: E402
+
+VERNIER = ROOT / "examples" / "data" / "vernier.csv"
+
+
+def main_py(*args, cwd=ROOT, env=None, main=ROOT / "main.py"):
+    return subprocess.run([sys.executable, str(main), *map(str, args)], capture_output=True, text=True, cwd=cwd,
+                          env={**os.environ, **(env or {})}, timeout=300)
+
+
+def one_error(done) -> str:
+    """The one line of a refused command (exit status 2)."""
+    lines = done.stderr.splitlines()
+    assert done.returncode == 2 and len(lines) == 1 and lines[0].startswith("error: "), done.stderr
+    return lines[0]
+
+
+def tracked_files() -> list[str]:
+    """The tree's files as git knows them (the checkout CI runs in has .git)."""
+    listed = subprocess.run(["git", "ls-files", "-z"], cwd=ROOT, capture_output=True, timeout=60)
+    if listed.returncode != 0:
+        pytest.skip("no git checkout here")
+    return [name for name in listed.stdout.decode().split("\0") if name and (ROOT / name).is_file()]
+
+
+# ---- 1. the program's own tree ----
+
+@pytest.mark.parametrize("argv", [
+    ["damped", "--vpython", "lab/mystery.py", "--overwrite"],                 # the issue's first case
+    ["vertical", "--headless", "--csv", "cli/options.py", "--overwrite"],     # and its second
+    ["vertical", "--headless", "--csv", "examples/data/vernier.csv", "--overwrite"],
+    ["vertical", "--plot", "docs/architecture.md", "--overwrite"],
+    ["vertical", "--webvpython", ".gitignore", "--overwrite"],
+    ["vertical", "--headless", "--csv", "pyproject.toml", "--overwrite"],
+])
+def test_no_file_of_the_tree_is_written_even_with_overwrite(argv):
+    path = ROOT / argv[-2]
+    before = path.read_bytes()
+    try:
+        line = one_error(main_py(*argv))
+    finally:   # today's code writes some of them: put them back before anything else runs
+        if path.read_bytes() != before:
+            path.write_bytes(before)
+            pytest.fail(f"{argv[-2]} was written")
+    assert f"{argv[-2]!r}: it is " in line and ("own folder" in line or "own files" in line), line
+
+
+def test_every_file_the_tree_holds_is_refused_and_no_new_file_is_made_in_its_folders():
+    """Derived from the tree, not a list: every tracked file (and so every folder that holds one)
+    is refused, with --overwrite, and a new file in each of its folders too."""
+    names = tracked_files()
+    for name in names:
+        with pytest.raises(files.OutputError, match="own f"):
+            files.check_writable(str(ROOT / name), what="CSV file", overwrite=True)
+    for folder in sorted({str(Path(name).parent) for name in names} - {"."}):
+        with pytest.raises(files.OutputError, match="inside the program's own folder"):
+            files.check_writable(str(ROOT / folder / "new-output.csv"), what="CSV file")
+    # beside main.py only its own outputs are replaced: no file the tree keeps there may look like one
+    assert [name for name in names if "/" not in name and files.written_here(str(ROOT / name))] == []
+
+
+def copy_of_the_tree(tmp_path: Path) -> Path:
+    """The tree as a user who copied or unzipped it has it: no .git."""
+    copy = tmp_path / "simulator"
+    shutil.copytree(ROOT, copy, ignore=shutil.ignore_patterns(".git", "__pycache__", ".venv", ".pytest_cache",
+                                                              ".hypothesis", "out"))
+    return copy
+
+
+def test_a_copy_without_git_is_protected_the_same_and_its_out_folder_is_the_users(tmp_path):
+    copy = copy_of_the_tree(tmp_path)
+    assert not (copy / ".git").exists()
+    options = copy / "cli" / "options.py"
+    before = options.read_bytes()
+    line = one_error(main_py("vertical", "--headless", "--csv", "cli/options.py", "--overwrite", cwd=copy,
+                             main=copy / "main.py"))
+    assert line == ("error: cannot write CSV file 'cli/options.py': it is inside the program's own folder cli/, "
+                    "which it never writes into; write it outside the program's folder, or in out/ (kept for your "
+                    "files)")
+    assert options.read_bytes() == before
+    (copy / "out").mkdir()    # ./out/, gitignored: a student's outputs
+    for argv in (["vertical", "--headless", "--csv", "out/run.csv"], ["vertical", "--plot", "out/run.png"],
+                 ["damped", "--vpython", "out/handout.py"], ["damped", "--headless", "--csv", "run.csv"]):
+        done = main_py(*argv, cwd=copy, main=copy / "main.py")
+        assert done.returncode == 0, (argv, done.stderr)
+        done = main_py(*argv, cwd=copy, main=copy / "main.py")   # again: its own output, replaced
+        assert done.returncode == 0, (argv, done.stderr)
+    assert sorted(os.listdir(copy / "out")) == ["handout.py", "run.csv", "run.png"]
+    # beside main.py a module name is refused: Python would import it instead of its own json
+    line = one_error(main_py("damped", "--vpython", "json.py", cwd=copy, main=copy / "main.py"))
+    assert "it would be imported in place of the json module and break the program" in line
+    assert not (copy / "json.py").exists()
+    # __main__ has no spec to find: once a ValueError, 'a bug in main.py'
+    assert "in place of the __main__ module" in one_error(main_py("vertical", "--headless", "--csv", "__main__.py",
+                                                                 cwd=copy, main=copy / "main.py"))
+    # and a file there that is not ours is not replaced, even with --overwrite
+    (copy / "notes.txt").write_text("mine\n")
+    assert "own files" in one_error(main_py("vertical", "--headless", "--csv", "notes.txt", "--overwrite", cwd=copy,
+                                            main=copy / "main.py"))
+    assert (copy / "notes.txt").read_text() == "mine\n"
+
+
+def test_a_teachers_scene_folder_takes_no_python_file(tmp_path):
+    """Every .py file in SPRING_SCENES is read as a scene: a handout written there would be one more
+    broken scene in every --list; the teacher's other files are theirs, under the usual rules."""
+    folder = tmp_path / "scenes"
+    folder.mkdir()
+    scene = folder / "mine.py"
+    scene.write_text((ROOT / "scenes" / "vertical.py").read_text(encoding="utf-8").replace("from ._", "from scenes._"),
+                     encoding="utf-8")
+    env = {"SPRING_SCENES": str(folder)}
+    line = one_error(main_py("vertical", "--vpython", folder / "handout.py", env=env))
+    assert f"it is in the teacher's scene folder {str(folder)!r} (SPRING_SCENES)" in line
+    before = scene.read_bytes()
+    one_error(main_py("vertical", "--vpython", scene, "--overwrite", env=env))
+    assert scene.read_bytes() == before
+    assert main_py("vertical", "--headless", "--csv", folder / "run.csv", env=env).returncode == 0
+    assert sorted(os.listdir(folder)) == ["mine.py", "run.csv"]
+    assert main_py("vertical", "--vpython", tmp_path / "handout.py", env=env).returncode == 0   # elsewhere: fine
+
+
+# ---- 2. a file the program did not write ----
+
+def test_a_measurement_is_not_replaced_by_a_csv_without_overwrite(tmp_path):
+    """`vertical --headless --csv mydata.csv` replaced a measurement silently."""
+    data = tmp_path / "mydata.csv"
+    shutil.copy(VERNIER, data)
+    line = one_error(main_py("vertical", "--headless", "--csv", data))
+    assert line == (f"error: cannot write CSV file {str(data)!r}: it is a file this program did not write; "
+                    f"give another name, or add --overwrite to replace it")
+    assert data.read_bytes() == VERNIER.read_bytes()
+    assert main_py("vertical", "--headless", "--csv", data, "--overwrite").returncode == 0
+    assert data.read_text().startswith(",".join(CSV_HEADER) + "\n")
+
+
+@pytest.mark.parametrize("name", ["run.csv", "run.png", "run.svg", "run.svgz", "run.pdf", "run.eps", "handout.py"])
+def test_its_own_outputs_are_known_by_their_mark_and_replaced(name, tmp_path):
+    """A second run onto its own output needs no --overwrite: the CSV by its header line, the
+    program by its header, each figure type by the metadata savefig writes."""
+    path = tmp_path / name
+    argv = (["damped", "--vpython", path] if name.endswith(".py") else
+            ["damped", "--headless", "--csv", path] if name.endswith(".csv") else ["damped", "--plot", path])
+    for _ in range(2):
+        done = main_py(*argv)
+        assert done.returncode == 0, done.stderr
+    assert files.written_here(str(path))
+    if name.endswith(".csv"):   # the contract: line 1 is the header, nothing before it
+        assert path.read_bytes().startswith(files.CSV_HEADER_LINES[0])
+
+
+def test_a_figure_that_is_not_ours_is_replaced_only_with_overwrite(tmp_path):
+    """A PNG with no mark (drawn by another program) is kept; a type that carries no mark says so."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    theirs = tmp_path / "theirs.png"
+    figure = plt.figure()
+    figure.savefig(theirs)      # matplotlib's own metadata only
+    plt.close(figure)
+    before = theirs.read_bytes()
+    assert "a file this program did not write" in one_error(main_py("vertical", "--plot", theirs))
+    assert theirs.read_bytes() == before
+    jpg = tmp_path / "run.jpg"
+    assert main_py("vertical", "--plot", jpg).returncode == 0
+    assert one_error(main_py("vertical", "--plot", jpg)).endswith(
+        "it is a .jpg file, a type that cannot carry this program's mark, so it cannot tell whether it wrote it; "
+        "give another name, or add --overwrite to replace it")
+    assert main_py("vertical", "--plot", jpg, "--overwrite").returncode == 0
+
+
+@pytest.mark.parametrize("how", ["same name", "symbolic link", "hard link"])
+@pytest.mark.parametrize("overwrite", [False, True])
+def test_the_data_file_is_never_written(how, overwrite, tmp_path):
+    """`--data run.svg --plot run.svg` drew the figure over the data, and so did a --plot path
+    that is a link to it."""
+    data = tmp_path / "run.svg"        # a measurement that happens to be called .svg
+    shutil.copy(VERNIER, data)
+    plot = data if how == "same name" else tmp_path / "link.svg"
+    if how == "symbolic link":
+        plot.symlink_to(data.name)
+    elif how == "hard link":
+        os.link(data, plot)
+    line = one_error(main_py("damped", "--data", data, "--plot", plot, *(["--overwrite"] if overwrite else [])))
+    assert line.startswith(f"error: --plot {str(plot)!r} is the --data file") and \
+        line.endswith("and the data is never written over; give the figure another name")
+    assert data.read_bytes() == VERNIER.read_bytes()
+    if how == "symbolic link":
+        assert plot.is_symlink()
+
+
+def test_a_data_plot_onto_another_file_follows_the_rules(tmp_path):
+    """--data with --plot writes a new figure, refuses a file not ours, and --overwrite lets it."""
+    other = tmp_path / "notes.png"
+    other.write_bytes(b"not a figure of ours")
+    assert "did not write" in one_error(main_py("damped", "--data", VERNIER, "--plot", other))
+    assert main_py("damped", "--data", VERNIER, "--plot", other, "--overwrite").returncode == 0
+    assert files.written_here(str(other))
