@@ -85,6 +85,19 @@ def test_the_readme_is_a_front_door_that_links_every_guide():
         assert f"]({guide})" in text, guide
 
 
+def test_the_readme_reads_in_the_issues_order():
+    """What it is, one screenshot (a committed image), the set-up, a tour for each of the four
+    readers, then where to read more (issue 31)."""
+    text = (ROOT / "README.md").read_text(encoding="utf-8")
+    headings = re.findall(r"^## (.+)$", text, flags=re.MULTILINE)
+    assert headings == ["Set up on a fresh machine", "A teacher on a projector", "A student checking homework",
+                        "A lab class with measured data", "A teacher handing out a program or an offline page",
+                        "Read more"], headings
+    images = re.findall(r"!\[[^\]]*\]\(([^)]+)\)", text)
+    assert len(images) == 1 and (ROOT / images[0]).is_file(), images
+    assert text.index("![") < text.index("## Set up")
+
+
 def test_the_readme_sets_up_as_ci_does_and_names_the_quick_check():
     """The README's second set-up command is the one `.ci/run` runs, word for word, and the README
     names the quick check (no browser) that a contributor runs while working."""
