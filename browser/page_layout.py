@@ -68,8 +68,8 @@ button { padding: 2px 10px; }
 .sm-bars-table { border-collapse: collapse; width: 100%%; font-size: inherit !important; }
 .sm-bars-table td { font-size: inherit !important; }
 .sm-bars-table td { padding: 3px 0; }
-.sm-bar-label { white-space: nowrap; padding-right: 10px !important; }
-.sm-bar-cell { position: relative; width: 55%%; min-width: 120px; background: #fff; border: 1px solid #999; }
+.sm-bar-label { padding-right: 10px !important; }   /* wraps: '−W_nc (damping, friction)' in a narrow column */
+.sm-bar-cell { position: relative; width: 55%%; min-width: 80px; background: #fff; border: 1px solid #999; }
 .sm-bar { position: absolute; top: 3px; bottom: 3px; }
 .sm-bar-zero { position: absolute; top: 0; bottom: 0; border-left: 2px solid #000; }
 .sm-bar-value { white-space: nowrap; text-align: right; padding-left: 10px !important; }
