@@ -19,50 +19,13 @@ import math
 
 from physics.rounding import ROUND_STEPS as ROUND  # tick steps of 1, 2 or 5 × 10ⁿ
 
+from export.plain_ticks import plain_ticks
+
 from .clock import window
 
-# vpython's graphs hand flot their own tick formatter, which writes a small axis in e-notation
-# (format_number in glow.min.js: ticks 0.02 apart below 0.1 read 2e-2, 4e-2). Every graph is drawn
-# by a call to jQuery's $.plot, so the page wraps that call once and gives every axis this one:
-# the tick value with as many decimals as the spacing needs (0.0005 → 4, 2.5 → 1, 200 → 0), "0"
-# at zero, never an exponent (toFixed writes plain digits below 10²¹).
-PLAIN_TICKS = """<script>(function () {
-  var jq = window.jQuery; if (!jq || !jq.plot || jq.plot.plainTicks) return;
-  function plain(value, axis) {
-    var step = Math.abs(axis.tickSize) || Math.abs(value) || 1;
-    var decimals = Math.max(0, -Math.floor(Math.log10(step) + 1e-9));
-    while (decimals < 20 && Math.abs(Math.round(step * Math.pow(10, decimals)) - step * Math.pow(10, decimals)) > 1e-6) decimals++;
-    if (Math.abs(value) < step / 2) return "0";
-    return value.toFixed(decimals);
-  }
-  // vpython's graphs never clear the canvas outside the plotting area (it keeps its titles there),
-  // so where a thick curve once touched the frame (an axis about to widen), half its width stayed
-  // above the frame for good (resonance's position graph, from t = 16 s). After every drawing,
-  // everything outside the frame is cleared: the titles are in the line above each graph.
-  function clearOutside(plot, ctx) {
-    var o = plot.getPlotOffset(), w = plot.width(), h = plot.height();
-    var holder = plot.getPlaceholder(), W = holder.width(), H = holder.height();
-    var border = plot.getOptions().grid.borderWidth, edge = 1 + (typeof border === "number" ? border :
-        Math.max(border.top || 0, border.right || 0, border.bottom || 0, border.left || 0));
-    ctx.save();
-    ctx.clearRect(0, 0, W, Math.max(0, o.top - edge));
-    ctx.clearRect(0, o.top + h + edge, W, H);
-    ctx.clearRect(0, 0, Math.max(0, o.left - edge), H);
-    ctx.clearRect(o.left + w + edge, 0, W, H);
-    ctx.restore();
-  }
-  var original = jq.plot;
-  jq.plot = function (placeholder, data, options) {
-    options = options || {};
-    ["xaxis", "yaxis"].forEach(function (name) { options[name] = options[name] || {}; options[name].tickFormatter = plain; });
-    options.hooks = options.hooks || {};
-    var draw = options.hooks.draw || [];
-    if (draw.indexOf(clearOutside) < 0) options.hooks.draw = draw.concat([clearOutside]);
-    return original(placeholder, data, options);
-  };
-  for (var key in original) jq.plot[key] = original[key];
-  jq.plot.plainTicks = plain;
-})();</script>"""
+# Every graph's ticks in plain decimals, and nothing a thick curve draws outside its frame: the
+# script lives in export/plain_ticks.py, which the offline page uses too.
+PLAIN_TICKS = plain_ticks(clear_outside=True)
 
 
 def flot_tick_step(span: float, pixels: float) -> float:

@@ -47,6 +47,7 @@ from . import files
 from .arrows import ARROW_LABELS, ARROWS, SEE_THROUGH, choose_scales
 from .framing import frame
 from .lines import ProgramError
+from .plain_ticks import plain_ticks
 from .program_command import description
 from .step_update import number, step_layout
 from .vpython_program import program
@@ -324,7 +325,8 @@ This file holds GlowScript 3.2 and the libraries bundled in it, each under its o
 </div>
 </main>
 <script type="application/json" id="offline-data">{_json(data)}</script>
-{scripts}<script>{_read(SCRIPT)}</script>
+{scripts}{plain_ticks(clear_outside=False)}
+<script>{_read(SCRIPT)}</script>
 </body>
 </html>
 """

@@ -406,3 +406,28 @@ def test_the_local_page_downloads_its_set_up_as_an_offline_page_and_shows_its_li
     finally:
         offline.close()
     assert status == "" and lines == [headless_answer("vertical", "--set", f"k={k[1]}", "--set", "g=1.62")]
+
+
+def test_the_graphs_tick_labels_are_plain_decimals_evenly_spaced(chromium, written):
+    """GlowScript's flot may space ticks 2.5 × 10ⁿ apart and print them rounded (0.3, 0.5, 0.8 for
+    0.25, 0.5, 0.75): the page installs export/plain_ticks.py's formatter, as the local page does."""
+    page = Offline(chromium, written("driven"), size=(1024, 768))
+    try:
+        page.page.wait_for_function("() => document.querySelectorAll('.xAxis .tickLabel').length >= 3")
+        # a graph drawn by the page's own $.plot over an axis flot spaces 0.25 apart
+        labels = page.page.evaluate("""() => { const box = jQuery('<div>').css({width: '600px', height: '316px'})
+            .appendTo(document.body); const plot = jQuery.plot(box, [[[0, 0], [1.8, 1]]], {grid: {offsets: {left: 0, right: 0, top: 0, bottom: 0}},
+            xaxis: {min: 0, max: 1.8}, yaxis: {min: 0, max: 1}});
+            const ticks = plot.getAxes().xaxis.ticks.map(t => [t.v, t.label]); box.remove(); return ticks; }""")
+        shown = page.page.evaluate("""() => ['x', 'y'].map(a => Array.from(document.querySelectorAll(
+            '.' + a + 'Axis .tickLabel')).map(e => e.textContent))""")
+        assert not page.refused and not page.errors
+    finally:
+        page.close()
+    assert [label for _, label in labels][:4] == ["0", "0.25", "0.50", "0.75"], labels
+    for value, label in labels:
+        assert float(label) == pytest.approx(value, abs=1e-9)
+    for axis in shown:
+        values = [float(label) for label in axis]
+        steps = np.diff(values)
+        assert len(values) >= 3 and np.allclose(steps, steps[0], rtol=1e-9), axis
