@@ -17,7 +17,7 @@ import sys
 
 import numpy as np
 
-from export.files import FIGURE_MARK_KEYS, MARK, OutputError, atomic_file
+from export.files import OutputError, atomic_file, figure_mark
 from export.palette import (ENERGY_COLOURS, EXACT_COLOUR, curve_colour, energy_label, mass_colours, shade,
                             simulation_width)
 from physics.energy import kinetic, potential, rest_potential
@@ -152,7 +152,7 @@ def energy_panel(ax, result, *, colours) -> None:
 
 def save_figure(fig, path: str) -> None:
     """Write a matplotlib figure to path whole, in the format its extension names, marked as ours
-    (export/files.py FIGURE_MARK_KEYS), and close it.
+    (export/files.py figure_mark), and close it.
 
     A temporary file renamed into place: a failure part-way leaves the old figure as it was.
     """
@@ -160,8 +160,7 @@ def save_figure(fig, path: str) -> None:
     import matplotlib.pyplot as plt
 
     kind = path.rsplit(".", 1)[-1].lower()
-    key = FIGURE_MARK_KEYS.get(kind)
-    metadata = {key: f"{MARK} (with Matplotlib {matplotlib.__version__})"} if key else None
+    metadata = figure_mark(kind, f"Matplotlib {matplotlib.__version__}")
     try:
         with atomic_file(path, what="figure") as temporary:
             fig.savefig(temporary, dpi=110, format=kind, metadata=metadata)
