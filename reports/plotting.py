@@ -12,7 +12,9 @@ with the Agg backend so no window is needed.
 """
 from __future__ import annotations
 
+import logging
 import os
+import shutil
 import sys
 
 import numpy as np
@@ -61,6 +63,13 @@ def check_format(path: str) -> None:
     if extension not in kinds:
         raise OutputError(f"--plot cannot write {path!r}: use one of the file types "
                          f"{', '.join('.' + kind for kind in sorted(kinds))}")
+    if extension == "pgf":   # LaTeX drawing commands, which matplotlib lays out with a TeX system
+        import matplotlib
+
+        tex = matplotlib.rcParams["pgf.texsystem"]
+        if shutil.which(tex) is None:
+            raise OutputError(f"--plot cannot write {path!r}: a .pgf figure needs {tex} (a TeX system), which is not "
+                              f"installed here; use .pdf, .svg or .png instead, or install TeX")
 
 
 MAX_LEGEND = 8  # more curves than this (a row of 25 springs) get no legend
@@ -161,10 +170,23 @@ def save_figure(fig, path: str) -> None:
 
     kind = path.rsplit(".", 1)[-1].lower()
     metadata = figure_mark(kind, f"Matplotlib {matplotlib.__version__}")
+    # The PostScript writer notes on stderr that the grid's see-through lines are drawn opaque:
+    # true of every figure here and nothing to act on, so not printed beside our one-line messages.
+    postscript = logging.getLogger("matplotlib.backends.backend_ps")
+    level = postscript.level
+    postscript.setLevel(logging.ERROR)
     try:
         with atomic_file(path, what="figure") as temporary:
-            fig.savefig(temporary, dpi=110, format=kind, metadata=metadata)
+            try:
+                fig.savefig(temporary, dpi=110, format=kind, metadata=metadata)
+            except OSError:
+                raise           # atomic_file says why in one line (a full disk)
+            except Exception as problem:   # matplotlib cannot write this type here
+                text = " ".join(str(problem).split())
+                raise OutputError(f"--plot cannot write {path!r}: matplotlib could not write a .{kind} file "
+                                  f"({type(problem).__name__}: {text}); use .png, .svg or .pdf instead") from None
     finally:
+        postscript.setLevel(level)
         plt.close(fig)
 
 
