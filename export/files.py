@@ -14,8 +14,12 @@ Where a file may go (check_writable):
   carry a mark (see written_here): the programs and the offline page have MARK in their header,
   the figures have it in their metadata (matplotlib's savefig metadata: PNG "Software", SVG, PDF
   and PostScript "Creator"), and a CSV file is known by its header line, which is the program's
-  contract with the scripts that read it (see written_here for why nothing is added to it).
+  contract with the scripts that read it (see ownership for why nothing is added to it).
   A file of a type that carries no metadata (.jpg, .tif, .webp, ...) is never known to be ours.
+- Beside the mark is a fingerprint, the file's SHA-256 (fingerprint): a marked file that has been
+  changed since, such as a handout a student edited, is not replaced without --overwrite either.
+  A mark without one (an earlier version's file, an .svgz figure) and a CSV file are known as
+  before, by the mark or the header alone (see ownership).
 - A symbolic link is followed: the file it points to is the one judged, and replaced, and the
   link stays a link. Only a regular file is replaced: an existing device (/dev/null,
   /dev/stdout), named pipe or socket is refused before anything opens it, since renaming over it
@@ -24,9 +28,11 @@ Where a file may go (check_writable):
 from __future__ import annotations
 
 import contextlib
+import hashlib
 import importlib.machinery
 import importlib.util
 import os
+import re
 import stat
 import sys
 import tempfile
@@ -47,6 +53,32 @@ MARK_SPAN = 65536              # bytes read at each end of an existing file to l
 # pixels) have no such note in matplotlib, so an existing file of theirs is never known to be ours.
 FIGURE_MARK_KEYS = {"png": "Software", "svg": "Creator", "svgz": "Creator", "pdf": "Creator", "eps": "Creator",
                     "ps": "Creator"}
+# The fingerprint beside the mark (see fingerprint below): "sha256:" and the first 16 hex digits of
+# the SHA-256 of the file's bytes without those 16 digits (and, in a PNG, without the CRC of the
+# chunk holding them, which depends on them). A writer puts DIGEST_SLOT after MARK (with_fingerprint,
+# figure_mark); the file is fingerprinted as written (atomic_file), so the digits match the bytes on
+# the disk, line ends and all.
+DIGEST_TAG = b"sha256:"
+DIGEST_DIGITS = 16
+DIGEST_SLOT = DIGEST_TAG.decode() + "-" * DIGEST_DIGITS
+DIGEST_SPAN = 1000             # bytes after MARK in which its fingerprint is looked for
+_DIGEST = re.compile(re.escape(DIGEST_TAG) + rb"([0-9a-f]{%d}|-{%d})" % (DIGEST_DIGITS, DIGEST_DIGITS))
+# The figure types whose mark keeps a fingerprint: the note is stored as plain bytes in the file.
+# An .svgz figure is compressed whole, so its digits cannot be found or changed in place: its mark
+# has none, and it is known by the mark alone, as before.
+FINGERPRINTED_FIGURES = ("png", "svg", "pdf", "eps", "ps")
+PNG_SIGNATURE = b"\x89PNG\r\n\x1a\n"
+
+
+def figure_mark(kind: str, writer: str) -> dict | None:
+    """savefig's metadata for a figure of file type `kind` written by `writer` (its name and
+    version): MARK, with DIGEST_SLOT where the type keeps it as plain bytes; None for a type with
+    no place for a mark (FIGURE_MARK_KEYS)."""
+    key = FIGURE_MARK_KEYS.get(kind)
+    if key is None:
+        return None
+    slot = f" {DIGEST_SLOT}" if kind in FINGERPRINTED_FIGURES else ""
+    return {key: f"{MARK} (with {writer}){slot}"}
 
 
 class OutputError(ValueError):
@@ -171,10 +203,10 @@ def own_tree(target: str) -> str | None:
     same tree, and is just as broken by a CSV written over one of its modules). So:
 
     - No existing file under PROJECT is replaced, whatever --overwrite says, except this
-      program's own outputs (written_here) lying directly in PROJECT: the README's examples run
-      from this folder (`--csv damped.csv`), and running one twice replaces its own file. An
-      unmarked file there may be main.py or a requirements file, or a user's file that cannot be
-      told from one.
+      program's own outputs (ownership: marked, edited since or not) lying directly in PROJECT:
+      the README's examples run from this folder (`--csv damped.csv`), and running one twice
+      replaces its own file (an edited one only with --overwrite, as anywhere). An unmarked file
+      there may be main.py or a requirements file, or a user's file that cannot be told from one.
     - A new file may be made directly in PROJECT, the folder users run the program from, unless
       Python would import it in place of a module it already has: main.py's folder comes first
       on Python's path, so a json.py or numpy.py there would replace that module on the next run.
@@ -199,7 +231,7 @@ def own_tree(target: str) -> str | None:
         if len(parts) > 1:
             return f"it is inside the program's own folder {parts[0]}/, which it never writes into"
         if os.path.lexists(target):
-            return None if written_here(target) else "it is one of this program's own files"
+            return None if ownership(target) != THEIRS else "it is one of this program's own files"
         module = _module_name(name)
         if module is not None and module.isidentifier() and _importable(module):
             return (f"in the program's own folder it would be imported in place of the {module} module "
@@ -215,12 +247,30 @@ def own_tree(target: str) -> str | None:
 # ---- the program's own outputs ----
 
 def written_here(target: str) -> bool:
-    """Whether the existing file at `target` is one this program wrote: it carries the mark.
+    """Whether the existing file at `target` is one this program wrote, unchanged since: see ownership."""
+    return ownership(target) == OURS
+
+
+OURS, EDITED, THEIRS = "ours", "edited", "theirs"
+
+
+def ownership(target: str) -> str:
+    """OURS if the existing file at `target` is one this program wrote and nobody has changed since,
+    EDITED if it carries the mark but its fingerprint no longer matches, THEIRS otherwise.
 
     The programs, the offline page and the figures have MARK near one end (a header comment, the
     PNG's "Software" text, the SVG's, PDF's or PostScript's "Creator"); a compressed SVG (.svgz)
-    is looked at unpacked. A CSV file is ours if its first line is our header, byte for byte
-    (CSV_HEADER_LINES, with csv.writer's line end). Nothing is added to the CSV file for a mark,
+    is looked at unpacked. Beside the mark is the fingerprint (DIGEST_TAG and 16 hex digits, see
+    fingerprint): the file's SHA-256 without those digits. A marked file whose bytes no longer
+    give it, such as a handout a student has edited, is EDITED: not replaced without --overwrite.
+    A mark with no fingerprint (written by a version before fingerprints, or an .svgz figure) is
+    OURS by the mark alone, as it was: a teacher's script that reruns its commands onto files an
+    earlier version wrote keeps working. Reading the fingerprint costs one pass over the file in
+    blocks (hashlib), so a big figure costs its reading time and no more memory.
+
+    A CSV file is ours if its first line is our header, byte for byte (CSV_HEADER_LINES, with
+    csv.writer's line end), and it carries no fingerprint: a CSV file whose rows a student changed
+    is still replaced as ours. Nothing is added to the CSV file for a mark or a fingerprint,
     because every addition breaks a reader the header is promised to: measured on our own
     vertical run with csv.DictReader, csv.reader, numpy.loadtxt, numpy.genfromtxt(names=True) and
     pandas.read_csv, and a grader reading line 1 as the header, a comment line before the header
@@ -235,24 +285,122 @@ def written_here(target: str) -> bool:
         with open(target, "rb") as file:
             head = file.read(MARK_SPAN)
             size = os.fstat(file.fileno()).st_size
-            tail = b""
+            tail, tail_at = b"", 0
             if size > MARK_SPAN:
-                file.seek(max(MARK_SPAN, size - MARK_SPAN))
+                tail_at = max(MARK_SPAN, size - MARK_SPAN)
+                file.seek(tail_at)
                 tail = file.read(MARK_SPAN)
+            if head.startswith(CSV_HEADER_LINES):
+                return OURS
+            if head.startswith(b"\x1f\x8b"):   # gzip: an .svgz figure, unpacked as far as it was read
+                try:
+                    unpacked = zlib.decompressobj(wbits=31).decompress(head, MARK_SPAN)
+                except zlib.error:
+                    unpacked = head
+                return OURS if MARK.encode() in unpacked else THEIRS
+            found = _find_digest(head, 0) or _find_digest(tail, tail_at)
+            if found is None:
+                return OURS if MARK.encode() in head or MARK.encode() in tail else THEIRS
+            at, digits = found
+            if digits == b"-" * DIGEST_DIGITS:     # a slot never filled in: known by its mark alone
+                return OURS
+            return OURS if fingerprint(file, at) == digits else EDITED
     except OSError:
-        return False   # unreadable: not known to be ours
-    if head.startswith(b"\x1f\x8b"):   # gzip: an .svgz figure, unpacked as far as it was read
-        try:
-            head = zlib.decompressobj(wbits=31).decompress(head, MARK_SPAN)
-        except zlib.error:
-            pass
-    mark = MARK.encode()
-    return head.startswith(CSV_HEADER_LINES) or mark in head or mark in tail
+        return THEIRS   # unreadable: not known to be ours
+
+
+def _find_digest(block: bytes, offset: int) -> tuple[int, bytes] | None:
+    """Where the fingerprint's digits after MARK in `block` start in the file (block starts at
+    `offset`), and the digits; None if `block` has no MARK or MARK has no fingerprint after it."""
+    mark = block.find(MARK.encode())
+    if mark < 0:
+        return None
+    found = _DIGEST.search(block, mark, mark + len(MARK) + DIGEST_SPAN)
+    if found is None:
+        return None
+    return offset + found.start(1), found.group(1)
+
+
+def _png_chunk(file, at: int) -> tuple[int, int] | None:
+    """In a PNG file, the chunk holding byte `at`: where its type starts (its CRC covers the type
+    and the data) and where its CRC starts; None if the file is not a PNG."""
+    file.seek(0)
+    if file.read(8) != PNG_SIGNATURE:
+        return None
+    place = 8
+    while True:
+        file.seek(place)
+        head = file.read(8)
+        if len(head) < 8:
+            return None
+        end = place + 8 + int.from_bytes(head[:4], "big")
+        if place + 8 <= at < end:
+            return place + 4, end
+        place = end + 4
+
+
+def fingerprint(file, at: int) -> bytes:
+    """The 16 hex digits (as bytes) of the SHA-256 of an open binary file's bytes, leaving out the
+    DIGEST_DIGITS bytes at `at` (the fingerprint's own place) and, in a PNG, the CRC of their
+    chunk. Read in blocks of 1 MiB: a big file is never held whole."""
+    skips = [(at, at + DIGEST_DIGITS)]
+    chunk = _png_chunk(file, at)
+    if chunk is not None:
+        skips.append((chunk[1], chunk[1] + 4))
+    digest = hashlib.sha256()
+    file.seek(0)
+    place = 0
+    while block := file.read(1 << 20):
+        end = place + len(block)
+        kept, cursor = [], place
+        for start, stop in sorted(skips):
+            if start < end and stop > cursor:
+                kept.append(block[cursor - place:max(start, cursor) - place])
+                cursor = min(stop, end)
+        kept.append(block[cursor - place:])
+        digest.update(b"".join(kept))
+        place = end
+    return digest.hexdigest()[:DIGEST_DIGITS].encode()
+
+
+def fill_fingerprint(path: str) -> None:
+    """Write the fingerprint of the file at `path` into its place after MARK (DIGEST_SLOT, or the
+    digits of an earlier one), and in a PNG the CRC of that chunk again; nothing if it has none.
+    The file is changed in place, as many bytes as before: a PDF's table of offsets stays right."""
+    with open(path, "r+b") as file:
+        head = file.read(MARK_SPAN)
+        size = os.fstat(file.fileno()).st_size
+        tail_at = max(MARK_SPAN, size - MARK_SPAN) if size > MARK_SPAN else 0
+        file.seek(tail_at)
+        found = _find_digest(head, 0) or (_find_digest(file.read(MARK_SPAN), tail_at) if tail_at else None)
+        if found is None:
+            return
+        at = found[0]
+        digits = fingerprint(file, at)
+        file.seek(at)
+        file.write(digits)
+        chunk = _png_chunk(file, at)
+        if chunk is not None:
+            file.seek(chunk[0])
+            covered = file.read(chunk[1] - chunk[0])
+            file.seek(chunk[1])
+            file.write(zlib.crc32(covered).to_bytes(4, "big"))
+
+
+def with_fingerprint(text: str, line: str) -> str:
+    """`text` with `line` (a comment holding DIGEST_SLOT, in the file's language) after the line
+    holding MARK; `text` as it is if it has no MARK near its top. Only files get it: the same
+    program printed (`-`) or downloaded from the page is as before, known by its mark alone."""
+    at = text.find(MARK, 0, MARK_SPAN)
+    if at < 0:
+        return text
+    end = text.find("\n", at) + 1 or len(text)
+    return text[:end] + line + "\n" + text[end:]
 
 
 def _refuse(path: str, target: str, *, what: str, overwrite: bool) -> None:
     """Raise OutputError if target is in the program's own tree (own_tree), or, unless
-    `overwrite`, an existing file this program did not write (written_here)."""
+    `overwrite`, an existing file this program did not write or that was changed since (ownership)."""
     reason = own_tree(target)
     if reason is not None:
         where = sorted(_user_folders())
@@ -260,10 +408,15 @@ def _refuse(path: str, target: str, *, what: str, overwrite: bool) -> None:
                   f"write it outside the program's folder, or in {where[0]}/ (kept for your files)" if where else
                   "write it outside the program's folder")
         raise OutputError(f"cannot write {what} {path!r}: {reason}; {advice}")
-    if overwrite or not os.path.isfile(target) or written_here(target):
+    if overwrite or not os.path.isfile(target):
+        return
+    owner = ownership(target)
+    if owner == OURS:
         return
     kind = target.rsplit(".", 1)[-1].lower() if "." in os.path.basename(target) else ""
-    if what == "figure" and kind not in FIGURE_MARK_KEYS:
+    if owner == EDITED:
+        said = "this program wrote it, but it has been changed since (its sha256 fingerprint no longer matches)"
+    elif what == "figure" and kind not in FIGURE_MARK_KEYS:
         said = f"it is a .{kind} file, a type that cannot carry this program's mark, so it cannot tell whether it wrote it"
     else:
         said = f"it is {'a Python file' if kind in ('py', 'pyw') else 'a file'} this program did not write"
@@ -339,6 +492,7 @@ def atomic_file(path: str, *, what: str):
     temporary = _temporary_beside(target, what=what, shown=path)
     try:
         yield temporary
+        fill_fingerprint(temporary)
         os.replace(temporary, target)
     except OSError as problem:
         raise OutputError(f"cannot write {what} {path!r}: {problem.strerror or problem}"
@@ -374,6 +528,11 @@ def check_path(path: str, *, overwrite: bool = False) -> None:
     check_writable(path, what="the program", overwrite=overwrite)
 
 
+PROGRAM_FINGERPRINT = (f"# {DIGEST_SLOT}: this file's fingerprint; once the file is edited, the simulator replaces "
+                       f"it only with --overwrite")
+
+
 def write_program(path: str, text: str, *, overwrite: bool = False) -> None:
-    """Write a program to path whole: a temporary file in the same folder, then renamed over it."""
-    write_text(path, text, what="the program", overwrite=overwrite)
+    """Write a program to path whole: a temporary file in the same folder, then renamed over it.
+    Its header gets the fingerprint's line (PROGRAM_FINGERPRINT, filled in as written)."""
+    write_text(path, with_fingerprint(text, PROGRAM_FINGERPRINT), what="the program", overwrite=overwrite)

@@ -356,6 +356,11 @@ def _short(x) -> str:
     return str(int(x)) if x.is_integer() and abs(x) < 1e15 else repr(x)
 
 
+# The fingerprint's line under the mark (export/files.py with_fingerprint); an HTML comment may not hold "--".
+PAGE_FINGERPRINT = (f"<!-- {files.DIGEST_SLOT}: this file's fingerprint; once the file is edited, the simulator "
+                    f"replaces it only when told to overwrite -->")
+
+
 def check_page_path(path: str, *, overwrite: bool = False) -> None:
     """Raise OutputError (one line) if the page cannot be written to path: files.check_writable's
     checks, and an existing file this program did not write (no HANDOUT_MARK near its top) is
@@ -374,6 +379,7 @@ def check_page_path(path: str, *, overwrite: bool = False) -> None:
 
 
 def write_page(path: str, text: str, *, overwrite: bool = False) -> None:
-    """Write the page whole (a temporary file renamed over the target), after check_page_path."""
+    """Write the page whole (a temporary file renamed over the target), after check_page_path,
+    with the fingerprint's line under its mark (PAGE_FINGERPRINT)."""
     check_page_path(path, overwrite=overwrite)
-    files.write_text(path, text, what="the offline page", overwrite=overwrite)
+    files.write_text(path, files.with_fingerprint(text, PAGE_FINGERPRINT), what="the offline page", overwrite=overwrite)

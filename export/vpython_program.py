@@ -60,7 +60,7 @@ from scenes import DECLARED
 from scenes._view import DEFAULT_VIEW, MAX_DRAWN_MASSES
 
 from . import program_arrows, program_page
-from .exact_curve import exact_lines
+from .exact_curve import exact_lines, plot_line
 from .lines import ProgramError, align_comments, commented, vector
 from .palette import EXACT_COLOUR, EXACT_WIDTH
 from .program_answer import HELPERS, answer_line
@@ -251,7 +251,7 @@ class _Case:
         lines += self.plot_position()
         if self.exact is not None:
             lines += self.exact[1] if self.single else self.exact[0] + self.exact[1]
-            lines += [f"exact{i}.plot(t, ({n('anchor')} + (s_eq + x)*u).{axes[0]})"]
+            lines += [plot_line(self.constants, index=i, axis=axes[0])]
         return lines
 
     def answer(self) -> list[str]:

@@ -29,6 +29,26 @@ from __future__ import annotations
 
 import numpy as np
 
+class Role:
+    """The closed form's parameters, by role: the keywords of single_mass_motion and row_motion.
+
+    Each force's closed_form() gives the values of its roles by these keys, and its CLOSED_FORM
+    names the constant that holds each (physics/forces/base.py closed_form_constants): the
+    program's exact curve (export/exact_curve.py) finds its constants by role, never by name.
+    """
+
+    STIFFNESS = "k"               # N/m, in −k (|L| − L0) L̂
+    NATURAL_LENGTH = "L0"         # m, the spring's relaxed length
+    ANCHOR = "anchor"             # m, the spring's fixed end
+    GRAVITY = "g"                 # m/s², along −y
+    DAMPING = "b"                 # kg/s, in −b v
+    DRIVE_AMPLITUDE = "F0"        # N, in F0 cos(ω t)
+    DRIVE_FREQUENCY = "omega"     # rad/s, ω in F0 cos(ω t)
+    DRIVE_AXIS = "drive_axis"     # the driving force's direction
+
+
+ROLES = tuple(value for name, value in vars(Role).items() if name.isupper())
+
 
 def damping_regime(*, m: float, k: float, b: float, rtol: float = 1e-9) -> str:
     """'under-damped' if b² < 4mk, 'critically damped' if b² = 4mk (within rtol), else 'over-damped'."""

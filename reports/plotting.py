@@ -12,12 +12,14 @@ with the Agg backend so no window is needed.
 """
 from __future__ import annotations
 
+import logging
 import os
+import shutil
 import sys
 
 import numpy as np
 
-from export.files import FIGURE_MARK_KEYS, MARK, OutputError, atomic_file
+from export.files import OutputError, atomic_file, figure_mark
 from export.palette import (ENERGY_COLOURS, EXACT_COLOUR, curve_colour, energy_label, mass_colours, shade,
                             simulation_width)
 from physics.energy import kinetic, potential, rest_potential
@@ -61,6 +63,13 @@ def check_format(path: str) -> None:
     if extension not in kinds:
         raise OutputError(f"--plot cannot write {path!r}: use one of the file types "
                          f"{', '.join('.' + kind for kind in sorted(kinds))}")
+    if extension == "pgf":   # LaTeX drawing commands, which matplotlib lays out with a TeX system
+        import matplotlib
+
+        tex = matplotlib.rcParams["pgf.texsystem"]
+        if shutil.which(tex) is None:
+            raise OutputError(f"--plot cannot write {path!r}: a .pgf figure needs {tex} (a TeX system), which is not "
+                              f"installed here; use .pdf, .svg or .png instead, or install TeX")
 
 
 MAX_LEGEND = 8  # more curves than this (a row of 25 springs) get no legend
@@ -152,7 +161,7 @@ def energy_panel(ax, result, *, colours) -> None:
 
 def save_figure(fig, path: str) -> None:
     """Write a matplotlib figure to path whole, in the format its extension names, marked as ours
-    (export/files.py FIGURE_MARK_KEYS), and close it.
+    (export/files.py figure_mark), and close it.
 
     A temporary file renamed into place: a failure part-way leaves the old figure as it was.
     """
@@ -160,12 +169,24 @@ def save_figure(fig, path: str) -> None:
     import matplotlib.pyplot as plt
 
     kind = path.rsplit(".", 1)[-1].lower()
-    key = FIGURE_MARK_KEYS.get(kind)
-    metadata = {key: f"{MARK} (with Matplotlib {matplotlib.__version__})"} if key else None
+    metadata = figure_mark(kind, f"Matplotlib {matplotlib.__version__}")
+    # The PostScript writer notes on stderr that the grid's see-through lines are drawn opaque:
+    # true of every figure here and nothing to act on, so not printed beside our one-line messages.
+    postscript = logging.getLogger("matplotlib.backends.backend_ps")
+    level = postscript.level
+    postscript.setLevel(logging.ERROR)
     try:
         with atomic_file(path, what="figure") as temporary:
-            fig.savefig(temporary, dpi=110, format=kind, metadata=metadata)
+            try:
+                fig.savefig(temporary, dpi=110, format=kind, metadata=metadata)
+            except OSError:
+                raise           # atomic_file says why in one line (a full disk)
+            except Exception as problem:   # matplotlib cannot write this type here
+                text = " ".join(str(problem).split())
+                raise OutputError(f"--plot cannot write {path!r}: matplotlib could not write a .{kind} file "
+                                  f"({type(problem).__name__}: {text}); use .png, .svg or .pdf instead") from None
     finally:
+        postscript.setLevel(level)
         plt.close(fig)
 
 

@@ -25,8 +25,9 @@ def test_friction_in_web_vpython_answers_as_in_python(stand_in, tmp_path):  # no
     assert "if dot(ps, ps + Fs*dt) <=" in web.stdout
     with launched(sync_api, "--allow-file-access-from-files") as chromium:
         page = chromium.new_page(viewport={"width": 1280, "height": 800})
-        text = run_in_glowscript(page, web.stdout, answers=len(printed))
-        page.wait_for_timeout(3000)     # on to t_end: the held block's lines run on without error
-        assert not page.evaluate("() => document.getElementById('gserrors').innerText").strip()
-    answers = [line for line in text.strip().splitlines() if re.search(r"kg·m/s", line)]
+        lines = run_in_glowscript(page, web.stdout, answers=len(printed), folder=tmp_path)
+        # on to t_end: the held block's lines run on without error
+        page.wait_for_function("window.failed !== null || window.ended")
+        assert page.evaluate("window.failed") is None
+    answers = [line for line in lines if re.search(r"kg·m/s", line)]
     assert answers == printed

@@ -221,3 +221,127 @@ def test_a_data_plot_onto_another_file_follows_the_rules(tmp_path):
     assert "did not write" in one_error(main_py("damped", "--data", VERNIER, "--plot", other))
     assert main_py("damped", "--data", VERNIER, "--plot", other, "--overwrite").returncode == 0
     assert files.written_here(str(other))
+
+
+# ---- 2b. its own output, edited since: the fingerprint ----
+
+def edit_one_line(path: Path) -> bytes:
+    """Change one line of a text file as a student would (a constant's value); returns the new bytes."""
+    text = path.read_bytes()
+    lines = text.split(b"\n")
+    number = next(i for i, line in enumerate(lines) if line.startswith((b"k = ", b"<title>")))
+    lines[number] = lines[number].replace(b"k = ", b"k = 1") if lines[number].startswith(b"k = ") else \
+        lines[number].replace(b"<title>", b"<title>My ")
+    path.write_bytes(b"\n".join(lines))
+    assert path.read_bytes() != text
+    return path.read_bytes()
+
+
+@pytest.mark.parametrize("flag, name", [("--vpython", "spring.py"), ("--webvpython", "spring.py"),
+                                        ("--html", "spring.html")])
+def test_a_handout_a_student_edited_is_replaced_only_with_overwrite(flag, name, tmp_path):
+    """A handout of ours that a student has since edited is not ours any more: its fingerprint (the
+    SHA-256 beside the mark) no longer matches, and rerunning the command refuses it, byte for byte."""
+    path = tmp_path / name
+    for _ in range(2):    # its own output, unedited: replaced with no --overwrite
+        done = main_py("vertical", flag, path)
+        assert done.returncode == 0, done.stderr
+        assert files.ownership(str(path)) == files.OURS
+    edited = edit_one_line(path)
+    assert files.ownership(str(path)) == files.EDITED
+    line = one_error(main_py("vertical", flag, path))
+    assert line.endswith(f"{str(path)!r}: this program wrote it, but it has been changed since (its sha256 fingerprint "
+                         f"no longer matches); give another name, or add --overwrite to replace it"), line
+    assert path.read_bytes() == edited
+    assert main_py("vertical", flag, path, "--overwrite").returncode == 0
+    assert files.ownership(str(path)) == files.OURS and b"k = 1" not in path.read_bytes().split(b"<title>My")[0]
+
+
+@pytest.mark.parametrize("kind", files.FINGERPRINTED_FIGURES)
+def test_a_figure_changed_since_is_replaced_only_with_overwrite(kind, tmp_path):
+    """A figure keeps its fingerprint in its metadata (PNG "Software", the others' "Creator"); one
+    byte changed in the middle (the image itself) makes it not ours. The PNG stays a valid PNG:
+    the CRC of the chunk holding the fingerprint is written again."""
+    path = tmp_path / f"run.{kind}"
+    for _ in range(2):
+        assert main_py("vertical", "--plot", path).returncode == 0
+    if kind == "png":
+        from PIL import Image
+
+        with Image.open(path) as image:
+            image.verify()    # checks every chunk's CRC
+    data = bytearray(path.read_bytes())
+    assert re_digits(data)
+    data[len(data) // 2] ^= 0x01
+    path.write_bytes(bytes(data))
+    assert "has been changed since" in one_error(main_py("vertical", "--plot", path))
+    assert path.read_bytes() == bytes(data)
+    assert main_py("vertical", "--plot", path, "--overwrite").returncode == 0
+    assert files.ownership(str(path)) == files.OURS
+
+
+def re_digits(data) -> bool:
+    """Whether a file's bytes hold a filled-in fingerprint after the mark."""
+    import re
+
+    return re.search(re.escape(files.MARK.encode()) + rb".{0,600}?sha256:[0-9a-f]{16}", bytes(data), re.S) is not None
+
+
+def test_files_of_the_version_before_fingerprints_are_still_its_own(tmp_path):
+    """A mark with no fingerprint (a handout, page or figure an earlier version wrote, or a program
+    printed with `-` or downloaded from the page) is known by the mark alone, as before: a teacher's
+    script rerunning its commands onto them keeps working, edited or not."""
+    printed = main_py("damped", "--vpython", "-")
+    assert printed.returncode == 0 and "sha256:" not in printed.stdout     # stdout: as before
+    old = tmp_path / "spring.py"
+    old.write_text(printed.stdout.replace("\nb = 1 ", "\nb = 2 "), encoding="utf-8")    # edited, even
+    assert files.ownership(str(old)) == files.OURS
+    assert main_py("damped", "--vpython", old).returncode == 0
+    assert re_digits(old.read_bytes())      # now written with its fingerprint
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    figure = plt.figure()
+    figure.savefig(tmp_path / "old.png", metadata={"Software": files.MARK + " (with Matplotlib)"})
+    plt.close(figure)
+    assert main_py("vertical", "--plot", tmp_path / "old.png").returncode == 0
+
+
+def test_a_csv_file_with_changed_rows_is_still_its_own(tmp_path):
+    """The CSV format has no place for a fingerprint that every reader skips (see files.ownership):
+    a CSV file is known by its header alone, and one whose rows were changed is replaced as before."""
+    path = tmp_path / "run.csv"
+    assert main_py("vertical", "--headless", "--csv", path).returncode == 0
+    rows = path.read_bytes().split(b"\r\n")
+    rows[3] = b"0.3,1,2,3,4,5,6,7,8,9,10,11,12,13"
+    path.write_bytes(b"\r\n".join(rows))
+    assert files.ownership(str(path)) == files.OURS
+    assert main_py("vertical", "--headless", "--csv", path).returncode == 0
+
+
+@pytest.mark.parametrize("at", [0, 100, (1 << 20) - 7, (1 << 20), 3 * (1 << 20) - 1])
+def test_the_fingerprint_is_streamed_and_leaves_out_its_own_digits(at):
+    """fingerprint reads the file in 1 MiB blocks; its own 16 digits (here across a block's end too)
+    are left out, so filling them in does not change it."""
+    import hashlib
+    import io
+    import random
+
+    data = bytearray(random.Random(at).randbytes(3 * (1 << 20) + 5))
+    expected = hashlib.sha256(bytes(data[:at] + data[at + 16:])).hexdigest()[:16].encode()
+    assert files.fingerprint(io.BytesIO(bytes(data)), at) == expected
+    data[at:at + 16] = expected
+    assert files.fingerprint(io.BytesIO(bytes(data)), at) == expected
+
+
+def test_the_fingerprint_is_of_the_bytes_on_the_disk(tmp_path):
+    """Filled in after the file is written (files.fill_fingerprint), so Windows line ends, which
+    Python's text mode writes there, are what it covers."""
+    path = tmp_path / "spring.py"
+    text = files.with_fingerprint("# " + files.MARK + "\nk = 1\n", files.PROGRAM_FINGERPRINT)
+    path.write_bytes(text.replace("\n", "\r\n").encode())
+    files.fill_fingerprint(str(path))
+    assert re_digits(path.read_bytes()) and files.ownership(str(path)) == files.OURS
+    path.write_bytes(path.read_bytes().replace(b"k = 1\r\n", b"k = 1\n"))
+    assert files.ownership(str(path)) == files.EDITED

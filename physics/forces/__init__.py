@@ -13,7 +13,7 @@ from __future__ import annotations
 import importlib
 import pkgutil
 
-from .base import (FORCES, Force, compare, declared_constants, forces_each, net_force, settle,  # noqa: F401
+from .base import (FORCES, Force, closed_form_constants, compare, declared_constants, forces_each, net_force, settle,  # noqa: F401
                    switched_on, uses_velocity, where)
 from .page import Driving, Gravity, LinearDamping, QuadraticDrag, Spring, SpringBetween  # noqa: F401
 

@@ -102,6 +102,9 @@ class Force:
     rates()    what it adds to the stability judgement (physics/stability.py)
     closed_form()  its terms in the closed form (physics/exact.py), or None where that does not
                cover it: a model with such a force has no exact solution, and says so by LABEL
+    CLOSED_FORM  the constant of CONSTANTS that holds each of its roles in the closed form, by the
+               role (physics/exact.py Role: {Role.STIFFNESS: "k"}): how the program's exact curve
+               finds the constants it writes (closed_form_constants)
     stop()     its stop rule, where it has one (static friction): applied by the engine after
                every step, and written in the program after the update (STOP lines)
 
@@ -114,6 +117,7 @@ class Force:
     TERM = ""
     PROGRAM: tuple[tuple[str, str], ...] = ()
     STOP: tuple[tuple[str, str], ...] = ()
+    CLOSED_FORM: dict[str, str] = {}
     conservative = False
     uses_velocity = False
     responds = False
@@ -217,6 +221,23 @@ def declared_constants() -> dict[str, Declared]:
     return declared
 
 
+def closed_form_constants() -> dict[str, str]:
+    """The constant that holds each role of the closed form (physics/exact.py ROLES), from every
+    force's CLOSED_FORM. Raises ValueError where two forces give one role different constants, or a
+    force gives a role the closed form does not have or a constant it does not declare."""
+    from ..exact import ROLES
+
+    names: dict[str, str] = {}
+    for cls in FORCES:
+        for role, name in cls.CLOSED_FORM.items():
+            if role not in ROLES or name not in cls.CONSTANTS:
+                raise ValueError(f"{cls.__name__}.CLOSED_FORM gives {role!r}: {name!r}, but the closed form's roles "
+                                 f"are {', '.join(ROLES)} and the force's constants {', '.join(cls.CONSTANTS)}")
+            if names.setdefault(role, name) != name:
+                raise ValueError(f"two forces give the closed form's {role} different constants ({cls.__name__} is one)")
+    return names
+
+
 def switched_on(**constants) -> tuple:
     """Every known force the constants switch on, in the order the forces were defined (the page's
     own first: spring, gravity, damping, drag, driving): what a single-mass scene is made of."""
@@ -274,6 +295,6 @@ def settle(forces, *, t, r, p, m, dt, r_f, p_f):
     return r_f, p_f
 
 
-__all__ = ["Force", "FORCES", "Declared", "compare", "declared_constants", "forces_each", "net_force", "settle",
+__all__ = ["Force", "FORCES", "Declared", "closed_form_constants", "compare", "declared_constants", "forces_each", "net_force", "settle",
            "switched_on",
            "uses_velocity", "where", "row_dot"]

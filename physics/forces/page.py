@@ -31,6 +31,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..declared import Declared
+from ..exact import Role
 from ..rows import magnitude
 from .base import Force, _column, _new_like, _per_mass, _unit
 
@@ -57,6 +58,7 @@ class Spring(Force):
     }
     TERM = "Fspring"
     VECTORS = {"anchor": "point"}
+    CLOSED_FORM = {Role.STIFFNESS: "k", Role.NATURAL_LENGTH: "L0", Role.ANCHOR: "anchor"}
     PROGRAM = (("L = {r} - {anchor}", "the spring, from its fixed end to the mass"),
                ("Fspring = {k}*({L0}/mag(L) - 1)*L", "Hooke's law: F = −k (|L| − L0) L̂, written k (L0/|L| − 1) L"))
     LINEAR = (("L = {r} - {anchor}", "the spring, from its fixed end to the mass"),
@@ -175,6 +177,7 @@ class Gravity(Force):
                                default=0.0, switch=True)}
     TERM = "Fgravity"
     VECTORS = {"direction": "direction", "g_vector": "direction"}
+    CLOSED_FORM = {Role.GRAVITY: "g"}
     PROGRAM = (("Fgravity = {m}*vector(0, -{g}, 0)", "gravity: F = m g, down (−y)"),)
 
     def __post_init__(self):
@@ -214,6 +217,7 @@ class LinearDamping(Force):
                                meaning="linear damping constant in F = −b v", default=0.0, switch=True)}
     TERM = "Fdamping"
     VECTORS = {}
+    CLOSED_FORM = {Role.DAMPING: "b"}
     PROGRAM = (("Fdamping = -{b}*{v}", "linear damping: F = −b v"),)
 
     def __post_init__(self):
@@ -295,6 +299,7 @@ class Driving(Force):
     }
     TERM = "Fdrive"
     VECTORS = {"axis": "direction"}
+    CLOSED_FORM = {Role.DRIVE_AMPLITUDE: "F0", Role.DRIVE_FREQUENCY: "omega", Role.DRIVE_AXIS: "drive_axis"}
     PROGRAM = (("Fdrive = {F0}*cos({omega}*{t})*{drive_axis}", "driving: F = F0 cos(ω t) along drive_axis"),)
 
     def __post_init__(self):
