@@ -165,6 +165,21 @@ def _user_folders() -> set[str]:
     return names
 
 
+def _made_user_folder(folder: str) -> bool:
+    """Make the project's own out/ (a folder its .gitignore gives to the user, _user_folders) if
+    `folder` is it and it is missing: the guides write `--vpython out/damped.py` from a fresh
+    checkout, which has no out/ yet. Any other missing folder stays an error (a mistyped path)."""
+    if os.path.dirname(folder) != os.path.realpath(PROJECT) or os.path.basename(folder) not in _user_folders():
+        return False
+    try:
+        os.mkdir(folder)
+    except FileExistsError:
+        pass
+    except OSError:
+        return False
+    return os.path.isdir(folder)
+
+
 def _scene_folders() -> list[str]:
     """A teacher's scene folders (SPRING_SCENES), where Python imports scenes from."""
     from scenes import catalog
@@ -441,7 +456,7 @@ def check_writable(path: str, *, what: str, overwrite: bool = False) -> None:
         raise OutputError(f"cannot write {what} '': give a file name, like run.csv")
     target = _target(path, what=what)
     folder = os.path.dirname(target)
-    if not os.path.isdir(folder):
+    if not os.path.isdir(folder) and not _made_user_folder(folder):
         raise OutputError(f"cannot write {what} {path!r}: folder {folder!r} does not exist")
     _refuse(path, target, what=what, overwrite=overwrite)
     existed = os.path.exists(target)

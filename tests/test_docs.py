@@ -140,6 +140,7 @@ def test_every_command_a_guide_shows_runs_as_shown(doc, tmp_path):
     commands = shown_commands(doc)
     assert commands or doc in EXPLAINS_ONLY, f"{doc} shows no command to run"
     (tmp_path / "examples").symlink_to(ROOT / "examples")
+    (tmp_path / "out").mkdir()   # the guides write into out/, which the program makes in its own folder
     env = {**os.environ, "PYTHONIOENCODING": "utf-8"}
     failed = []
     for args in commands:

@@ -103,7 +103,13 @@ def test_a_copy_without_git_is_protected_the_same_and_its_out_folder_is_the_user
                     "which it never writes into; write it outside the program's folder, or in out/ (kept for your "
                     "files)")
     assert options.read_bytes() == before
-    (copy / "out").mkdir()    # ./out/, gitignored: a student's outputs
+    # ./out/, gitignored, is a student's outputs: a fresh checkout has none, and the first output
+    # into it makes it (the guides write `--vpython out/damped.py`); any other missing folder is
+    # a mistyped path, refused
+    assert not (copy / "out").exists()
+    assert "folder" in one_error(main_py("vertical", "--headless", "--csv", "outs/run.csv", cwd=copy,
+                                         main=copy / "main.py"))
+    assert not (copy / "outs").exists()
     for argv in (["vertical", "--headless", "--csv", "out/run.csv"], ["vertical", "--plot", "out/run.png"],
                  ["damped", "--vpython", "out/handout.py"], ["damped", "--headless", "--csv", "run.csv"]):
         done = main_py(*argv, cwd=copy, main=copy / "main.py")
