@@ -45,21 +45,61 @@ def require_browser():
     return sync_api, image
 
 
-@contextlib.contextmanager
-def launched(sync_api, *extra_args, scrollbars: bool = False):
-    """Headless Chromium with the arguments that make its 3-D canvas draw, closed afterwards.
+_driver = None   # the run's one Playwright driver: Playwright's sync API cannot start a second beside it
+_shared = None   # the run's one Chromium with the default arguments (conftest's `browser` fixture)
+
+
+def _playwright(sync_api):
+    """The one Playwright driver of this run, started on first use and stopped by stop_all()."""
+    global _driver
+    if _driver is None:
+        _driver = sync_api.sync_playwright().start()
+    return _driver
+
+
+def launch(sync_api, *extra_args, scrollbars: bool = False):
+    """A new headless Chromium with the arguments that make its 3-D canvas draw; the caller closes it.
 
     scrollbars  draw scrollbars that take room, as a desktop browser does (Playwright hides them
                 by default, and so hid that the page scrolled sideways at 1280 × 800)
     """
     hidden = ["--hide-scrollbars"] if scrollbars else []
-    with sync_api.sync_playwright() as playwright:
-        chromium = playwright.chromium.launch(executable_path=CHROMIUM, args=CHROMIUM_ARGS + list(extra_args),
-                                              ignore_default_args=hidden)
-        try:
-            yield patient(chromium)
-        finally:
-            chromium.close()
+    return patient(_playwright(sync_api).chromium.launch(executable_path=CHROMIUM,
+                                                         args=CHROMIUM_ARGS + list(extra_args),
+                                                         ignore_default_args=hidden))
+
+
+def shared_browser(sync_api):
+    """The one Chromium with the default arguments that every browser test of the run shares
+    (issue 31: launched once, not once per module). Each test opens its own pages, and
+    Browser.new_page gives each page a context of its own: no cookies or storage pass between them."""
+    global _shared
+    if _shared is None or not _shared.is_connected():
+        _shared = launch(sync_api)
+    return _shared
+
+
+def stop_all():
+    """Close the shared Chromium and stop the driver (conftest calls this as the run ends)."""
+    global _driver, _shared
+    try:
+        if _shared is not None and _shared.is_connected():
+            _shared.close()
+    finally:
+        _shared = None
+        if _driver is not None:
+            driver, _driver = _driver, None
+            driver.stop()
+
+
+@contextlib.contextmanager
+def launched(sync_api, *extra_args, scrollbars: bool = False):
+    """A Chromium of its own, for a module that needs other arguments (see launch), closed afterwards."""
+    chromium = launch(sync_api, *extra_args, scrollbars=scrollbars)
+    try:
+        yield chromium
+    finally:
+        chromium.close()
 
 
 def patient(chromium):

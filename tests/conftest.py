@@ -61,6 +61,31 @@ def oscillation_energy():
     return _oscillation_energy
 
 
+# ---- one Chromium for the run ----
+
+@pytest.fixture(scope="session")
+def browser():
+    """Headless Chromium with the project's arguments (tests/browser_support.py), launched once for
+    the whole run and shared by every browser test; each test opens its own pages, each page in a
+    context of its own. Skips, with the reason, where Chromium, Playwright or Pillow is missing."""
+    import browser_support
+
+    sync_api, _ = browser_support.require_browser()
+    return browser_support.shared_browser(sync_api)
+
+
+@pytest.fixture(scope="session", autouse=True)
+def _playwright_stopped():
+    """Close the shared Chromium and its Playwright driver at the end of the run, if they started
+    (a run without browser tests starts neither)."""
+    yield
+    import sys
+
+    support = sys.modules.get("browser_support")
+    if support is not None:
+        support.stop_all()
+
+
 # ---- a busy machine: the browser tests get longer than pyproject's 300 s each ----
 
 BROWSER_TIMEOUT = 900   # s: starting Jupyter and Chromium, and software WebGL, on a busy 2-core machine

@@ -32,7 +32,7 @@ from pathlib import Path
 
 import pytest
 
-from browser_support import (ENDS_WITHIN, TIME, colours, curve_pixels, free_port, launched, pixels_like,
+from browser_support import (ENDS_WITHIN, TIME, colours, curve_pixels, free_port, pixels_like,
                              require_browser, screenshot_folder, wait_for)
 from browser.page_layout import BODY_PX, PROJECTOR_PX
 from scenes import catalog
@@ -54,12 +54,6 @@ def drawable_scenes() -> list[str]:
                 and view.get("plot", "y") in ("x", "y", "z", "xyz")):
             names.append(name)
     return names
-
-
-@pytest.fixture(scope="module")
-def browser():
-    with launched(sync_api) as chromium:
-        yield chromium
 
 
 class Program:

@@ -26,7 +26,7 @@ from browser.arrows3d import SEE_THROUGH
 from browser.scene3d import BACKGROUND
 from export.palette import mass_colour
 from browser.view import slider_range
-from test_browser import (Program, browser, caption_lines, crop, graph_boxes, menu,  # noqa: F401 (a fixture)
+from test_browser import (Program, caption_lines, crop, graph_boxes, menu,
                           shown_time)
 from test_round_values_page import tick_labels_stay_plain_after_critical_damping
 

@@ -17,7 +17,7 @@ import pytest
 
 from browser.page_layout import LINE_FACTOR, PROJECTOR_PX
 from scenes import catalog
-from test_browser import MEASURE, ROOT, Program, browser, laid_out, shown_time, speed_shown  # noqa: F401 (a fixture)
+from test_browser import MEASURE, ROOT, Program, laid_out, shown_time, speed_shown
 from browser_support import wait_for
 
 pytestmark = pytest.mark.browser

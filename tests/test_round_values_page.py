@@ -14,7 +14,7 @@ import pytest
 
 from browser_support import wait_for
 from browser.controls import round_slider_values
-from test_browser import Program, browser, caption_lines, menu, shown_time  # noqa: F401 (a fixture)
+from test_browser import Program, caption_lines, menu, shown_time
 
 pytestmark = pytest.mark.browser
 PLAIN = re.compile(r"^−?-?\d+(\.\d+)?$")
