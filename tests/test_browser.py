@@ -242,6 +242,7 @@ def speed_shown(page) -> str:
     return page.locator("select").filter(has=page.locator("option", has_text="¼×")).input_value()
 
 
+@pytest.mark.timeout(1800)   # s: twice conftest's BROWSER_TIMEOUT, a hang guard: it does the work of two tests
 @pytest.mark.parametrize("scene", drawable_scenes())
 def test_scene_in_the_browser(browser, scene):
     """One page load per scene (the scene's run to t = 2 s is the slow part) checks both the page's
