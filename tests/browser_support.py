@@ -46,7 +46,6 @@ def require_browser():
 
 
 _driver = None   # the run's one Playwright driver: Playwright's sync API cannot start a second beside it
-_shared = None   # the run's one Chromium with the default arguments (conftest's `browser` fixture)
 
 
 def _playwright(sync_api):
@@ -69,32 +68,17 @@ def launch(sync_api, *extra_args, scrollbars: bool = False):
                                                          ignore_default_args=hidden))
 
 
-def shared_browser(sync_api):
-    """The one Chromium with the default arguments that every browser test of the run shares
-    (issue 31: launched once, not once per module). Each test opens its own pages, and
-    Browser.new_page gives each page a context of its own: no cookies or storage pass between them."""
-    global _shared
-    if _shared is None or not _shared.is_connected():
-        _shared = launch(sync_api)
-    return _shared
-
-
 def stop_all():
-    """Close the shared Chromium and stop the driver (conftest calls this as the run ends)."""
-    global _driver, _shared
-    try:
-        if _shared is not None and _shared.is_connected():
-            _shared.close()
-    finally:
-        _shared = None
-        if _driver is not None:
-            driver, _driver = _driver, None
-            driver.stop()
+    """Stop the run's Playwright driver (conftest calls this as the run ends)."""
+    global _driver
+    if _driver is not None:
+        driver, _driver = _driver, None
+        driver.stop()
 
 
 @contextlib.contextmanager
 def launched(sync_api, *extra_args, scrollbars: bool = False):
-    """A Chromium of its own, for a module that needs other arguments (see launch), closed afterwards."""
+    """A Chromium of its own (see launch), closed afterwards: conftest's `browser` for each module, or a module's own with other arguments."""
     chromium = launch(sync_api, *extra_args, scrollbars=scrollbars)
     try:
         yield chromium

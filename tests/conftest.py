@@ -61,23 +61,29 @@ def oscillation_energy():
     return _oscillation_energy
 
 
-# ---- one Chromium for the run ----
+# ---- one Chromium per test module ----
 
-@pytest.fixture(scope="session")
+@pytest.fixture(scope="module")
 def browser():
-    """Headless Chromium with the project's arguments (tests/browser_support.py), launched once for
-    the whole run and shared by every browser test; each test opens its own pages, each page in a
-    context of its own. Skips, with the reason, where Chromium, Playwright or Pillow is missing."""
+    """Headless Chromium with the project's arguments (tests/browser_support.py), launched once per
+    test module on the run's one Playwright driver; each test opens its own pages, each page in a
+    context of its own. Skips, with the reason, where Chromium, Playwright or Pillow is missing.
+
+    Per module, not per run: one Chromium kept for a whole run (issue 31's first try) let its GPU
+    process (software WebGL) grow busier with every page it had drawn, to nearly two cores with
+    one idle page open after an hour, and a page of test_offline_page_browser.py then waited for
+    ever. A module's Chromium is closed, GPU process and all, when the module ends."""
     import browser_support
 
     sync_api, _ = browser_support.require_browser()
-    return browser_support.shared_browser(sync_api)
+    with browser_support.launched(sync_api) as chromium:
+        yield chromium
 
 
 @pytest.fixture(scope="session", autouse=True)
 def _playwright_stopped():
-    """Close the shared Chromium and its Playwright driver at the end of the run, if they started
-    (a run without browser tests starts neither)."""
+    """Stop the run's Playwright driver at the end, if it started (a run without browser tests
+    starts none)."""
     yield
     import sys
 

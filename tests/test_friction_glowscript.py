@@ -24,7 +24,7 @@ def test_friction_in_web_vpython_answers_as_in_python(stand_in, tmp_path, browse
     web = main_py(*CASE, "--webvpython", "-")
     assert web.returncode == 0, web.stderr
     assert "if dot(ps, ps + Fs*dt) <=" in web.stdout
-    page = browser.new_page(viewport={"width": 1280, "height": 800})   # conftest's: the run's one Chromium
+    page = browser.new_page(viewport={"width": 1280, "height": 800})   # conftest's: the module's Chromium
     errors = []
     page.on("pageerror", lambda error: errors.append(str(error)))
     try:

@@ -64,7 +64,7 @@ def run_in_glowscript(page, program: str, answers: int, folder: Path) -> list[st
 
 @pytest.fixture(scope="module")
 def chromium(browser):
-    return browser       # conftest's: the run's one Chromium
+    return browser       # conftest's: the module's Chromium
 
 
 @pytest.mark.parametrize("case, program", [

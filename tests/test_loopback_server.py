@@ -433,7 +433,7 @@ def test_busy_or_invalid_port_raises_a_clear_error_without_importing_vpython(san
 def test_real_browser_connects_and_closing_the_page_ends_the_program(run_driver, browser):
     driver = run_driver()
     port = driver.http_port()
-    page = browser.new_page()          # conftest's browser: the run's one Chromium
+    page = browser.new_page()          # conftest's browser: the module's Chromium
     try:
         failed = []
         page.on("response", lambda r: r.status >= 400 and failed.append((r.status, r.url)))

@@ -157,7 +157,7 @@ def jupyter(tmp_path_factory):
 
 @pytest.fixture(scope="module")
 def page(jupyter, browser):
-    """The example notebook open in headless Chromium (conftest's, the run's one), its first code
+    """The example notebook open in headless Chromium (conftest's, the module's), its first code
     cell (the import) run."""
     base, token = jupyter
     page = browser.new_page(viewport={"width": 1280, "height": 1500})

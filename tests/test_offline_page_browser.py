@@ -32,7 +32,7 @@ ANSWER = re.compile(r"at t = (\S+) s: r = (< .* >) m, p = (< .* >) kg·m/s$")
 
 @pytest.fixture(scope="module")
 def chromium(browser):
-    return browser       # conftest's: the run's one Chromium
+    return browser       # conftest's: the module's Chromium
 
 
 @pytest.fixture(scope="module")
