@@ -45,21 +45,45 @@ def require_browser():
     return sync_api, image
 
 
-@contextlib.contextmanager
-def launched(sync_api, *extra_args, scrollbars: bool = False):
-    """Headless Chromium with the arguments that make its 3-D canvas draw, closed afterwards.
+_driver = None   # the run's one Playwright driver: Playwright's sync API cannot start a second beside it
+
+
+def _playwright(sync_api):
+    """The one Playwright driver of this run, started on first use and stopped by stop_all()."""
+    global _driver
+    if _driver is None:
+        _driver = sync_api.sync_playwright().start()
+    return _driver
+
+
+def launch(sync_api, *extra_args, scrollbars: bool = False):
+    """A new headless Chromium with the arguments that make its 3-D canvas draw; the caller closes it.
 
     scrollbars  draw scrollbars that take room, as a desktop browser does (Playwright hides them
                 by default, and so hid that the page scrolled sideways at 1280 × 800)
     """
     hidden = ["--hide-scrollbars"] if scrollbars else []
-    with sync_api.sync_playwright() as playwright:
-        chromium = playwright.chromium.launch(executable_path=CHROMIUM, args=CHROMIUM_ARGS + list(extra_args),
-                                              ignore_default_args=hidden)
-        try:
-            yield patient(chromium)
-        finally:
-            chromium.close()
+    return patient(_playwright(sync_api).chromium.launch(executable_path=CHROMIUM,
+                                                         args=CHROMIUM_ARGS + list(extra_args),
+                                                         ignore_default_args=hidden))
+
+
+def stop_all():
+    """Stop the run's Playwright driver (conftest calls this as the run ends)."""
+    global _driver
+    if _driver is not None:
+        driver, _driver = _driver, None
+        driver.stop()
+
+
+@contextlib.contextmanager
+def launched(sync_api, *extra_args, scrollbars: bool = False):
+    """A Chromium of its own (see launch), closed afterwards: conftest's `browser` for each module, or a module's own with other arguments."""
+    chromium = launch(sync_api, *extra_args, scrollbars=scrollbars)
+    try:
+        yield chromium
+    finally:
+        chromium.close()
 
 
 def patient(chromium):

@@ -61,6 +61,37 @@ def oscillation_energy():
     return _oscillation_energy
 
 
+# ---- one Chromium per test module ----
+
+@pytest.fixture(scope="module")
+def browser():
+    """Headless Chromium with the project's arguments (tests/browser_support.py), launched once per
+    test module on the run's one Playwright driver; each test opens its own pages, each page in a
+    context of its own. Skips, with the reason, where Chromium, Playwright or Pillow is missing.
+
+    Per module, not per run: one Chromium kept for a whole run (issue 31's first try) let its GPU
+    process (software WebGL) grow busier with every page it had drawn, to nearly two cores with
+    one idle page open after an hour, and a page of test_offline_page_browser.py then waited for
+    ever. A module's Chromium is closed, GPU process and all, when the module ends."""
+    import browser_support
+
+    sync_api, _ = browser_support.require_browser()
+    with browser_support.launched(sync_api) as chromium:
+        yield chromium
+
+
+@pytest.fixture(scope="session", autouse=True)
+def _playwright_stopped():
+    """Stop the run's Playwright driver at the end, if it started (a run without browser tests
+    starts none)."""
+    yield
+    import sys
+
+    support = sys.modules.get("browser_support")
+    if support is not None:
+        support.stop_all()
+
+
 # ---- a busy machine: the browser tests get longer than pyproject's 300 s each ----
 
 BROWSER_TIMEOUT = 900   # s: starting Jupyter and Chromium, and software WebGL, on a busy 2-core machine

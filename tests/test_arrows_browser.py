@@ -15,7 +15,7 @@ import numpy as np
 import pytest
 
 import main
-from browser_support import launched, require_browser, screenshot_folder, wait_for
+from browser_support import require_browser, screenshot_folder, wait_for
 from export.arrows import choose_scales
 from scenes._view import DEFAULT_VIEW
 from export.step_update import update_force
@@ -27,12 +27,6 @@ from test_browser import Program, drawable_scenes, shown_time
 pytestmark = pytest.mark.browser
 sync_api, Image = require_browser()
 SCREENSHOTS = screenshot_folder()
-
-
-@pytest.fixture(scope="module")
-def browser():
-    with launched(sync_api) as chromium:
-        yield chromium
 
 
 class Page:
@@ -150,15 +144,21 @@ def test_screenshots_with_arrows(browser, scene):
     args = (scene, "--arrows", "p,F_net")
     if scene == "pendulum":
         args = (scene, "--arrows", "p,F_net,split")
-    for width, height in shots:
-        page = Page(browser, args, viewport=(width, height))
-        try:
-            wait_for(lambda: shown_time(page.page) > 2.0, timeout=120, what="the run to go")
-            page.click("Pause")
-            page.page.get_by_role("button", name="Run").wait_for(timeout=120_000)
+    # one program and one page for both window sizes (issue 31: a program and a run to t = 2 s each
+    # before): paused at t > 2 s, then the window grows and the page follows it
+    page = Page(browser, args, viewport=shots[0])
+    try:
+        wait_for(lambda: shown_time(page.page) > 2.0, timeout=120, what="the run to go")
+        page.click("Pause")
+        page.page.get_by_role("button", name="Run").wait_for(timeout=120_000)
+        for width, height in shots:
+            page.page.set_viewport_size({"width": width, "height": height})
+            wait_for(lambda: page.page.evaluate("() => window.innerWidth") == width, timeout=60,
+                     what=f"the window at {width} px")
+            page.page.evaluate("() => new Promise(done => requestAnimationFrame(() => requestAnimationFrame(done)))")
             page.page.screenshot(path=str(SCREENSHOTS / f"arrows-{scene}-{width}x{height}.png"), timeout=120_000)
             objects = page.objects()
             visible = page.page.evaluate("ids => ids.map(i => glowObjs[i].visible)", objects["p"] + objects["F_net"])
-            assert any(visible), f"{scene}: no arrow shown"
-        finally:
-            page.close()
+            assert any(visible), f"{scene} at {width}x{height}: no arrow shown"
+    finally:
+        page.close()

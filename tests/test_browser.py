@@ -1,9 +1,14 @@
 """Every scene in a real browser: headless Chromium driven by Playwright.
 
 For each scene whose VIEW the shared view can draw, `python main.py SCENE --no-browser --port P` is
-started, its printed URL opened, and the page checked: the 3-D canvas is not blank, the position
-graph has a curve, t advances, Pause stops it, Step advances it by one Δt, Reset returns it to 0,
-and closing the page ends the program with status 0 within 2 s. A screenshot of each scene is saved
+started, its printed URL opened in a laptop's 1280 × 800 window, and the page checked: the 3-D
+canvas is not blank, the position graph has a curve, t advances, Pause stops it, Step advances it by
+one Δt, Reset returns it to 0, and closing the page ends the program with status 0 within 2 s. The
+same page load checks the layout (issue 18, browser/page_layout.py): nothing scrolls sideways, the
+3-D view and the position graph are wholly inside the window, every text is at least 18 px, each
+legend sits outside the graphs, every tick label is a plain decimal on one line; the keys work
+with real key presses (Space, →, R, +, −); in projector mode (key P) every text is at least 22 px
+and the ticks stay on one line; and at 1024 × 768 nothing scrolls sideways either. A screenshot of each scene is saved
 to SCENE.png in a folder in /tmp, or in docs/screenshots/ with UPDATE_SCREENSHOTS=1. The resonance scene's own graph must show its three curves.
 
 One more page goes through the menus: a preset (Moon gravity) changes the constant in the caption,
@@ -27,8 +32,9 @@ from pathlib import Path
 
 import pytest
 
-from browser_support import (ENDS_WITHIN, TIME, colours, curve_pixels, free_port, launched, pixels_like,
+from browser_support import (ENDS_WITHIN, TIME, colours, curve_pixels, free_port, pixels_like,
                              require_browser, screenshot_folder, wait_for)
+from browser.page_layout import BODY_PX, PROJECTOR_PX
 from scenes import catalog
 from browser.view import slider_range, time_decimals
 
@@ -48,12 +54,6 @@ def drawable_scenes() -> list[str]:
                 and view.get("plot", "y") in ("x", "y", "z", "xyz")):
             names.append(name)
     return names
-
-
-@pytest.fixture(scope="module")
-def browser():
-    with launched(sync_api) as chromium:
-        yield chromium
 
 
 class Program:
@@ -153,23 +153,133 @@ def caption_lines(page) -> list[str]:
     return [line.strip() for line in page.locator("body").inner_text().splitlines()]
 
 
+KEY_PATIENCE_MS = 120_000   # a key's effect waits for the next frame: resonance's 39 masses on a busy machine
+PLAIN = re.compile(r"^[-−]?\d+(\.\d+)?$")   # a tick label: a plain decimal, never 4e-2
+
+MEASURE = """() => {
+  const box = e => { const b = e.getBoundingClientRect(); return {x: b.x, y: b.y, width: b.width, height: b.height}; };
+  const sizes = sel => Array.from(document.querySelectorAll(sel)).filter(e => e.offsetParent !== null)
+                          .map(e => parseFloat(getComputedStyle(e).fontSize));
+  const texts = Array.from(document.querySelectorAll('#glowscript span, #glowscript div, #glowscript i'))
+      .filter(e => e.offsetParent !== null && Array.from(e.childNodes).some(n => n.nodeType === 3 && n.textContent.trim()));
+  return {
+    scrollWidth: document.documentElement.scrollWidth, width: window.innerWidth, height: window.innerHeight,
+    canvas: box(document.querySelector('.glowscript-canvas-wrapper canvas')),
+    graphs: Array.from(document.querySelectorAll('.glowscript-graph canvas.base')).map(box),
+    legends: Array.from(document.querySelectorAll('.sm-legend')).map(box),
+    fonts: {text: Math.min(...texts.map(e => parseFloat(getComputedStyle(e).fontSize))),
+            buttons: Math.min(...sizes('button')), menus: Math.min(...sizes('select')),
+            ticks: Math.min(...sizes('.tickLabel')), legends: Math.min(...sizes('.legendLabel')),
+            titles: Math.min(...sizes('.sm-title'))},
+    ticks: Array.from(document.querySelectorAll('.glowscript-graph .tickLabel')).filter(e => e.offsetParent !== null)
+      .map(e => ({text: e.textContent, height: e.getBoundingClientRect().height,
+                  font: parseFloat(getComputedStyle(e).fontSize)})),
+  };
+}"""
+
+
+def inside(box, width, height) -> bool:
+    return box["x"] >= 0 and box["y"] >= 0 and box["x"] + box["width"] <= width and box["y"] + box["height"] <= height
+
+
+def overlap(a, b) -> bool:
+    return (a["x"] < b["x"] + b["width"] and b["x"] < a["x"] + a["width"]
+            and a["y"] < b["y"] + b["height"] and b["y"] < a["y"] + a["height"])
+
+
+def laid_out(page, *, graphs: int):
+    """The page's measurements once vpython has made every graph and the layout has placed them."""
+    return wait_for(lambda: (m := page.evaluate(MEASURE)) and len(m["graphs"]) == graphs
+                    and len(m["legends"]) == graphs and m, timeout=30.0, what="the graphs to be laid out")
+
+
+def single_line_ticks(page, *, font: float = BODY_PX) -> None:
+    """Every tick label is a plain decimal on one line (its box under 1.5 lines of its text), read
+    once flot has drawn them at `font` px or more (it writes them anew when a graph's axis changes)."""
+    ticks = wait_for(lambda: (t := page.evaluate(MEASURE)["ticks"]) and min(tick["font"] for tick in t) >= font
+                     and t, timeout=120.0, what=f"tick labels in {font} px text")
+    for tick in ticks:
+        assert PLAIN.match(tick["text"]), f"tick label {tick['text']!r}"
+        assert tick["height"] < 1.5 * tick["font"], f"tick label {tick['text']!r} on more than one line"
+
+
+def keys_work(page, scene: str) -> None:
+    """Real key presses with the focus on the page: Space pauses, → steps one Δt, R resets to 0,
+    + speeds up, − slows down again, Space runs again."""
+    dt = catalog.configure(scene).build().dt
+    page.evaluate("() => document.activeElement && document.activeElement.blur()")      # the focus on the page itself
+    page.keyboard.press("Space")
+    page.get_by_role("button", name="Run").wait_for(timeout=KEY_PATIENCE_MS)
+    paused = shown_time(page)
+    page.keyboard.press("ArrowRight")
+    stepped = wait_for(lambda: (t := shown_time(page)) != paused and t, timeout=KEY_PATIENCE_MS / 1000,
+                       what="→ to step")
+    assert stepped - paused == pytest.approx(dt, abs=1e-6)
+    page.keyboard.press("r")
+    wait_for(lambda: shown_time(page) == 0.0, timeout=KEY_PATIENCE_MS / 1000, what="R to reset")
+    page.keyboard.press("+")
+    wait_for(lambda: speed_shown(page) == "2×", timeout=KEY_PATIENCE_MS / 1000, what="+ to speed up")
+    page.keyboard.press("-")
+    wait_for(lambda: speed_shown(page) == "1×", timeout=KEY_PATIENCE_MS / 1000, what="− to slow down")
+    page.keyboard.press("Space")
+    page.get_by_role("button", name="Pause").wait_for(timeout=KEY_PATIENCE_MS)
+
+
+def projector_mode(page) -> None:
+    """Key P: every text at least PROJECTOR_PX, the ticks still one line each; P again to leave it."""
+    page.evaluate("() => document.activeElement && document.activeElement.blur()")
+    page.keyboard.press("p")
+    single_line_ticks(page, font=PROJECTOR_PX)
+    m = wait_for(lambda: (m := page.evaluate(MEASURE)) and m["fonts"]["buttons"] >= PROJECTOR_PX and m,
+                 timeout=120.0, what="projector mode's larger text")
+    for name, size in m["fonts"].items():
+        assert size >= PROJECTOR_PX, f"{name} in {size} px text in projector mode"
+    page.keyboard.press("p")
+    wait_for(lambda: page.evaluate(MEASURE)["fonts"]["buttons"] < PROJECTOR_PX, what="projector mode off")
+
+
+def speed_shown(page) -> str:
+    return page.locator("select").filter(has=page.locator("option", has_text="¼×")).input_value()
+
+
+@pytest.mark.timeout(1800)   # s: twice conftest's BROWSER_TIMEOUT, a hang guard: it does the work of two tests
 @pytest.mark.parametrize("scene", drawable_scenes())
 def test_scene_in_the_browser(browser, scene):
+    """One page load per scene (the scene's run to t = 2 s is the slow part) checks both the page's
+    controls and its layout in a laptop's 1280 × 800 window (issue 31: the two were separate tests,
+    each starting the program and waiting for the same run)."""
     dt = catalog.configure(scene).build().dt
     decimals = time_decimals(dt)
     program = Program(scene)
     page = None
     try:
         url = program.url()
-        page = browser.new_page(viewport={"width": 1280, "height": 1100})
+        page = browser.new_page(viewport={"width": 1280, "height": 800})
         page.goto(url)
 
         # t advances
         start = shown_time(page)
         wait_for(lambda: shown_time(page) > start + 0.5, timeout=60.0, what="t to advance")
+        wait_for(lambda: shown_time(page) >= 2.0, timeout=90.0, what="t to reach 2 s")
+
+        # the layout: nothing scrolls sideways, the view and the position graph inside the window,
+        # every text large, legends outside the graphs, tick labels plain and on one line
+        own_graph = hasattr(catalog.load(scene), "view_graph")
+        m = laid_out(page, graphs=graph_count(scene))
+        assert m["scrollWidth"] <= m["width"], f"the page scrolls sideways ({m['scrollWidth']} px)"
+        assert inside(m["canvas"], 1280, 800), f"3-D view at {m['canvas']}"
+        assert m["canvas"]["width"] >= 600, f"3-D view only {m['canvas']['width']} px wide"
+        position = m["graphs"][own_graph]
+        assert inside(position, 1280, 800), f"position graph at {position}"
+        assert not overlap(m["canvas"], position)
+        for name, size in m["fonts"].items():
+            assert size >= BODY_PX, f"{name} in {size} px text"
+        for legend in m["legends"]:
+            for graph in m["graphs"]:
+                assert not overlap(legend, graph), f"legend {legend} over graph {graph}"
+        single_line_ticks(page)
 
         # Pause stops it
-        wait_for(lambda: shown_time(page) >= 2.0, timeout=60.0, what="t to reach 2 s")
         page.get_by_role("button", name="Pause").click()
         page.get_by_role("button", name="Run").wait_for()
         paused = shown_time(page)
@@ -178,7 +288,6 @@ def test_scene_in_the_browser(browser, scene):
         picture = SCREENSHOTS / f"{scene}.png"
         page.screenshot(path=str(picture), full_page=True)
         canvas = page.locator(".glowscript-canvas-wrapper canvas").first.bounding_box()
-        own_graph = hasattr(catalog.load(scene), "view_graph")
         boxes = graph_boxes(page)
         assert len(boxes) == graph_count(scene)
         assert_not_blank(crop(picture, canvas), "3-D canvas")
@@ -200,6 +309,18 @@ def test_scene_in_the_browser(browser, scene):
         page.get_by_role("button", name="Reset").click()
         wait_for(lambda: shown_time(page) == 0.0, what="Reset to show t = 0")
         assert page.locator("b").filter(has_text=f"t = {0:.{decimals}f} s").count() == 1
+
+        # Run again, then the keys do the same with real key presses; projector mode (key P)
+        page.get_by_role("button", name="Run").click()
+        page.get_by_role("button", name="Pause").wait_for()
+        keys_work(page, scene)
+        projector_mode(page)
+
+        # at 1024 × 768 nothing scrolls sideways either
+        page.set_viewport_size({"width": 1024, "height": 768})
+        m = wait_for(lambda: (m := page.evaluate(MEASURE)) and m["canvas"]["width"] < 600 and m,
+                     timeout=120.0, what="the page to follow the window")
+        assert m["scrollWidth"] <= 1024, f"at 1024 px the page scrolls sideways ({m['scrollWidth']} px)"
 
         # closing the page ends the program with status 0, on its own (ENDS_WITHIN)
         page.close()

@@ -33,7 +33,7 @@ import pytest
 
 from browser.readout import length_text
 from lab.compare import Estimate
-from browser_support import launched, pixels_like, require_browser, screenshot_folder, wait_for
+from browser_support import pixels_like, require_browser, screenshot_folder, wait_for
 from test_browser import Program, crop, graph_boxes, menu, shown_time
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -42,12 +42,6 @@ SEED = 5
 
 pytestmark = pytest.mark.browser
 sync_api, Image = require_browser()
-
-
-@pytest.fixture(scope="module")
-def browser():
-    with launched(sync_api) as chromium:
-        yield chromium
 
 
 def cli(*args: str) -> subprocess.CompletedProcess:

@@ -20,7 +20,7 @@ from pathlib import Path
 
 import pytest
 
-from browser_support import free_port, launched, require_browser, wait_for
+from browser_support import free_port, require_browser, wait_for
 from test_browser import Program, shown_time
 from test_handout import headless_answer
 
@@ -54,12 +54,6 @@ def light_grey(rgb):
 
 def black(rgb):
     return max(rgb) < 60
-
-
-@pytest.fixture(scope="module")
-def browser():
-    with launched(sync_api) as chromium:
-        yield chromium
 
 
 def test_exported_program_draws_with_the_real_vpython(browser, tmp_path):

@@ -63,9 +63,8 @@ def run_in_glowscript(page, program: str, answers: int, folder: Path) -> list[st
 
 
 @pytest.fixture(scope="module")
-def chromium():
-    with launched(sync_api) as browser:
-        yield browser
+def chromium(browser):
+    return browser       # conftest's: the module's Chromium
 
 
 @pytest.mark.parametrize("case, program", [

@@ -21,7 +21,7 @@ from pathlib import Path
 
 import pytest
 
-from browser_support import CHROMIUM, CHROMIUM_ARGS, ENDS_WITHIN
+from browser_support import CHROMIUM, ENDS_WITHIN
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -430,28 +430,26 @@ def test_busy_or_invalid_port_raises_a_clear_error_without_importing_vpython(san
 
 @pytest.mark.browser
 @pytest.mark.skipif(not os.path.exists(CHROMIUM), reason=f"no browser at {CHROMIUM}")
-def test_real_browser_connects_and_closing_the_page_ends_the_program(run_driver):
-    sync_playwright = pytest.importorskip("playwright.sync_api").sync_playwright
+def test_real_browser_connects_and_closing_the_page_ends_the_program(run_driver, browser):
     driver = run_driver()
     port = driver.http_port()
-    with sync_playwright() as p:
-        browser = p.chromium.launch(executable_path=CHROMIUM, args=CHROMIUM_ARGS)
-        try:
-            page = browser.new_page()
-            failed = []
-            page.on("response", lambda r: r.status >= 400 and failed.append((r.status, r.url)))
-            page.goto(f"http://127.0.0.1:{port}/", timeout=15_000)
-            driver.expect(r"^CONNECTED ", timeout=15)
-            contact = driver.expect(r"^CONTACT since=([\d.]+) advanced=([\d.]+)$", timeout=10)
-            since, advanced = map(float, contact.groups())
-            assert since < 1.0 and advanced > 0.3  # the page keeps polling, and we see it
-            assert failed == []
-            closed_at = time.monotonic()
+    page = browser.new_page()          # conftest's browser: the module's Chromium
+    try:
+        failed = []
+        page.on("response", lambda r: r.status >= 400 and failed.append((r.status, r.url)))
+        page.goto(f"http://127.0.0.1:{port}/", timeout=15_000)
+        driver.expect(r"^CONNECTED ", timeout=15)
+        contact = driver.expect(r"^CONTACT since=([\d.]+) advanced=([\d.]+)$", timeout=10)
+        since, advanced = map(float, contact.groups())
+        assert since < 1.0 and advanced > 0.3  # the page keeps polling, and we see it
+        assert failed == []
+        closed_at = time.monotonic()
+        page.close()
+        elapsed = assert_clean_exit(driver, timeout=60, since=closed_at)
+        assert elapsed < ENDS_WITHIN, f"took {elapsed:.2f} s to exit after the page closed"
+    finally:
+        if not page.is_closed():
             page.close()
-            elapsed = assert_clean_exit(driver, timeout=60, since=closed_at)
-            assert elapsed < ENDS_WITHIN, f"took {elapsed:.2f} s to exit after the page closed"
-        finally:
-            browser.close()
 
 
 # ------------------------------------------------------- hostile clients and the page's lifecycle

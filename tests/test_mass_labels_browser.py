@@ -17,7 +17,7 @@ from browser.mass_labels import mass_labels
 from browser_support import wait_for
 from scenes import catalog
 from scenes._view import DEFAULT_VIEW
-from test_browser import Program, browser, shown_time  # noqa: F401 (a fixture)
+from test_browser import Program, shown_time
 
 pytestmark = pytest.mark.browser
 

@@ -14,7 +14,7 @@ import re
 import numpy as np
 import pytest
 
-from browser_support import launched, require_browser, screenshot_folder, shaded_like
+from browser_support import require_browser, screenshot_folder, shaded_like
 from test_export import main_py
 from test_handout import edge_values, headless_answer
 
@@ -31,9 +31,8 @@ ANSWER = re.compile(r"at t = (\S+) s: r = (< .* >) m, p = (< .* >) kg·m/s$")
 
 
 @pytest.fixture(scope="module")
-def chromium():
-    with launched(sync_api) as browser:
-        yield browser
+def chromium(browser):
+    return browser       # conftest's: the module's Chromium
 
 
 @pytest.fixture(scope="module")

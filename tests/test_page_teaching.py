@@ -15,7 +15,7 @@ import pytest
 from browser.page_layout import BODY_PX, PROJECTOR_PX
 from browser_support import wait_for
 from test_arrows_browser import ProgramWith
-from test_browser import browser, shown_time  # noqa: F401 (a fixture)
+from test_browser import shown_time
 
 pytestmark = pytest.mark.browser
 

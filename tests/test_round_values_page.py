@@ -1,6 +1,7 @@
 """Issue 18 on the real page, in headless Chromium: the Δt slider gives only round values and a
-stable but inaccurate Δt is said in the status line (items 8 and 10); after resonance's critical
-damping preset every graph's tick labels are plain decimals on one line (item 6).
+stable but inaccurate Δt is said in the status line (items 8 and 10). After resonance's critical
+damping preset every graph's tick labels are plain decimals on one line (item 6): checked by
+tick_labels_stay_plain_after_critical_damping on tests/test_classroom_page.py's resonance page.
 
 Skipped, with the reason, where Chromium or Playwright is missing.
 """
@@ -13,7 +14,7 @@ import pytest
 
 from browser_support import wait_for
 from browser.controls import round_slider_values
-from test_browser import Program, browser, caption_lines, menu, shown_time  # noqa: F401 (a fixture)
+from test_browser import Program, caption_lines, menu, shown_time
 
 pytestmark = pytest.mark.browser
 PLAIN = re.compile(r"^−?-?\d+(\.\d+)?$")
@@ -63,31 +64,28 @@ def test_the_dt_slider_gives_round_values_and_an_inaccurate_dt_is_said(browser):
         program.stop()
 
 
-def test_resonance_tick_labels_stay_plain_after_critical_damping(browser):
-    program, page = open_scene(browser, "resonance")
-    try:
-        wait_for(lambda: shown_time(page) >= 1.0, timeout=90.0, what="t to reach 1 s")
-        menu(page, "critical damping").select_option("critical damping")
-        wait_for(lambda: any("b = 10 kg/s" in line for line in caption_lines(page)), timeout=120.0,
-                 what="the critical damping preset")
-        wait_for(lambda: shown_time(page) >= 2.0, timeout=90.0, what="t to reach 2 s")
-        graphs = page.locator(".glowscript-graph")
+def tick_labels_stay_plain_after_critical_damping(page) -> None:
+    """On resonance's running page: after the critical damping preset every graph's y-axis tick
+    labels are plain decimals on one line, at one even step. tests/test_classroom_page.py runs it on
+    its resonance page (one run of the slowest scene for its checks and these, issue 31)."""
+    menu(page, "critical damping").select_option("critical damping")
+    wait_for(lambda: any("b = 10 kg/s" in line for line in caption_lines(page)), timeout=120.0,
+             what="the critical damping preset")
+    wait_for(lambda: shown_time(page) >= 2.0, timeout=90.0, what="t to reach 2 s")
+    graphs = page.locator(".glowscript-graph")
 
-        def tick_labels():
-            return [graphs.nth(i).locator(".yAxis .tickLabel").all_inner_texts() for i in range(graphs.count())]
+    def tick_labels():
+        return [graphs.nth(i).locator(".yAxis .tickLabel").all_inner_texts() for i in range(graphs.count())]
 
-        # the preset rebuilds the graphs, and flot draws a graph's axis when its first points come (a
-        # CI run read the amplitude graph before it had any): wait for every axis, then read them
-        wait_for(lambda: len(tick_labels()) >= 2 and all(len(axis) >= 3 for axis in tick_labels()),
-                 timeout=120.0, what="every graph's y-axis tick labels after the preset")
-        labels = tick_labels()
-        assert len(labels) >= 2 and all(len(axis) >= 3 for axis in labels), labels
-        for axis in labels:
-            for label in axis:
-                assert PLAIN.match(label.strip()) and "\n" not in label, axis
-            values = [float(label.replace("−", "-")) for label in axis]
-            steps = {round(b - a, 12) for a, b in zip(values, values[1:])}
-            assert len(steps) == 1 and all(math.isfinite(v) for v in values), axis
-    finally:
-        page.close()
-        program.stop()
+    # the preset rebuilds the graphs, and flot draws a graph's axis when its first points come (a
+    # CI run read the amplitude graph before it had any): wait for every axis, then read them
+    wait_for(lambda: len(tick_labels()) >= 2 and all(len(axis) >= 3 for axis in tick_labels()),
+             timeout=120.0, what="every graph's y-axis tick labels after the preset")
+    labels = tick_labels()
+    assert len(labels) >= 2 and all(len(axis) >= 3 for axis in labels), labels
+    for axis in labels:
+        for label in axis:
+            assert PLAIN.match(label.strip()) and "\n" not in label, axis
+        values = [float(label.replace("−", "-")) for label in axis]
+        steps = {round(b - a, 12) for a, b in zip(values, values[1:])}
+        assert len(steps) == 1 and all(math.isfinite(v) for v in values), axis

@@ -18,7 +18,7 @@ from pathlib import Path
 
 import pytest
 
-from browser_support import TIME, free_port, launched, require_browser, wait_for
+from browser_support import TIME, free_port, require_browser, wait_for
 
 ROOT = Path(__file__).resolve().parent.parent
 
@@ -66,9 +66,9 @@ def scene_menu(page):
                 if "damped" in menus.nth(i).locator("option").all_inner_texts())
 
 
-def test_a_teachers_folder_in_the_scene_menu(program):
-    with launched(sync_api) as chromium:
-        page = chromium.new_page(viewport={"width": 1280, "height": 800})
+def test_a_teachers_folder_in_the_scene_menu(program, browser):
+    page = browser.new_page(viewport={"width": 1280, "height": 800})
+    try:
         page.goto(program.url)
         wait_for(lambda: shown_time(page) > 0.3, timeout=180, what="the clock to start")
         menu = scene_menu(page)
@@ -95,6 +95,7 @@ def test_a_teachers_folder_in_the_scene_menu(program):
         menu.select_option("heavy")
         wait_for(lambda: "heavy" in page.locator("b").first.inner_text(), timeout=120, what="the heavy scene's title")
         wait_for(lambda: "m = 25 kg" in page.inner_text("body"), timeout=120, what="heavy's m = 25 kg")
+    finally:
         page.close()
     program.wait(timeout=60)
     assert program.returncode == 0, "".join(program.errors)

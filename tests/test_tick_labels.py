@@ -11,7 +11,7 @@ from pathlib import Path
 import pytest
 
 from browser.axes import PLAIN_TICKS, nice_range
-from browser_support import launched, require_browser
+from browser_support import require_browser
 
 pytestmark = pytest.mark.browser
 sync_api, _ = require_browser()
@@ -38,15 +38,17 @@ DRAW = """([low, high, pixels]) => {
 
 
 @pytest.fixture(scope="module")
-def page():
-    with launched(sync_api) as chromium:
-        tab = chromium.new_page()
+def page(browser):
+    tab = browser.new_page()
+    try:
         tab.set_content("<html><body></body></html>")
         for name in ("jquery.min.js", "glow.min.js"):
             tab.add_script_tag(path=str(LIBRARIES / name))
         tab.add_script_tag(content=PLAIN_TICKS.removeprefix("<script>").removesuffix("</script>"))
         assert tab.evaluate("typeof jQuery.plot.plainTicks") == "function"
         yield tab
+    finally:
+        tab.close()
 
 
 def ranges():
