@@ -12,6 +12,8 @@ import re
 
 import numpy as np
 
+from physics.exact import Role
+from physics.forces import closed_form_constants
 from scenes import DECLARED, catalog
 
 from .lines import CONSTANT_COLUMN, ProgramError, commented, number, unit_and_meaning, vector
@@ -97,21 +99,34 @@ def constants_block(setup, constants: ProgramConstants, used: set[str]) -> list[
     order = [name for name in order if name not in ("dt", "until", "t_end")] + \
         [name for name in ("dt", "until", "t_end") if name in values]
     critical = _critical(setup, constants, order)
-    return [commented(f"b = {CRITICAL_B}", CRITICAL_COMMENT, width=CONSTANT_COLUMN) if name == "b" and critical
+    b = ROLES[Role.DAMPING]
+    return [commented(f"{b} = {critical_line()}", critical_comment(), width=CONSTANT_COLUMN) if name == b and critical
             else commented(f"{name} = {_literal(values[name])}", constants.comment(name), width=CONSTANT_COLUMN)
             for name in order]
 
 
-CRITICAL_B = "2*sqrt(m*k)"   # the preset's b = None (scenes/_catalog.py resolve), in the program's arithmetic
-CRITICAL_COMMENT = unit_and_meaning(DECLARED["b"].unit, "critical damping, b = 2√(mk)")
+# The damping and the stiffness constants by their role in the closed form, as each force declares
+# them (physics/forces/ CLOSED_FORM): this module names no force's constant itself.
+ROLES = closed_form_constants()
+
+
+def critical_line() -> str:
+    """The preset's b = None (scenes/_catalog.py resolve), in the program's arithmetic: 2*sqrt(m*k)."""
+    return f"2*sqrt(m*{ROLES[Role.STIFFNESS]})"
+
+
+def critical_comment() -> str:
+    b, k = ROLES[Role.DAMPING], ROLES[Role.STIFFNESS]
+    return unit_and_meaning(DECLARED[b].unit, f"critical damping, {b} = 2√(m{k})")
 
 
 def _critical(setup, constants: ProgramConstants, order: list[str]) -> bool:
     """Whether the program's b is critical damping for its m and k, as the preset works it out
     (scenes/_catalog.py resolve), with m and k named above it: then it is written `b = 2*sqrt(m*k)`,
     the same float (a correctly rounded square root, doubled), not 52.76362383309168."""
-    if not all(name in constants.single for name in ("b", "m", "k")) or \
-            not order.index("m") < order.index("b") > order.index("k"):
+    b, k = ROLES[Role.DAMPING], ROLES[Role.STIFFNESS]
+    if not all(name in constants.single for name in (b, "m", k)) or \
+            not order.index("m") < order.index(b) > order.index(k):
         return False
-    single = {name: constants.single[name] for name in ("m", "k")}
-    return catalog.resolve({**single, "b": None})["b"] == constants.single["b"] != 0
+    single = {name: constants.single[name] for name in ("m", k)}
+    return catalog.resolve({**single, b: None})[b] == constants.single[b] != 0

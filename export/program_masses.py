@@ -14,6 +14,8 @@ import re
 
 import numpy as np
 
+from physics.exact import Role
+from physics.forces import closed_form_constants
 from scenes import DECLARED
 
 from .lines import COMMENT, CONSTANT_COLUMN, commented, listed, number, vector
@@ -82,9 +84,14 @@ def _spelled(values, name: str, x, used: set[str]) -> str:
     return name if same else number(clean(x))
 
 
+# The spring's fixed end, which the helix is drawn from, by its role in the closed form as the
+# spring declares it (physics/forces/ CLOSED_FORM): no front end names a force's constant.
+ANCHOR = closed_form_constants()[Role.ANCHOR]
+
+
 def mass_count(constants) -> str:
     """How the program counts its masses: the length of one of its lists."""
-    for name in ("r0", "anchor", *constants.per_mass):
+    for name in ("r0", ANCHOR, *constants.per_mass):
         if name in constants.per_mass:
             return f"len({constants.list_name(name)})"
     return str(constants.count)

@@ -67,7 +67,7 @@ from .program_answer import HELPERS, answer_line
 from .program_command import command, description
 from .program_constants import ProgramConstants, constants_block
 from .program_forces import ProgramForces, update
-from .program_masses import mass_count, masses, which_mass
+from .program_masses import ANCHOR, mass_count, masses, which_mass
 from .program_objects import objects
 
 WEB_FIRST_LINE = "Web VPython 3.2"
@@ -246,7 +246,7 @@ class _Case:
     def draw(self) -> list[str]:
         i, n, axes = self.index, self.constants.name, self.axes
         lines = [f"{'ball' if self.single else 'balls[i]'}.pos = pos{i}",
-                 commented(f"spring{'' if self.single else 's[i]'}.axis = pos{i} - {n('anchor')}",
+                 commented(f"spring{'' if self.single else 's[i]'}.axis = pos{i} - {n(ANCHOR)}",
                            "the helix follows the sphere")]
         lines += self.plot_position()
         if self.exact is not None:

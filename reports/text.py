@@ -17,6 +17,7 @@ import math
 import numpy as np
 
 from physics.forces import net_force
+from physics.stability import rates
 from physics.state import velocity
 from export.step_update import number, vector
 from scenes import ConstantError, Setup, catalog, format_value
@@ -94,12 +95,25 @@ def constants_report(setup: Setup) -> str:
             for name, constant in setup.constants.items()]
     width = max(len(left) for left, _ in rows)
     lines = [f"{left:<{width}}   {meaning}" for left, meaning in rows]
-    m, k, dt = (setup.values.get(name) for name in ("m", "k", "dt"))
-    if all(isinstance(x, (int, float)) for x in (m, k)) and k > 0:   # worked out from the values in use
-        omega0 = math.sqrt(k / m)
+    omega0, dt = natural_frequency(setup), setup.values.get("dt")
+    if omega0 is not None:                      # worked out from the values in use
         lines.append(f"so: ω0 = √(k/m) = {number(omega0, 4)} rad/s, T = 2π/ω0 = {number(2 * math.pi / omega0, 4)} s"
                      + (f", ω0·dt = {number(omega0 * dt, 4)}" if isinstance(dt, (int, float)) else ""))
     return "\n".join(lines)
+
+
+def natural_frequency(setup: Setup) -> float | None:
+    """ω0 = √(k/m) in rad/s of the scene's masses, from the stiffness the forces declare
+    (physics.stability.rates), where every mass has the same one; None where they differ, where no
+    spring holds them, or where the physics refuses these constants (the run says why)."""
+    try:
+        model = setup.build()
+    except (ValueError, ConstantError):
+        return None
+    omega = rates(model.forces, model.state.m).omega
+    if not np.all(np.isfinite(omega)) or np.any(omega <= 0) or np.ptp(omega) > 1e-12 * omega.max():
+        return None
+    return float(omega[0])
 
 
 def presets_report(setup: Setup) -> str:

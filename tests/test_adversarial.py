@@ -383,8 +383,9 @@ def test_every_scene_gives_strict_json_and_no_inf_or_nan(tmp_path, monkeypatch, 
 
 
 def test_the_readme_and_a_blow_up_agree():
-    """README: a run past the stability limit stops with exit status 1 and names Δt and the limit."""
-    readme = (ROOT / "README.md").read_text()
+    """docs/homework.md (the README's guide to the command line): a run past the stability limit
+    stops with exit status 1 and names Δt and the limit."""
+    readme = (ROOT / "docs" / "homework.md").read_text(encoding="utf-8")
     assert "stops with exit status 1" in " ".join(readme.split())
     done = subprocess.run([sys.executable, "main.py", "vertical", "--headless", "--set", "dt=1.5",
                            "--until", "10"], cwd=ROOT, capture_output=True, text=True, timeout=60)

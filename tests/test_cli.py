@@ -665,8 +665,8 @@ def test_every_readme_example_does_what_its_comment_says(tmp_path):
     commands = readme_commands()
     assert len(commands) >= 7, commands
     for args, comment in commands:
-        if "damped.csv" in args:
-            args[args.index("damped.csv")] = str(tmp_path / "damped.csv")
+        if "out/damped.csv" in args:
+            args[args.index("out/damped.csv")] = str(tmp_path / "damped.csv")
         done = cli(*args)
         assert done.returncode == 0 and done.stderr == "", (args, done.stderr)
         out = done.stdout

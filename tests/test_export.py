@@ -649,9 +649,9 @@ def test_colours_and_widths_are_the_pages(args, stand_in, tmp_path):
 
 
 def test_the_readmes_excerpt_of_a_program_is_what_the_program_writer_writes():
-    """Every line the README quotes from `main.py damped --vpython damped.py` is a line of it."""
-    readme = (ROOT / "README.md").read_text(encoding="utf-8")
-    start = readme.index("`python main.py damped --vpython damped.py` writes, in part:")
+    """Every line docs/handout.md quotes from `main.py damped --vpython out/damped.py` is a line of it."""
+    readme = (ROOT / "docs" / "handout.md").read_text(encoding="utf-8")
+    start = readme.index("`python main.py damped --vpython out/damped.py` writes, in part:")
     block = readme[start:].split("\n\n")[1]
     quoted = [line[4:] for line in block.splitlines() if line.strip() and line.strip() != "..."]
     written = main_py("damped", "--vpython", "-")

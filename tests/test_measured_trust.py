@@ -164,7 +164,8 @@ def test_help_documents_exit_status_3():
     assert done.returncode == 0
     text = " ".join(done.stdout.split())
     assert "3 a fit whose numbers cannot be trusted" in text
-    assert "exit status 3" in " ".join((ROOT / "README.md").read_text().split()).lower()
+    assert "the exit status is 3" in " ".join((ROOT / "README.md").read_text(encoding="utf-8").split()).lower()
+    assert "exit status 3" in " ".join((ROOT / "docs" / "lab.md").read_text(encoding="utf-8").split()).lower()
 
 
 # ---- 5. mysteries ----
