@@ -78,10 +78,39 @@ class Controls:
         self.vp = vp
         self.commands: queue.SimpleQueue = queue.SimpleQueue()
         self.downloads = 0  # links offered so far: each gets its own id
-        put = self.commands.put
         caption = vp.scene.append_to_caption
-        defaults = {name: constant.value for name, constant in setup.constants.items()}
         caption("\n")
+        self._run_row(integrators=integrators, integrator=integrator, speed=speed)
+        self._time_row()
+        caption("\n")
+        # browser/measure_panel.py: its button here, its block (closed at first) under it, by the clock
+        self.measure = MeasurePanel(vp, self.commands.put,
+                                    **(measure or {"period": False, "lines": (), "graph": "energy"}))
+        caption("\n\n")
+        self._menu_row(setup=setup, preset=preset)
+        caption("\n\n")
+        self._data_row(load_button)
+        caption("\n")
+        self.arrow_boxes = arrow_checkboxes(vp, self.commands.put, arrows)   # browser/arrows3d.py
+        self.arrow_legend = vp.wtext(text="")
+        caption("\n")
+        self.step_text = vp.wtext(text="")
+        self._slider_rows(setup=setup, view=view)
+        vp.wtext(text="").text = PLAIN_TICKS  # every graph's tick labels in plain decimals (browser/axes.py)
+        vp.wtext(text="").text = GRAPH_READING  # a click reads a graph (browser/graph_reading.py)
+        caption("\n\n")
+        self.constants_text = vp.wtext(text="")
+        caption("\n")
+        self.link_text = vp.wtext(text="")   # the set-up's link, for its offline page on a web site (show_link)
+        caption("\n<i>Moving a slider, choosing another integrator or a preset, or loading data restarts "
+                "the run from t = 0; Reset returns to the start; "
+                "Step advances one Δt.</i>\n")
+
+    # ---- building the caption, one row at a time ----
+
+    def _run_row(self, *, integrators, integrator: str, speed: str) -> None:
+        """Run/Pause, Step, Reset, the integrator (a menu, or the masses' own methods) and the speed."""
+        vp, put, caption = self.vp, self.commands.put, self.vp.scene.append_to_caption
         self.run_button = vp.button(text="Pause", bind=lambda _: put(RunOrPause()))
         caption("  ")
         vp.button(text="Step", bind=lambda _: put(Step()))
@@ -96,6 +125,10 @@ class Controls:
         caption("    speed ")
         vp.menu(choices=list(SPEEDS), selected=speed, bind=lambda menu: put(ChooseSpeed(menu.selected)))
         caption("\n")
+
+    def _time_row(self) -> None:
+        """The time, the error read-out, and the status line under them."""
+        vp, caption = self.vp, self.vp.scene.append_to_caption
         self.time_text = vp.wtext(text="t = 0.00 s")
         caption("    ")
         self.error_text = vp.wtext(text="")
@@ -103,10 +136,11 @@ class Controls:
         # open) under the time, where a class looks: at the page's foot it was below a 1280×800 screen
         self.status_text = _OwnLine(vp.wtext(text=""))
         self.notice = ""   # a sentence said (say()) that stays until the next run starts
-        caption("\n")
-        # browser/measure_panel.py: its button here, its block (closed at first) under it, by the clock
-        self.measure = MeasurePanel(vp, put, **(measure or {"period": False, "lines": (), "graph": "energy"}))
-        caption("\n\nscene ")
+
+    def _menu_row(self, *, setup, preset: str | None) -> None:
+        """The scene and preset menus, and the three downloads with the line that offers them."""
+        vp, put, caption = self.vp, self.commands.put, self.vp.scene.append_to_caption
+        caption("scene ")
         self.scene_menu = vp.menu(choices=scene_menu_choices(), selected=setup.name,
                                   bind=lambda menu: put(ChooseScene(menu.selected)))
         if catalog.SKIPPED:   # files of a teacher's folder left out of the menu: say why, folded away
@@ -127,18 +161,23 @@ class Controls:
         vp.button(text="Download offline page", bind=lambda _: put(DownloadOfflinePage()))
         caption(" ")
         self.download_text = vp.wtext(text="")
-        caption("\n\nmeasured data ")
+
+    def _data_row(self, load_button: str) -> None:
+        """Measured data: Load data (where files can be sent), Fit, and the lines on the data."""
+        vp, put, caption = self.vp, self.commands.put, self.vp.scene.append_to_caption
+        caption("measured data ")
         if load_button:
             vp.wtext(text="").text = load_button  # set, not made with it: the setter runs its script
             caption(" ")
         vp.button(text="Fit", bind=lambda _: put(FitData()))
         caption("\n")
         self.data_text = vp.wtext(text="")
-        caption("\n")
-        self.arrow_boxes = arrow_checkboxes(vp, put, arrows)   # browser/arrows3d.py
-        self.arrow_legend = vp.wtext(text="")
-        caption("\n")
-        self.step_text = vp.wtext(text="")
+
+    def _slider_rows(self, *, setup, view: dict) -> None:
+        """A slider for each constant the scene's VIEW offers (scenes/_sliders.py), each on its own
+        line with its value: a list of round values where the constant has one, else its span."""
+        vp, put, caption = self.vp, self.commands.put, self.vp.scene.append_to_caption
+        defaults = {name: constant.value for name, constant in setup.constants.items()}
         self.sliders, self.slider_texts = {}, {}
         for name in slider_names(setup, view):
             caption("\n")
@@ -154,15 +193,6 @@ class Controls:
             self.slider_texts[name] = vp.wtext(text="")
         if self.sliders:
             vp.wtext(text="").text = PRIME_SLIDERS  # set, not made with it: the setter runs scripts
-        vp.wtext(text="").text = PLAIN_TICKS  # every graph's tick labels in plain decimals (browser/axes.py)
-        vp.wtext(text="").text = GRAPH_READING  # a click reads a graph (browser/graph_reading.py)
-        caption("\n\n")
-        self.constants_text = vp.wtext(text="")
-        caption("\n")
-        self.link_text = vp.wtext(text="")   # the set-up's link, for its offline page on a web site (show_link)
-        caption("\n<i>Moving a slider, choosing another integrator or a preset, or loading data restarts "
-                "the run from t = 0; Reset returns to the start; "
-                "Step advances one Δt.</i>\n")
 
     def clicks(self) -> list:
         """The messages queued by clicks since the last call (browser/messages.py), oldest first."""
