@@ -1,7 +1,7 @@
 """The forces and the integrator's update, as lines of the handed-out program.
 
 Nothing here knows a force or a method by name: each force gives its constants' values and its
-line(s) of program (physics/forces.py: Force.program_values, Force.program), and each integrator
+line(s) of program (physics/forces/base.py: Force.program_values, Force.program), and each integrator
 its template (physics/integrators.py: the registry entry's program). This module fills them in
 with the program's names, `b` or `b_each[i]` for a value per mass, in the order
 physics.forces.net_force adds the forces.
@@ -26,7 +26,7 @@ class ProgramForces:
         for force in self.forces:
             if not force.program():
                 raise ProgramError(f"the program cannot write the force {type(force).__name__}: "
-                                   f"it declares no PROGRAM line (physics/forces.py)")
+                                   f"it declares no PROGRAM line (physics/forces/base.py)")
             try:
                 values = force.program_values()
             except ValueError as problem:

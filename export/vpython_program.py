@@ -17,7 +17,7 @@ teacher can set a case up and hand it to the class to read and edit:
         pos = pos + p/m*dt                     # r_f = r_i + v_f Δt, with v_f = p_f / m
         ...
 
-Its arithmetic is the engine's, line for line: every force is written the way physics/forces.py
+Its arithmetic is the engine's, line for line: every force is written the way physics/forces/
 works it out (Hooke's law as k (L0/|L| − 1) L, drag as −½ C A ρ |v| v), the forces are added in the
 scene's order, and the integrator's update is the one in physics/integrators.py, in the same
 order of operations (euler-cromer works out v_i only where a force needs it; verlet's extra half
@@ -67,7 +67,7 @@ from .program_answer import HELPERS, answer_line
 from .program_command import command, description
 from .program_constants import ProgramConstants, constants_block
 from .program_forces import ProgramForces, update
-from .program_masses import ANCHOR, mass_count, masses, which_mass
+from .program_masses import anchor, mass_count, masses, which_mass
 from .program_objects import objects
 
 WEB_FIRST_LINE = "Web VPython 3.2"
@@ -151,7 +151,7 @@ class _Case:
         self.arrows = self.view["arrows"] if arrows is None else arrows
         self.single = model.state.count == 1
         self.index = "" if self.single else "[i]"
-        self.constants = ProgramConstants(setup, model.state.count)
+        self.constants = ProgramConstants(setup, model.state.count, model.forces)
         self.constants.add("m", model.state.m)
         self.forces = ProgramForces(model, self.constants)
         self.constants.add("r0", model.state.r, is_vector=True)
@@ -246,7 +246,7 @@ class _Case:
     def draw(self) -> list[str]:
         i, n, axes = self.index, self.constants.name, self.axes
         lines = [f"{'ball' if self.single else 'balls[i]'}.pos = pos{i}",
-                 commented(f"spring{'' if self.single else 's[i]'}.axis = pos{i} - {n(ANCHOR)}",
+                 commented(f"spring{'' if self.single else 's[i]'}.axis = pos{i} - {n(anchor(self.constants))}",
                            "the helix follows the sphere")]
         lines += self.plot_position()
         if self.exact is not None:
