@@ -165,8 +165,8 @@ def write_programs(args, setup, model, *, warn: bool) -> None:
                              f"`from vpython import *` would import the program itself instead of the vpython "
                              f"library; give it another name, like spring.py")
         for path, program_text in texts:
-            if path == "-":
-                print(program_text, end="")
+            if path == "-":   # printed as a file would be written: with its mark and fingerprint
+                print(files.stamped(program_text), end="")
             elif path == args.html:
                 offline_page.write_page(path, program_text, overwrite=args.overwrite)
                 print(f"wrote {path}", file=sys.stderr)

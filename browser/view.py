@@ -24,7 +24,7 @@ import time
 
 import numpy as np
 
-from export import offline_page
+from export import files, offline_page
 from export.offline_page import link_fragment
 from export.step_update import step_lines, update_force
 from physics.period import CrossingMeter, formula_period
@@ -587,7 +587,7 @@ class SceneView:
         from export import program
 
         try:
-            text = program(self.setup, integrator=self.integrator, arrows=self.arrows.shown)
+            text = files.stamped(program(self.setup, integrator=self.integrator, arrows=self.arrows.shown))
         except ValueError as problem:
             self.controls.offer_nothing(f"no program: {problem}")
             return
@@ -608,7 +608,7 @@ class SceneView:
 
         def write():
             try:
-                writing["text"] = offline_page.page(setup, integrator=integrator, arrows=shown)
+                writing["text"] = files.stamped(offline_page.page(setup, integrator=integrator, arrows=shown))
             except ValueError as problem:
                 writing["problem"] = str(problem)
         writing["thread"] = threading.Thread(target=write, name="offline page", daemon=True)

@@ -286,7 +286,7 @@ def _document(setup, data: dict, *, shown) -> str:
                       if name == COMPILER else f"<script>{library(name)}</script>\n" for name, _ in LIBRARIES)
     speeds = "".join(f'<option{" selected" if value == 1 else ""}>{label}</option>' for label, value in SPEEDS.items())
     return f"""<!DOCTYPE html>
-<!-- {files.HANDOUT_MARK} (python main.py {setup.name} --html): {html.escape(title)} -->
+<!-- The spring-mass simulator's offline page (python main.py {setup.name} --html): {html.escape(title)} -->
 <html lang="en">
 <head>
 <meta charset="utf-8">
@@ -356,30 +356,14 @@ def _short(x) -> str:
     return str(int(x)) if x.is_integer() and abs(x) < 1e15 else repr(x)
 
 
-# The fingerprint's line under the mark (export/files.py with_fingerprint); an HTML comment may not hold "--".
-PAGE_FINGERPRINT = (f"<!-- {files.DIGEST_SLOT}: this file's fingerprint; once the file is edited, the simulator "
-                    f"replaces it only when told to overwrite -->")
-
-
 def check_page_path(path: str, *, overwrite: bool = False) -> None:
     """Raise OutputError (one line) if the page cannot be written to path: files.check_writable's
-    checks, and an existing file this program did not write (no HANDOUT_MARK near its top) is
-    not replaced unless `overwrite`."""
+    checks (an existing file is replaced only where it is ours, unchanged: export/marks.py)."""
     files.check_writable(path, what="the offline page", overwrite=overwrite)
-    if overwrite or not os.path.isfile(path):
-        return
-    try:
-        with open(path, "rb") as file:
-            ours = files.HANDOUT_MARK.encode() in file.read(2000)
-    except OSError:
-        ours = False
-    if not ours:
-        raise files.OutputError(f"cannot write the offline page {path!r}: it is a file this program did not write; "
-                                f"give another name, or add --overwrite to replace it")
 
 
 def write_page(path: str, text: str, *, overwrite: bool = False) -> None:
     """Write the page whole (a temporary file renamed over the target), after check_page_path,
-    with the fingerprint's line under its mark (PAGE_FINGERPRINT)."""
+    stamped with its mark line and fingerprint under <!DOCTYPE html> (export/marks.py stamped)."""
     check_page_path(path, overwrite=overwrite)
-    files.write_text(path, files.with_fingerprint(text, PAGE_FINGERPRINT), what="the offline page", overwrite=overwrite)
+    files.write_text(path, files.stamped(text), what="the offline page", overwrite=overwrite)

@@ -175,7 +175,7 @@ class _Case:
         methods = self.methods
         how = f"the {methods[0]} integrator" if len(set(methods)) == 1 else "each mass's own integrator (the list method)"
         return [*description(self.setup),
-                f"# Written by the spring-mass simulator with {how}. Edit the constants and run it again.",
+                f"# It steps with {how}. Edit the constants and run it again.",
                 f"# The same case on the simulator's page: {command(self.setup, self.model, self.integrator)}"]
 
     def constants_lines(self) -> list[str]:
