@@ -192,6 +192,9 @@ def check_lab_options(args) -> None:
         raise UsageError(f"--seed needs a whole number of 0 or more (got {args.seed})")
     if args.run is not None and args.run < 1:
         raise UsageError(f"--run needs a whole number of 1 or more (got {args.run})")
+    if args.data_column is not None and not args.data_column.strip():
+        raise UsageError("--data-column needs a column: a unique part of its header, or its number from 1 "
+                         "(got nothing); leave it out to read the file's position column")
     if args.fit is not None and not args.fit.strip():
         raise UsageError("--fit needs the names of the constants to fit, like --fit k,b (got nothing); "
                          "leave it out to fit only the offsets")
