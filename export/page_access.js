@@ -125,10 +125,11 @@
     if (text.indexOf("e") >= 0) text = v.toPrecision(4);
     return text.replace("-", "\u2212");
   }
-  function graphObject(el) {
-    if (typeof glowObjs === "undefined") return null;
-    for (var i = 0; i < glowObjs.length; i++) {
-      var g = glowObjs[i];
+  function graphObject(el) {         // vpython's graph objects, or GlowScript's graph chosen now (offline page)
+    var all = typeof glowObjs !== "undefined" ? glowObjs :
+      (window.graph && window.graph.get_selected ? [window.graph.get_selected()] : []);
+    for (var i = 0; i < all.length; i++) {
+      var g = all[i];
       if (g && g.graph_options && g.container && g.container[0] === el) return g;
     }
     return null;
