@@ -29,9 +29,20 @@ from .messages import Describe
 
 # With prefers-reduced-motion the page opens paused, its first frame drawn: Pause, then Reset
 # (t = 0 again, paused), pressed by the page's own buttons as a click would.
-PAUSE = ("function () { var press = function (name) { var b = Array.prototype.filter.call("
-         "document.querySelectorAll('button'), function (b) { return b.textContent.trim() === name; })[0];"
-         " if (b) b.click(); }; press('Pause'); setTimeout(function () { press('Reset'); }, 300); }")
+PAUSE = """function () {
+  var find = function (name) { return Array.prototype.filter.call(document.querySelectorAll('button'),
+    function (b) { return b.textContent.trim() === name; })[0]; };
+  var tries = 0;
+  (function pause() {             // the buttons may come a moment after this script
+    var button = find('Pause');
+    if (button) button.click();
+    else if (!find('Run') && ++tries < 300) return setTimeout(pause, 100);
+    (function reset(n) {
+      if (find('Run')) { var r = find('Reset'); if (r) r.click(); }
+      else if (n < 300) setTimeout(function () { reset(n + 1); }, 100);
+    })(0);
+  })();
+}"""
 
 
 def head(setup) -> str:

@@ -82,9 +82,14 @@
     return true;
   }
 
+  // In a Jupyter notebook the scene is one cell's output and the notebook owns the keys (D D
+  // deletes a cell, S saves): the page's keys work there only while the focus is in the scene.
+  var IN_NOTEBOOK = !!document.querySelector(".jp-Notebook, .jp-Cell, #notebook-container");
+
   function onKeyDown(e) {
     if (e.ctrlKey || e.altKey || e.metaKey || e.defaultPrevented) return;
     var el = e.target;
+    if (IN_NOTEBOOK && !(el.closest && el.closest(".glowscript"))) return;
     if (typing(el)) { if (e.key === "Escape") el.blur(); return; }
     if (slider(el) && SLIDER_KEYS.test(e.key)) return;
     if (el.tagName === "SELECT" && /^Arrow(Up|Down)$/.test(e.key)) return;   // ↑ ↓ choose in a menu
@@ -319,8 +324,8 @@
     tidy();
     if (A.installed) return;
     A.installed = true;
-    document.addEventListener("keydown", onKeyDown, true);
-    document.addEventListener("keyup", onKeyUp, true);
+    window.addEventListener("keydown", onKeyDown, true);   // the window's capture: before anything else on the page
+    window.addEventListener("keyup", onKeyUp, true);
     setInterval(tidy, 700);
     var quiet = window.matchMedia && window.matchMedia("(prefers-reduced-motion: reduce)").matches;
     if (quiet && config.pause) config.pause();
