@@ -466,6 +466,7 @@ window.offlineProgram = function (compiled, rate, GSprint, offline_page, canvas,
   function showSlider(name) {
     var spec = DATA.sliders[name], value = setup.values[name];
     byId("slider-" + name + "-value").textContent = DATA.constants[name].symbol + " = " + describe(value, DATA.constants[name].unit);
+    byId("slider-" + name).setAttribute("aria-valuetext", byId("slider-" + name + "-value").textContent);
   }
 
   function buildControls() {
@@ -481,6 +482,7 @@ window.offlineProgram = function (compiled, rate, GSprint, offline_page, canvas,
       input.addEventListener("input", function () {
         var value = valueAt();
         byId("slider-" + name + "-value").textContent = DATA.constants[name].symbol + " = " + describe(value, DATA.constants[name].unit);
+        input.setAttribute("aria-valuetext", byId("slider-" + name + "-value").textContent);   // said with its unit
       });
       input.addEventListener("change", function () {   // released: the run starts again with the new value
         var values = Object.assign({}, setup.values);
