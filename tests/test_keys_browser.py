@@ -75,8 +75,9 @@ def focus_kind(page, kind: str) -> None:
     selector = {"button": "button", "checkbox": "input[type=checkbox]", "menu": "select",
                 "slider": ".ui-slider-handle, input[type=range]", "table": "details.sm-alt summary"}.get(kind)
     page.evaluate("""sel => { document.activeElement && document.activeElement.blur();
-      if (!sel) return; const e = Array.from(document.querySelectorAll(sel)).filter(e => e.offsetParent !== null
-        && !(e.textContent || '').match(/^(Run|Pause|Step|Reset|Describe|Projector)/))[0]; e.focus(); }""", selector)
+      if (!sel) return; const shown = Array.from(document.querySelectorAll(sel)).filter(e => e.offsetParent !== null);
+      const e = shown.filter(e => !(e.textContent || '').match(/^(Run|Pause|Step|Reset|Describe|Projector)/))[0] || shown[0];
+      e.focus(); }""", selector)
 
 
 def state(page) -> dict:
