@@ -191,6 +191,7 @@
     var d = el.__smAlt;
     if (!d) {
       d = el.__smAlt = document.createElement("details");
+      d.__smGraph = el;
       d.className = "sm-alt";
       d.innerHTML = "<summary>Table of the points shown</summary><div class='sm-points-box'></div>";
       d.addEventListener("toggle", function () { if (d.open && el.__smPlot) fill(el); });
@@ -213,7 +214,14 @@
     el.setAttribute("role", "img");
     if (el.getAttribute("aria-label") !== text) el.setAttribute("aria-label", text);
     var d = detailsFor(el);
-    if (d.querySelector("summary").textContent.indexOf(":") < 0) fill(el);
+    if (d.open || d.querySelector("summary").textContent.indexOf(":") < 0) fill(el);   // an open table follows the graph
+  }
+  function dropOrphans() {           // a graph taken down (another graph chosen, a new scene) takes its table along
+    document.querySelectorAll("details.sm-alt").forEach(function (d) {
+      var g = d.__smGraph;
+      if (!g || !g.isConnected || g.offsetParent === null) d.remove();
+      else detailsFor(g);
+    });
   }
   function wrapPlot() {
     var jq = window.jQuery;
@@ -307,6 +315,7 @@
 
   function tidy() {
     wrapPlot();
+    dropOrphans();
     markView();
     markLive();
     markShortcuts();
