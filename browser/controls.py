@@ -23,6 +23,7 @@ from .axes import PLAIN_TICKS
 from .graph_reading import GRAPH_READING
 from .measure_panel import MeasurePanel
 from .arrows3d import arrow_checkboxes
+from . import access
 from .messages import (ChooseIntegrator, ChoosePreset, ChooseScene, ChooseSpeed, DownloadCsv, DownloadOfflinePage,
                        DownloadProgram, FitData, JumpTo, Reset, RunOrPause, SetConstant, Step)
 from .readout import units_kept
@@ -99,6 +100,8 @@ class Controls:
                       until=setup.values.get("until"))
         self._time_row()
         caption("\n")
+        access.describe_button(vp, self.commands.put)   # browser/access.py: the motion in words (key D)
+        caption(" ")
         # browser/measure_panel.py: its button here, its block (closed at first) under it, by the clock
         self.measure = MeasurePanel(vp, self.commands.put,
                                     **(measure or {"period": False, "lines": (), "graph": "energy"}))
@@ -121,6 +124,7 @@ class Controls:
         caption("\n<i>Moving a slider, choosing another integrator or a preset, or loading data restarts "
                 "the run from t = 0; Reset returns to the start; "
                 "Step advances one Δt.</i>\n")
+        vp.wtext(text="").text = access.keys_line()   # the keys, and the box that turns the letter keys off
 
     # ---- building the caption, one row at a time ----
 
@@ -181,6 +185,7 @@ class Controls:
         # the status (why the run stopped, a runaway, Δt stable but inaccurate, a file that cannot
         # open) under the time, where a class looks: at the page's foot it was below a 1280×800 screen
         self.status_text = _OwnLine(vp.wtext(text=""))
+        self.description = access.description_line(vp)   # the live region (browser/access.py)
         self.notice = ""   # a sentence said (say()) that stays until the next run starts
 
     def _menu_row(self, *, setup, preset: str | None) -> None:
@@ -239,6 +244,7 @@ class Controls:
             self.slider_texts[name] = vp.wtext(text="")
         if self.sliders:
             vp.wtext(text="").text = PRIME_SLIDERS  # set, not made with it: the setter runs scripts
+            vp.wtext(text="").text = access.slider_script(setup, list(self.sliders))   # names and values in words
 
     def clicks(self) -> list:
         """The messages queued by clicks since the last call (browser/messages.py), oldest first."""

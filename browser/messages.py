@@ -48,6 +48,11 @@ class JumpTo:
 
 
 @dataclass(frozen=True)
+class Describe:
+    """Say the motion in words in the live region (the Describe button, key D; export/description.py)."""
+
+
+@dataclass(frozen=True)
 class ChooseSpeed:
     """Simulated time runs at this speed × wall time: a label of browser/controls.py's SPEEDS, `2×`."""
     label: str

@@ -25,6 +25,7 @@ import time
 import numpy as np
 
 from export import offline_page
+from export.description import describe
 from export.offline_page import link_fragment
 from export.step_update import step_lines, update_force
 from physics.period import CrossingMeter, formula_period
@@ -32,6 +33,7 @@ from physics.period import CrossingMeter, formula_period
 from scenes import catalog
 from scenes._view import DEFAULT_VIEW
 
+from . import access
 from .clock import LiveRun, RealTimeClock, StepBudget
 from .controls import (PRESET_PROMPT, SPEEDS, Controls, constants_text, csv_href, page_href, program_href,
                        scene_menu_choices, slider_names, slider_range, symbol, time_decimals)
@@ -41,8 +43,9 @@ from .graphs import SAMPLE_EVERY, Graphs, csv_text
 from .jump import batches, jump_steps, jump_time
 from .measure_panel import period_text
 from .messages import (Batch, ChooseGraph, ChooseIntegrator, ChoosePreset, ChooseScene, ChooseSpeed, ClearStopwatch,
-                       DownloadCsv, DownloadOfflinePage, DownloadProgram, FitData, JumpTo, LapStopwatch, MoveMarker,
-                       Reset, RunOrPause, SetConstant, ShowArrows, ShowLine, ShowPeriod, StartStopwatch, Step)
+                       Describe, DownloadCsv, DownloadOfflinePage, DownloadProgram, FitData, JumpTo, LapStopwatch,
+                       MoveMarker, Reset, RunOrPause, SetConstant, ShowArrows, ShowLine, ShowPeriod,
+                       StartStopwatch, Step)
 from .reference_lines import ReferenceLines
 from .stopwatch import Stopwatch
 from .page_layout import PROJECTOR_BUTTON, page_head
@@ -135,7 +138,7 @@ class SceneView:
         """The 3-D picture, the controls and the graphs of self.setup, in the order the page shows them."""
         setup, model = self.setup, self.live.model
         view = {**DEFAULT_VIEW, **setup.hooks.view}
-        title = (page_head(projector=self.projector) + f"<b style='font-size:130%'>{setup.name}</b>: "
+        title = (page_head(projector=self.projector) + access.head(setup) + f"<b style='font-size:130%'>{setup.name}</b>: "
                  f"{_summary(setup.module)}{PROJECTOR_BUTTON}\n")
         scene = Scene3D(self.vp, model=model, view=view, title=title)
         if self.arrows_scene != setup.name:  # a new scene starts with its own arrows, or --arrows
@@ -210,6 +213,7 @@ class SceneView:
         self.arrows.end_step()
         self.arrows.publish()
         self.controls.step_text.text = ""
+        self.controls.description.text = ""
         self.scene.clear()
         self.graphs.clear()
         self._plot(samples, redraw=True)
@@ -336,6 +340,10 @@ class SceneView:
             self._rebuild(changes=batch.changes, integrator=batch.integrator or self.integrator)
             batch.changes, batch.integrator = {}, None
         self._jump(message.text)
+
+    @carry_out.register
+    def _describe(self, message: Describe, batch: Batch) -> None:
+        self._describe_motion()
 
     @carry_out.register
     def _show_arrows(self, message: ShowArrows, batch: Batch) -> None:
@@ -520,6 +528,15 @@ class SceneView:
         more = f"\n(and {after.count - len(shown)} more masses)" if after.count > len(shown) else ""
         self.controls.step_text.text = ("<span class='step-readout' style='font-family: monospace'>"
                                         + "\n".join(blocks) + more + "</span>")
+        self._describe_motion()
+
+    def _describe_motion(self) -> None:
+        """The motion in words (export/description.py) in the live region under the clock: where
+        each mass is, how it moves, and the last step's F_net and its parts, the engine's numbers."""
+        live = self.live
+        self.controls.description.text = describe(live.model, live.engine.methods, state=live.state,
+                                                  before=live.before, equilibrium=self.lines.at["equilibrium"],
+                                                  decimals=self.decimals)
 
     # ---- drawing ----
 

@@ -178,7 +178,8 @@ window.offlineProgram = function (compiled, rate, GSprint, offline_page, canvas,
   // ---- one run of the program ----
 
   var current = null;              // the run now; a run replaced stops at its next rate()
-  var paused = false, steps = 0, release = null, speed = 1;
+  // with prefers-reduced-motion the page opens paused, its first frame drawn (Run starts it)
+  var paused = !!(window.matchMedia && window.matchMedia("(prefers-reduced-motion: reduce)").matches), steps = 0, release = null, speed = 1;
   var jump = null, jumps = 0, jumpsDrawn = 0;   // the jump under way ({run, n}), jumps done, and drawn
   var compiled = {};               // program text -> GlowScript's JavaScript
 
@@ -274,10 +275,11 @@ window.offlineProgram = function (compiled, rate, GSprint, offline_page, canvas,
         drawEquilibrium(run);
         showMeasured(run);
       },
-      stepped: function (i, n, m, F, p, r) {
+      stepped: function (i, n, m, F, p, r, terms) {
         if (run !== current) return;
         var before = run.last[i];
-        run.steps[i] = {n: n, m: m, F: vec(F), p_i: before.p, r_i: before.r, p_f: vec(p), r_f: vec(r)};
+        run.steps[i] = {n: n, m: m, F: vec(F), p_i: before.p, r_i: before.r, p_f: vec(p), r_f: vec(r),
+                        terms: (terms || []).map(vec)};
         run.last[i] = {r: run.steps[i].r_f, p: run.steps[i].p_f};
         if (i === 0) run.n = n;
       }
@@ -389,6 +391,30 @@ window.offlineProgram = function (compiled, rate, GSprint, offline_page, canvas,
     }
     var more = run.last.length > count ? "\n(and " + (run.last.length - count) + " more masses)" : "";
     byId("step").textContent = blocks.join("\n") + more;
+    sayMotion(run);
+  }
+
+  // ---- the motion in words: export/description.py's template, filled with the program's numbers ----
+
+  function sayMotion(run) {
+    var D = DATA.describe, dt = run.setup.values.dt, n = run.n || 0;
+    var t = (n * dt).toFixed(Math.min(100, Math.max(2, timeDecimals(dt))));
+    var centres = ownSetUp(run) ? DATA.measured.equilibrium : null;
+    var masses = (run.last || []).map(function (now, i) {
+      var s = run.steps[i] && run.steps[i].n === n ? run.steps[i] : null;
+      var m = s ? s.m : (run.setup.values.m !== undefined ? run.setup.values.m : D.m[i]);
+      var method = DATA.fixed_methods ? DATA.fixed_methods[i] : run.setup.integrator;
+      var step = null;
+      if (s) {
+        var once = DATA.step.kicks_once[method];
+        step = {average: !once, parts: once ? s.terms.map(function (F, k) { return [D.labels[k], F]; }) : [],
+                F_net: once ? s.F : s.p_f.map(function (pf, k) { return (pf - s.p_i[k]) / dt; })};
+      }
+      return {who: run.last.length > 1 ? D.template.many.replace("{label}", DATA.step.labels[i]) : D.template.one,
+              r: now.r, v: now.p.map(function (c) { return c / m; }), centre: centres ? centres[i] : null, step: step,
+              position: "< " + now.r.map(function (c) { return pyG(c, D.digits); }).join(", ") + " >"};
+    });
+    byId("description").textContent = window.smAccess.sentences(D, t, masses, masses.length, pyG);
   }
 
   // ---- the controls ----
@@ -497,6 +523,7 @@ window.offlineProgram = function (compiled, rate, GSprint, offline_page, canvas,
   function showSlider(name) {
     var spec = DATA.sliders[name], value = setup.values[name];
     byId("slider-" + name + "-value").textContent = DATA.constants[name].symbol + " = " + describe(value, DATA.constants[name].unit);
+    byId("slider-" + name).setAttribute("aria-valuetext", byId("slider-" + name + "-value").textContent);
   }
 
   function buildControls() {
@@ -516,6 +543,7 @@ window.offlineProgram = function (compiled, rate, GSprint, offline_page, canvas,
       input.addEventListener("input", function () {
         var value = valueAt();
         byId("slider-" + name + "-value").textContent = DATA.constants[name].symbol + " = " + describe(value, DATA.constants[name].unit);
+        input.setAttribute("aria-valuetext", byId("slider-" + name + "-value").textContent);   // said with its unit
       });
       input.addEventListener("change", function () {   // released: the run starts again with the new value
         var values = Object.assign({}, setup.values);
@@ -534,26 +562,8 @@ window.offlineProgram = function (compiled, rate, GSprint, offline_page, canvas,
       if (current) sizeView(current);
     });
     window.addEventListener("resize", function () { if (current) sizeView(current); });
-    document.addEventListener("keydown", function (e) {   // as the local page: Space, → and R
-      if (e.ctrlKey || e.altKey || e.metaKey) return;
-      var tag = e.target.tagName;
-      if (tag === "INPUT" || tag === "SELECT" || tag === "TEXTAREA") return;
-      var done = true;
-      if (e.key === " " && tag !== "BUTTON") toggle();
-      else if (e.key === "ArrowRight" && tag !== "BUTTON") step();
-      else if (e.key === "r" || e.key === "R") reset();
-      else if (e.key === "j" || e.key === "J") jumpTo(byId("jump-t").value);
-      else if (e.key === "+" || e.key === "=") changeSpeed(1);
-      else if (e.key === "-" || e.key === "−" || e.key === "_") changeSpeed(-1);
-      else done = false;
-      if (done) e.preventDefault();
-    });
-  }
-
-  function changeSpeed(by) {
-    var menu = byId("speed");
-    menu.selectedIndex = Math.min(menu.options.length - 1, Math.max(0, menu.selectedIndex + by));
-    setSpeed(DATA.speeds[menu.value]);
+    byId("describe").addEventListener("click", function () { if (current) sayMotion(current); });
+    // the keys are export/page_access.js's (export/page_keys.py), as on the local page
   }
 
   function setSpeed(value) { speed = value; if (current) current.clock = null; }
