@@ -187,7 +187,7 @@ def main(argv=None) -> int:
             return 2 if problems else 0
         setup = catalog.configure(catalog.DEFAULT_SCENE if args.scene is None else args.scene,
                                   assignments=args.assignments,
-                                  scenario=args.scenario, preset=args.preset)
+                                  scenario=args.scenario, preset=args.preset, forces=args.forces)
         if args.constants:
             print(text.constants_report(setup))
             print(text.presets_report(setup))

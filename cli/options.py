@@ -25,6 +25,7 @@ EXAMPLES = """examples:
   python main.py vertical --headless --preset "Moon gravity"
   python main.py damped --preset "critical damping"    no overshoot, in the browser
   python main.py vertical --steps 2                   the first two updates, to check by hand
+  python main.py vertical --headless --force "push=vector(0, 50, 0)"   a 50 N push up: as g = 4.8
   python main.py regimes --plot regimes.png           the page's damping figure
   python main.py damped --data examples/data/vernier.csv --fit k,b --set m=0.5
                                                       fit k and b to a motion detector's run
@@ -60,6 +61,10 @@ def build_parser() -> argparse.ArgumentParser:
     parser.add_argument("--headless", action="store_true", help="run without a browser and print the result")
     parser.add_argument("--set", action="append", default=[], metavar="NAME=VALUE", dest="assignments",
                         help="change a constant, e.g. --set k=25 or --set r0=0,-1.2,0 (may repeat)")
+    parser.add_argument("--force", action="append", default=[], metavar="NAME=EXPRESSION", dest="forces",
+                        help="add a force written in the program's names, e.g. --force \"push=vector(2, 0, 0)\" or "
+                             "--force \"wind=-0.5*mag(v)*v\" (r, v, p, t, m, k, b, g, dt; vector, mag, hat, dot, "
+                             "cross, cos, sin, exp, sqrt, pi; may repeat): its arrow, the run, the program")
     parser.add_argument("--scenario", type=int, metavar="N", help="one of the scene's numbered scenarios")
     parser.add_argument("--preset", metavar="NAME",
                         help="one of the scene's presets, e.g. \"Moon gravity\" or \"critical damping\" "
@@ -174,6 +179,9 @@ def check_lab_options(args) -> None:
     for flag, attribute in (("--list", "list"), ("--constants", "constants")):
         if command and _given(args, attribute):
             raise UsageError(f"{flag} only lists, so {command} would do nothing; leave out one of them")
+    if command and _given(args, "forces"):
+        raise UsageError(f"--force adds a force to a run, the page or a program, and {command} uses the scene's "
+                         f"own forces; leave out one of them")
     allowed = {"--data": {"fit", "data_column", "run", "coordinate", "data_sign", "page"},
                "--mystery": {"seed", "coordinate"}, "--show-answer": {"seed", "coordinate"}}.get(command, set())
     for flag, attribute in LAB_OPTIONS:
@@ -237,7 +245,7 @@ def check_options(args) -> None:
         return
     if args.constants:
         for flag, attribute in (*RUN_OPTIONS, *PROGRAM_OPTIONS, *BROWSER_ONLY, (_arrows_flag(args), "arrows"),
-                                ("--overwrite", "overwrite")):
+                                ("--overwrite", "overwrite"), ("--force", "forces")):
             if _given(args, attribute):
                 raise UsageError(f"--constants only prints the constants, so {flag} would do nothing; "
                                  f"leave out one of them")
@@ -262,7 +270,7 @@ def _programs(args) -> list[str]:
 
 def _check_list(args) -> None:
     """--list takes nothing else."""
-    others = [flag for flag, attribute in (("--constants", "constants"), ("--set", "assignments"),
+    others = [flag for flag, attribute in (("--constants", "constants"), ("--set", "assignments"), ("--force", "forces"),
                                            ("--scenario", "scenario"), ("--preset", "preset"),
                                            *RUN_OPTIONS, *PROGRAM_OPTIONS, *BROWSER_ONLY,
                                            ("--overwrite", "overwrite"), (_arrows_flag(args), "arrows"))
