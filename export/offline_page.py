@@ -43,7 +43,7 @@ from scenes import DECLARED
 from scenes._sliders import round_slider_values, slider_names, slider_range, symbol
 from scenes._view import DEFAULT_VIEW
 
-from . import files
+from . import files, offline_forces
 from .arrows import ARROW_LABELS, ARROWS, SEE_THROUGH, choose_scales
 from .framing import frame
 from .lines import ProgramError
@@ -230,6 +230,8 @@ def page(setup, *, integrator: str | None = None, arrows=None, end: float | None
                               end=end)
                 for name in names}
     offered = {found.name: found for found in settable(setup, integrator=None if fixed else first, view=view)}
+    forces = offline_forces.box_data(setup, integrators={name: None if fixed else name for name in names},
+                                     shown=shown, end=end, pages=programs)   # the Add a force box
     methods = sorted(set(fixed or INTEGRATORS))
     framed = frame(model, view)   # the local page's camera (export/framing.py), and room for the arrows
     scales = choose_scales(model, view=view, integrator=first if not fixed else None, forces="forces" in shown)
@@ -253,6 +255,7 @@ def page(setup, *, integrator: str | None = None, arrows=None, end: float | None
         "step": {"layouts": {name: dict(zip(("lines", "drift"), step_layout(name))) for name in methods},
                  "kicks_once": {name: INTEGRATORS[name].kicks_once for name in methods},
                  "labels": list(model.labels), "masses": STEP_MASSES},
+        "forces": forces,
     }
     text = _document(setup, data, shown=shown)
     if len(text.encode("utf-8")) > MAX_BYTES:
@@ -297,7 +300,7 @@ This file holds GlowScript 3.2 and the libraries bundled in it, each under its o
 
 {notice}
 -->
-<style>{_read(STYLE) % {"body": BODY_PX, "projector": PROJECTOR_PX}}</style>
+<style>{_read(STYLE) % {"body": BODY_PX, "projector": PROJECTOR_PX}}{offline_forces.STYLE}</style>
 </head>
 <body>
 <h1>{html.escape(title)}</h1>
@@ -322,10 +325,12 @@ This file holds GlowScript 3.2 and the libraries bundled in it, each under its o
 <p class="link">This set-up's link (add it to the file's address once the file is on a web site):
 <input id="link" readonly size="28"></p>
 <details><summary>The program this page runs (Web VPython 3.2)</summary><pre id="program-text"></pre></details>
+{offline_forces.box_html(data["forces"])}
 </div>
 </main>
 <script type="application/json" id="offline-data">{_json(data)}</script>
 {scripts}{plain_ticks(clear_outside=False)}
+<script>{_read(offline_forces.SCRIPT)}</script>
 <script>{_read(SCRIPT)}</script>
 </body>
 </html>

@@ -404,9 +404,11 @@ def _precedence(node) -> int:
 
 def program_text(node, spelled: dict[str, str]) -> str:
     """The tree as the program writes it, with each grammar name spelled as `spelled` says (r as
-    pos, p as (m*v)): + and − spaced, × ÷ ** tight, and brackets exactly where the order of the
-    arithmetic needs them (a unary minus in the middle of a product, or on a power, has its own:
-    (−x), −(x**2)). The offline page's script writes the same text (export/force_box.js)."""
+    pos, p as (m*v)): + and − spaced, × ÷ ** tight, and brackets where the order of the
+    arithmetic needs them, and where Python and GlowScript would read it differently: a unary
+    minus in the middle of a product, or on a power, has its own, (−x) and −(x**2), and a power of
+    a power is 2**(3**2) (GlowScript 3.2 reads 2**3**2 as (2**3)**2). The offline page's script
+    writes the same text (export/force_box.js)."""
     if isinstance(node, Number):
         return node.text
     if isinstance(node, Name):
@@ -420,7 +422,6 @@ def program_text(node, spelled: dict[str, str]) -> str:
     left, right = program_text(node.left, spelled), program_text(node.right, spelled)
     if _precedence(node.left) < own or (node.op == "**" and _precedence(node.left) <= own):
         left = f"({left})"
-    if isinstance(node.right, Unary) or _precedence(node.right) < own or \
-            (node.op != "**" and _precedence(node.right) == own):
+    if isinstance(node.right, Unary) or _precedence(node.right) <= own:   # GlowScript reads 2**3**2 as (2**3)**2
         right = f"({right})"
     return f"{left} {node.op} {right}" if node.op in ("+", "-") else f"{left}{node.op}{right}"

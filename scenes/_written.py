@@ -44,10 +44,20 @@ def check_written(written, *, labels=()) -> tuple[tuple[str, str], ...]:
     return tuple(checked)
 
 
-def scene_constants(values: dict) -> dict[str, float]:
-    """The constants a written force may read (k, b, g, dt) that this scene has, as numbers."""
-    return {name: float(values[name]) for name in CONSTANT_NAMES
-            if isinstance(values.get(name), (int, float)) and not isinstance(values.get(name), bool)}
+def scene_constants(values: dict, model: Model | None = None) -> dict[str, float]:
+    """The constants a written force may read (k, b, g, dt) that this scene has as one number: not
+    one a force of the model holds with other values (a row's b, one per mass)."""
+    found = {name: float(values[name]) for name in CONSTANT_NAMES
+             if isinstance(values.get(name), (int, float)) and not isinstance(values.get(name), bool)}
+    for force in model.forces if model is not None else ():
+        try:
+            held = force.program_values()
+        except ValueError:
+            continue
+        for name, value in held.items():
+            if name in found and not np.all(np.asarray(value, dtype=float) == found[name]):
+                del found[name]
+    return found
 
 
 def add_written(model: Model, written, values: dict) -> Model:
@@ -57,20 +67,25 @@ def add_written(model: Model, written, values: dict) -> Model:
     if not written:
         return model
     written = check_written(written, labels=[getattr(force, "LABEL", "") for force in model.forces])
-    constants = scene_constants(values)
+    constants = scene_constants(values, model)
     forces = []
     for name, text in written:
         law = parse(text)
         missing = sorted(law.names & set(CONSTANT_NAMES) - set(constants))
         if missing:
-            raise ExpressionError(f"the force {name} reads {', '.join(missing)}, which this scene does not have "
-                                  f"(it has {', '.join(constants) or 'none of k, b, g, dt'})")
+            raise ExpressionError(f"the force {name} reads {', '.join(missing)}, which this scene does not have as "
+                                  f"one number (it has {', '.join(constants) or 'none of k, b, g, dt'})")
         force = WrittenForce(name, law, constants)
         _check_start(force, model)
         forces.append(force)
+    return add_forces(model, forces)
+
+
+def add_forces(model: Model, forces) -> Model:
+    """The model with these forces after its own, and no closed form (named by the first of them)."""
     return dataclasses.replace(model, forces=tuple(model.forces) + tuple(forces), exact=None,
                                exact_valid_until=None, exact_limit="", no_closed_form_each=(),
-                               no_closed_form=f"no closed form with {forces[0].name}")
+                               no_closed_form=f"no closed form with {forces[0].LABEL}")
 
 
 def _check_start(force: WrittenForce, model: Model) -> None:

@@ -26,7 +26,7 @@ PLAIN = {name: name for name in NAMES}
     ("-2**2*v", "-(2**2)*v"),                     # Python's order: −(2²)
     ("(-2)**2*v", "(-2)**2*v"),
     ("2**-1*v", "2**(-1)*v"),
-    ("2**3**2*v", "2**3**2*v"),                   # ** groups from the right
+    ("2**3**2*v", "2**(3**2)*v"),                 # ** groups from the right (GlowScript's would not)
     ("(2**3)**2*v", "(2**3)**2*v"),
     ("v - (v - r)", "v - (v - r)"),               # the order of the sums is kept
     ("(v - v) - r", "v - v - r"),

@@ -1,0 +1,36 @@
+"""A written force in the Web VPython program, run by GlowScript 3.2 itself: it prints the command
+line's answer digit for digit (GlowScript reads the force's line as Python does: the writer puts
+brackets where the two would differ, 2**(3**2), −(x**2))."""
+from __future__ import annotations
+
+import pytest
+
+from browser_support import require_browser
+from test_export import main_py
+from test_handout import headless_answer
+from test_handout_glowscript import run_in_glowscript
+from test_written_force import FORCES
+
+pytestmark = pytest.mark.browser
+require_browser()
+
+CASES = [(text, method) for text in FORCES for method in ("euler-cromer", "rk4")] + [
+    ("2**3**2*vector(0, 0.01, 0) - (-v)*0.1 + -(2**2)*vector(0.01, 0, 0)", "verlet"),
+    ("vector(0, 50, 0)", "euler"),
+]
+
+
+@pytest.mark.parametrize("text, method", CASES)
+def test_the_force_answers_as_the_command_line_in_glowscript(text, method, browser, tmp_path):
+    case = ("vertical", "--set", "b=0.3", "--set", "dt=0.01", "--set", "until=1", "--integrator", method,
+            "--force", f"added={text}")
+    done = main_py(*case, "--webvpython", "-", "--until", "1", "--arrows", "p,F_net,forces,split")
+    assert done.returncode == 0, done.stderr
+    page = browser.new_page(viewport={"width": 1024, "height": 768})
+    try:
+        lines = run_in_glowscript(page, done.stdout, answers=1, folder=tmp_path)
+        page.wait_for_function("window.failed !== null || window.ended")
+        assert page.evaluate("window.failed") is None    # its arrow of the force moved to the end
+    finally:
+        page.close()
+    assert lines == [headless_answer(*case)]
