@@ -17,9 +17,9 @@ browser, where the window's size is known, and again whenever the window is resi
 * the 3-D view's labels grow with projector mode as the page's text does, their offsets from
   their masses follow the canvas's size, and each is drawn wholly inside the canvas (moved in from
   an edge it would cross: 18 px text in the 538 × 263 px canvas of a 1024 × 768 window);
-* keys: Space runs or pauses, → steps, R resets, + and − change the speed, P projector mode, and
-  with the Measure panel open S, L and C for the stopwatch; every control is reached with Tab and
-  shows a thick outline when it has the focus;
+* keys: Space runs or pauses, → steps, R resets, J jumps to the t in its box, + and − change the speed,
+  P projector mode, and with the Measure panel open S, L and C for the stopwatch; every control
+  is reached with Tab and shows a thick outline when it has the focus;
 * the energy bars (browser/energy_bars.py), when chosen, in the graph place under the graphs.
 
 The graphs keep the height browser/graphs.py gives them (flot's tick spacing depends on it, and
@@ -338,6 +338,7 @@ SCRIPT = """
       if (e.key === ' ' && tag !== 'BUTTON') done = press(['Run', 'Pause']);
       else if (e.key === 'ArrowRight' && !onControl) done = press(['Step']);
       else if (e.key === 'r' || e.key === 'R') done = press(['Reset']);
+      else if (e.key === 'j' || e.key === 'J') done = press(['Jump']);
       else if (e.key === '+' || e.key === '=') done = speed(1);
       else if (e.key === '-' || e.key === '−' || e.key === '_') done = speed(-1);
       else if (e.key === 'p' || e.key === 'P') { window.smProjector = !window.smProjector; layout(); done = true; }
@@ -354,7 +355,7 @@ SCRIPT = """
 PROJECTOR_BUTTON = ("<button id='sm-projector' type='button' onclick='window.smProjector = !window.smProjector;"
                     " window.smLayout && window.smLayout()'>Projector (P)</button>")
 
-KEYS_HINT = "Keys: Space run/pause, → step, R reset, + and − speed, P projector, Tab moves between controls."
+KEYS_HINT = "Keys: Space run/pause, → step, R reset, J jump to t, + and − speed, P projector, Tab moves between controls."
 
 
 def page_head(*, projector: bool = False) -> str:

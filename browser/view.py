@@ -38,10 +38,11 @@ from .controls import (PRESET_PROMPT, SPEEDS, Controls, constants_text, csv_href
 from .arrows3d import MomentumArrows
 from .data_panel import MeasuredData, load_button_html
 from .graphs import SAMPLE_EVERY, Graphs, csv_text
+from .jump import batches, jump_steps, jump_time
 from .measure_panel import period_text
 from .messages import (Batch, ChooseGraph, ChooseIntegrator, ChoosePreset, ChooseScene, ChooseSpeed, ClearStopwatch,
-                       DownloadCsv, DownloadOfflinePage, DownloadProgram, FitData, LapStopwatch, MoveMarker, Reset,
-                       RunOrPause, SetConstant, ShowArrows, ShowLine, ShowPeriod, StartStopwatch, Step)
+                       DownloadCsv, DownloadOfflinePage, DownloadProgram, FitData, JumpTo, LapStopwatch, MoveMarker,
+                       Reset, RunOrPause, SetConstant, ShowArrows, ShowLine, ShowPeriod, StartStopwatch, Step)
 from .reference_lines import ReferenceLines
 from .stopwatch import Stopwatch
 from .page_layout import PROJECTOR_BUTTON, page_head
@@ -124,6 +125,7 @@ class SceneView:
         self.period_shown = False   # the period is hidden until its box is ticked
         self.lines_shown: set = set()
         self.graph_place = "energy"
+        self.jumped = False         # a jump was made this frame: the page says so once it has drawn
         self.scene, self.controls, self.graphs = self._build_parts(preset=preset)
         self._start_run()
 
@@ -286,6 +288,9 @@ class SceneView:
             self._plot(samples)
         if steps or changed:
             self._draw()
+        if self.jumped:   # last, after everything it drew: the note a look from outside waits for
+            self.jumped = False
+            self.controls.show_jumped(self.live.state.t, decimals=self.decimals)
         return max(0.002, 1.0 / FRAME_RATE - (time.perf_counter() - start))
 
     def _apply_commands(self, *, now: float) -> bool:
@@ -324,6 +329,13 @@ class SceneView:
     def _step_once(self, message: Step, batch: Batch) -> None:
         self.running = False
         self._step()
+
+    @carry_out.register
+    def _jump_to(self, message: JumpTo, batch: Batch) -> None:
+        if batch.changes or batch.integrator:   # chosen before the jump: they restart the run first
+            self._rebuild(changes=batch.changes, integrator=batch.integrator or self.integrator)
+            batch.changes, batch.integrator = {}, None
+        self._jump(message.text)
 
     @carry_out.register
     def _show_arrows(self, message: ShowArrows, batch: Batch) -> None:
@@ -457,6 +469,32 @@ class SceneView:
         self.graphs.new_reference(model, self.lines.at["equilibrium"])
         self._measure(model, self.graphs)
         self._start_run()
+
+    def _jump(self, text: str) -> None:
+        """Jump to t (browser/jump.py): the engine runs to the first step at or after t, from 0 if t
+        is before now, each graph sample handed to the graphs as the frames of a run at 1× would
+        have, and the page is drawn once, paused there. A t that cannot be reached is one sentence."""
+        live = self.live
+        try:
+            t = jump_time(text, t0=live.model.state.t)
+            target = jump_steps(live, t, sample_every=live.sample_every)
+        except ValueError as problem:
+            self.controls.say(str(problem))
+            return
+        self.running = False
+        self.arrows.end_step()
+        self.controls.step_text.text = ""
+        if target < live.engine.steps:
+            self._reset()
+        for steps in batches(target - live.engine.steps, dt=live.model.dt, frame=1.0 / FRAME_RATE,
+                             runaways_possible=bool(live.may_run_away)):
+            for sample in live.advance(steps):
+                self._plot([sample])
+            if live.problem:
+                break
+        self.graphs.live_now(live)   # moved at most every LIVE_EVERY s of wall time: maybe not since the last
+        self.clock.restart(now=time.perf_counter())
+        self.jumped = True
 
     def _step(self) -> None:
         """Step: one Δt, drawn as p_f = p_i + F_net Δt at each mass and written out with its

@@ -183,6 +183,7 @@ window.offlineProgram = function (compiled, rate, GSprint, offline_page, canvas,
 
   var current = null;              // the run now; a run replaced stops at its next rate()
   var paused = false, steps = 0, release = null, speed = 1;
+  var jump = null, jumps = 0, jumpsDrawn = 0;   // the jump under way ({run, n}), jumps done, and drawn
   var compiled = {};               // program text -> GlowScript's JavaScript
 
   function holdUntilAsked() { return new Promise(function (resolve) { release = resolve; }); }
@@ -198,9 +199,22 @@ window.offlineProgram = function (compiled, rate, GSprint, offline_page, canvas,
   var YIELD_MS = 30, LAG_S = 0.25;
   function wait(ms) { return new Promise(function (resolve) { setTimeout(resolve, ms); }); }
 
+  // Jump to t: the run steps on to the jump's step without waiting and without drawing (rate()
+  // returns at once), letting the page breathe every JUMP_YIELD_MS on a long jump; there it is
+  // paused, and drawn once (browser/jump.py is the local page's).
+  var JUMP_YIELD_MS = 1000;
+
   function rateFor(run) {
     return async function (perSecond) {
-      while (run === current && paused && steps === 0) {
+      for (;;) {                     // a jump asked while held goes on from the hold
+        if (jump && jump.run === run && run === current) {
+          if (run.n < jump.n) {
+            if (performance.now() - jump.breathed > JUMP_YIELD_MS) { await wait(0); jump.breathed = performance.now(); }
+            return;
+          }
+          jumped(run);
+        }
+        if (!(run === current && paused && steps === 0)) break;
         if (run.stepped) { showStep(run); run.stepped = false; }
         run.clock = null;
         await holdUntilAsked();
@@ -297,7 +311,10 @@ window.offlineProgram = function (compiled, rate, GSprint, offline_page, canvas,
     var sizes = viewSizes();
     var main = window.offlineProgram(compiled[text], rateFor(run), printFor(run), function () { return pageFor(run); },
                                      sized(window.canvas, sizes.canvas), sized(window.graph, sizes.graph));
-    main().catch(function (error) {
+    main().then(function () {
+      run.ended = true;
+      if (jump && jump.run === run) jumped(run);   // the program ended before the jump's t
+    }, function (error) {
       if (run === current) say("The program stopped: " + String(error).split("\n")[0]);
     });
     showLink(setup);
@@ -396,6 +413,46 @@ window.offlineProgram = function (compiled, rate, GSprint, offline_page, canvas,
   }
   function reset() { start(setup); }
 
+  // The time typed in the box, s ("2.5", "2.5 s"), or the one-line reason it cannot be one.
+  function jumpTime(text) {
+    var found = /^\s*([+-]?(\d+\.?\d*|\.\d+)([eE][+-]?\d+)?)\s*s?\s*$/.exec(text);
+    if (!found) return {problem: "jump to t: '" + text.trim().slice(0, 40) + "' is not a time in seconds; type a number such as 2.5"};
+    var t = Number(found[1]);
+    if (!isFinite(t)) return {problem: "jump to t: " + found[1] + " s is not a time the run can reach; type a number such as 2.5"};
+    if (t < 0) return {problem: "jump to t: the run starts at t = 0 s, so it cannot show t = " + pyG(t, 6) + " s"};
+    return {t: t};
+  }
+
+  // Jump to the box's t: the first step at or after it (as --headless and the program's n_until
+  // count), from t = 0 again if that is before now; paused there.
+  function jumpTo(text) {
+    var asked = jumpTime(text);
+    if (asked.problem) { say(asked.problem); return; }
+    var dt = setup.values.dt, n = Math.max(0, Math.ceil(asked.t / dt - 1e-9));
+    if (!current || n < current.n) start(setup);
+    paused = true;
+    steps = 0;
+    showRunButton();
+    byId("step").textContent = "";
+    jump = {run: current, n: n, breathed: performance.now()};
+    if (current.ended) jumped(current);
+    else letGo();
+  }
+
+  function jumped(run) {           // the jump is over: paused where it ended, then drawn once
+    var asked = jump.n;
+    jump = null;
+    jumps += 1;
+    var done = jumps;
+    run.clock = null;
+    if (run.n < asked) say("jump to t: the program stops at t = " + (run.n * run.dt).toFixed(Math.max(2, timeDecimals(run.dt))) +
+                           " s (its t_end), so the page shows that");
+    else say("");
+    window.requestAnimationFrame(function () {           // this frame draws the run where it is,
+      window.requestAnimationFrame(function () { jumpsDrawn = Math.max(jumpsDrawn, done); });   // and it has
+    });
+  }
+
   function showArrows(run) {
     var any = false;
     DATA.arrows.kinds.forEach(function (kind) {
@@ -452,6 +509,10 @@ window.offlineProgram = function (compiled, rate, GSprint, offline_page, canvas,
     byId("run").addEventListener("click", function (e) { toggle(); e.target.blur(); });
     byId("step-button").addEventListener("click", function (e) { step(); e.target.blur(); });
     byId("reset").addEventListener("click", function (e) { reset(); e.target.blur(); });
+    byId("jump").addEventListener("click", function (e) { jumpTo(byId("jump-t").value); e.target.blur(); });
+    byId("jump-t").addEventListener("keydown", function (e) {
+      if (e.key === "Enter") { e.preventDefault(); jumpTo(byId("jump-t").value); }
+    });
     DATA.arrows.kinds.forEach(function (kind) {
       byId("arrow-" + kind).addEventListener("change", function () { if (current) showArrows(current); });
     });
@@ -487,6 +548,7 @@ window.offlineProgram = function (compiled, rate, GSprint, offline_page, canvas,
       if (e.key === " " && tag !== "BUTTON") toggle();
       else if (e.key === "ArrowRight" && tag !== "BUTTON") step();
       else if (e.key === "r" || e.key === "R") reset();
+      else if (e.key === "j" || e.key === "J") jumpTo(byId("jump-t").value);
       else if (e.key === "+" || e.key === "=") changeSpeed(1);
       else if (e.key === "-" || e.key === "−" || e.key === "_") changeSpeed(-1);
       else done = false;
@@ -511,7 +573,8 @@ window.offlineProgram = function (compiled, rate, GSprint, offline_page, canvas,
   }
 
   // What the page shows now, for a look from outside (the tests): the step reached, whether it is
-  // paused, the set-up, and which kinds of arrow are drawn.
+  // paused, the set-up, which kinds of arrow are drawn, the jumps made and drawn, and each mass's
+  // r and p as the program last reported them.
   window.offlineState = function () {
     var run = current || {};
     var drawn = {};
@@ -519,7 +582,8 @@ window.offlineProgram = function (compiled, rate, GSprint, offline_page, canvas,
       drawn[kind] = run.arrows[kind].length > 0 && run.arrows[kind].every(function (o) { return o.visible; });
     });
     return {n: run.n, paused: paused, speed: speed, integrator: setup.integrator, values: setup.values,
-            arrows: drawn, opacity: (run.balls || []).map(function (ball) { return ball.opacity; })};
+            arrows: drawn, opacity: (run.balls || []).map(function (ball) { return ball.opacity; }),
+            jumping: jump !== null, jumps: jumps, jumpsDrawn: jumpsDrawn, last: run.last};
   };
 
   // what the Add a force box (export/force_box.js) asks of the page

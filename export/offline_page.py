@@ -10,7 +10,8 @@ handout's, which are the engine's: it prints `--headless`'s answer at the questi
 The page around the program (export/offline_page.js) gives the local page's lesson controls:
 Run/Pause, Step (one Δt written out in export/step_update.py's layout and digits), Reset, a slider
 for each of the scene's main constants (scenes/_sliders.py, as the local page has them), the
-arrows' check boxes and the keys Space, → and R. It never steps the physics itself: it holds the
+arrows' check boxes, Jump to t (the program run on to a time without drawing, then paused there)
+and the keys Space, →, R and J. It never steps the physics itself: it holds the
 program at rate() while paused, and starts it again with new constants written into its
 constants block (export/program_page.py has the lines the program adds for the page).
 
@@ -238,6 +239,7 @@ def page(setup, *, integrator: str | None = None, arrows=None, end: float | None
     reach = max(framed.camera.range, scales.view_range) if shown else framed.camera.range
     data = {
         "scene": setup.name,
+        "until": float(model.until),   # the question time: where Jump to t starts
         "programs": programs,
         "integrator": first,
         "scene_integrator": model.methods()[0],
@@ -308,7 +310,9 @@ This file holds GlowScript 3.2 and the libraries bundled in it, each under its o
 <div id="view"></div>
 <div id="panel">
 <div class="buttons"><button id="run" type="button">Pause</button> <button id="step-button" type="button">Step</button>
-<button id="reset" type="button">Reset</button> <label>speed <select id="speed">{speeds}</select></label>
+<button id="reset" type="button">Reset</button>
+<label>jump to t = <input id="jump-t" type="text" inputmode="decimal" size="5" value="{_short_time(data["until"])}"></label> s
+<button id="jump" type="button">Jump</button> <label>speed <select id="speed">{speeds}</select></label>
 <span id="time" class="time">t = 0.00 s</span></div>
 <p id="status" class="status" role="status"></p>
 <div class="arrows">arrows: {arrows}<br><span class="legend">{html.escape(data["arrows"]["legend"])}</span></div>
@@ -317,7 +321,7 @@ This file holds GlowScript 3.2 and the libraries bundled in it, each under its o
 <label><input type="checkbox" id="show-period"> period</label>
 <span id="measure-note" class="note"></span><pre id="period" class="period" hidden></pre></div>
 <p class="hint">Moving a slider restarts the run from t = 0. Keys: Space run/pause, → step, R reset,
-+ and − speed.
+J jump to t, + and − speed.
 <label><input type="checkbox" id="projector"> projector</label></p>
 <h2>Answer at the question time</h2>
 <pre id="answer" class="answer"></pre>
@@ -353,6 +357,11 @@ def link_fragment(setup, integrator: str | None = None) -> str:
     if integrator is not None and model.integrators is None and integrator != model.methods()[0]:
         parts.append(f"integrator={integrator}")
     return "&".join(parts)
+
+
+def _short_time(t: float) -> str:
+    """The question time as the Jump box shows it: 0.2, 30."""
+    return f"{t:g}"
 
 
 def _short(x) -> str:
