@@ -485,7 +485,7 @@
 
   function program(integrator, forces, handout) {   // the program for these forces: the page's, or the handout
     var own = DATA.programs[integrator], made = BOX.programs[integrator];
-    if (!handout && sameAsFile(forces)) return own;
+    if ((!handout && sameAsFile(forces)) || !made) return own;
     var header = commandWith(headerOf(own), forces);
     var none = handout ? made.handout_none : made.page_none;
     if (!forces.length) return [none.split("\n")[0]].concat(header, none.split("\n").slice(1)).join("\n");
@@ -533,8 +533,10 @@
       var remove = document.createElement("button");
       remove.type = "button";
       remove.textContent = "Remove " + force.name;
-      remove.addEventListener("click", function () { change(forces.filter(function (other) { return other !== force; }),
-                                                           force.name + " removed"); });
+      remove.addEventListener("click", function () {
+        change(forces.filter(function (other) { return other !== force; }),
+               force.name + " removed: the run starts again from t = 0, the run with it grey on the graph", "with " + force.name);
+      });
       item.appendChild(words);
       item.appendChild(remove);
       list.appendChild(item);
@@ -543,13 +545,18 @@
     byId("force-reset").disabled = sameAsFile(forces);
   }
 
-  function change(next, done) {                 // run from t = 0 with these forces
-    var values = window.offlinePage.setup().values;
+  function change(next, done, label) {          // run from t = 0 with these forces, the run before grey ("label")
+    var values = window.offlinePage.setup().values, integrator = window.offlinePage.setup().integrator;
+    if (!BOX.programs[integrator]) {             // the file holds the box's programs for its own integrator
+      said("Add a force runs with this file's integrator, " + DATA.integrator + " (the address chose " + integrator +
+           "): open the file without integrator= in its address, or write it with --integrator " + integrator, true);
+      return false;
+    }
     for (var i = 0; i < next.length; i++) {
       var problem = startProblem(next[i], values);
       if (problem) { said(problem + "; the run before is still on", true); return false; }
     }
-    before = lastRun && lastRun.graph ? curvesOf(lastRun) : null;
+    before = lastRun && lastRun.graph ? {curves: curvesOf(lastRun), label: label} : null;
     if (!(lastRun && lastRun.blown)) good = forces.slice();   // these ran well: a blow-up comes back to them
     forces = next;
     showList();
@@ -571,7 +578,7 @@
       });
       if (missing.length) refuse("the force " + force.name + " reads " + missing.join(", ") + ", which this scene does not have");
       if (change(forces.concat([force]), force.name + " added: the run starts again from t = 0, " +
-                 "the run before it dimmed on the graph")) {
+                 "the run before it grey on the graph", "without " + force.name)) {
         byId("force-name").value = nextName();
       }
     } catch (problem) {
@@ -595,6 +602,12 @@
 
   function download() {
     var setup = window.offlinePage.setup();
+    if (!BOX.programs[setup.integrator]) {
+      said("Download my program writes this file's integrator, " + DATA.integrator + "; the address chose " +
+           setup.integrator + ": write it with python main.py " + DATA.scene + " --webvpython FILE.py --integrator " +
+           setup.integrator, true);
+      return;
+    }
     var text = window.offlinePage.withConstants(program(setup.integrator, forces, true), setup);
     var link = document.createElement("a");
     link.href = URL.createObjectURL(new Blob([text], {type: "text/x-python"}));
@@ -624,7 +637,8 @@
     });
     byId("force-form").addEventListener("submit", function (e) { e.preventDefault(); add(); });
     byId("force-reset").addEventListener("click", function () {
-      change(BOX.start.map(function (pair) { return read(pair[0], pair[1], BOX.taken); }), "back to the file's program");
+      change(BOX.start.map(function (pair) { return read(pair[0], pair[1], BOX.taken); }),
+             "back to the file's program: the run starts again from t = 0", "before");
     });
     byId("force-download").addEventListener("click", download);
     byId("force-name").value = nextName();
@@ -637,9 +651,9 @@
     drawn: function (run) {                     // a run drew its objects: the run before, dimmed beside it
       lastRun = run;
       if (!before || !run.graph) return;
-      before.forEach(function (data, i) {
+      before.curves.forEach(function (data, i) {
         var curve = window.gcurve({graph: run.graph, data: data, color: window.vector(0.72, 0.72, 0.72), width: 2,
-                                   label: i === 0 ? "before" : ""});
+                                   label: i === 0 ? before.label : ""});
         curve.__dimmed = true;
       });
     },
@@ -658,7 +672,8 @@
       setTimeout(function () { window.offlinePage.restart(); }, 0);
     },
     forTests: {parse: parse, programText: programText, checkName: checkName, withForces: withForces, program: program,
-               forces: function () { return forces; }, read: read, Refused: Refused}
+               forces: function () { return forces; }, read: read, Refused: Refused,
+               lastGraph: function () { return lastRun && lastRun.graph; }}
   };
   function pyNumber(x) { return window.offlineNumbers ? window.offlineNumbers.number(x) : String(x); }
   if (document.readyState === "loading") document.addEventListener("DOMContentLoaded", build);

@@ -231,8 +231,9 @@ def page(setup, *, integrator: str | None = None, arrows=None, end: float | None
                               end=end)
                 for name in names}
     offered = {found.name: found for found in settable(setup, integrator=None if fixed else first, view=view)}
-    forces = offline_forces.box_data(setup, integrators={name: None if fixed else name for name in names},
-                                     shown=shown, end=end, pages=programs)   # the Add a force box
+    # the Add a force box: its programs for the integrator the page starts with (a few programs each)
+    forces = offline_forces.box_data(setup, integrators={first: None if fixed else first}, shown=shown, end=end,
+                                     pages=programs)
     methods = sorted(set(fixed or INTEGRATORS))
     framed = frame(model, view)   # the local page's camera (export/framing.py), and room for the arrows
     scales = choose_scales(model, view=view, integrator=first if not fixed else None, forces="forces" in shown)
