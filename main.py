@@ -189,7 +189,7 @@ def main(argv=None) -> int:
             return 2 if problems else 0
         setup = catalog.configure(catalog.DEFAULT_SCENE if args.scene is None else args.scene,
                                   assignments=args.assignments,
-                                  scenario=args.scenario, preset=args.preset)
+                                  scenario=args.scenario, preset=args.preset, forces=args.added_forces)
         if args.constants or args.forces:
             if args.constants:
                 print(text.constants_report(setup))

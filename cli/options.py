@@ -26,6 +26,7 @@ EXAMPLES = """examples:
   python main.py vertical --headless --preset "Moon gravity"
   python main.py damped --preset "critical damping"    no overshoot, in the browser
   python main.py vertical --steps 2                   the first two updates, to check by hand
+  python main.py vertical --headless --force "push=vector(0, 50, 0)"   a 50 N push up: as g = 4.8
   python main.py regimes --plot out/regimes.png       the page's damping figure
   python main.py damped --data examples/data/vernier.csv --fit k,b --set m=0.5
                                                       fit k and b to a motion detector's run
@@ -64,6 +65,10 @@ def build_parser() -> argparse.ArgumentParser:
     parser.add_argument("--headless", action="store_true", help="run without a browser and print the result")
     parser.add_argument("--set", action="append", default=[], metavar="NAME=VALUE", dest="assignments",
                         help="change a constant, e.g. --set k=25 or --set r0=0,-1.2,0 (may repeat)")
+    parser.add_argument("--force", action="append", default=[], metavar="NAME=EXPRESSION", dest="added_forces",
+                        help="add a force written in the program's names, e.g. --force \"push=vector(2, 0, 0)\" or "
+                             "--force \"wind=-0.5*mag(v)*v\" (r, v, p, t, m, k, b, g, dt; vector, mag, hat, dot, "
+                             "cross, cos, sin, exp, sqrt, pi; may repeat): its arrow, the run, the program")
     parser.add_argument("--scenario", type=int, metavar="N", help="one of the scene's numbered scenarios")
     parser.add_argument("--preset", metavar="NAME",
                         help="one of the scene's presets, e.g. \"Moon gravity\" or \"critical damping\" "
@@ -178,6 +183,9 @@ def check_lab_options(args) -> None:
     for flag, attribute in (("--list", "list"), ("--constants", "constants"), ("--forces", "forces")):
         if command and _given(args, attribute):
             raise UsageError(f"{flag} only lists, so {command} would do nothing; leave out one of them")
+    if command and _given(args, "added_forces"):
+        raise UsageError(f"--force adds a force to a run, the page or a program, and {command} uses the scene's "
+                         f"own forces; leave out one of them")
     allowed = {"--data": {"fit", "data_column", "run", "coordinate", "data_sign", "page"},
                "--mystery": {"seed", "coordinate"}, "--show-answer": {"seed", "coordinate"}}.get(command, set())
     for flag, attribute in LAB_OPTIONS:
@@ -245,7 +253,7 @@ def check_options(args) -> None:
     listing = "--constants" if args.constants else "--forces" if args.forces else None
     if listing:
         for flag, attribute in (*RUN_OPTIONS, *PROGRAM_OPTIONS, *BROWSER_ONLY, (_arrows_flag(args), "arrows"),
-                                ("--overwrite", "overwrite")):
+                                ("--overwrite", "overwrite"), ("--force", "added_forces")):
             if _given(args, attribute):
                 raise UsageError(f"{listing} only prints the {listing[2:]}, so {flag} would do nothing; "
                                  f"leave out one of them")
@@ -271,6 +279,7 @@ def _programs(args) -> list[str]:
 def _check_list(args) -> None:
     """--list takes nothing else."""
     others = [flag for flag, attribute in (("--constants", "constants"), ("--forces", "forces"), ("--set", "assignments"),
+                                           ("--force", "added_forces"),
                                            ("--scenario", "scenario"), ("--preset", "preset"),
                                            *RUN_OPTIONS, *PROGRAM_OPTIONS, *BROWSER_ONLY,
                                            ("--overwrite", "overwrite"), (_arrows_flag(args), "arrows"))

@@ -44,7 +44,7 @@ from scenes import DECLARED
 from scenes._sliders import round_slider_values, slider_names, slider_range, symbol
 from scenes._view import DEFAULT_VIEW
 
-from . import files
+from . import files, offline_forces
 from . import page_access
 from .arrows import ARROW_LABELS, ARROWS, SEE_THROUGH, choose_scales
 from .description import template_data
@@ -236,6 +236,9 @@ def page(setup, *, integrator: str | None = None, arrows=None, end: float | None
                               end=end)
                 for name in names}
     offered = {found.name: found for found in settable(setup, integrator=None if fixed else first, view=view)}
+    # the Add a force box: its programs for the integrator the page starts with (a few programs each)
+    forces = offline_forces.box_data(setup, integrators={first: None if fixed else first}, shown=shown, end=end,
+                                     pages=programs)
     methods = sorted(set(fixed or INTEGRATORS))
     framed = frame(model, view)   # the local page's camera (export/framing.py), and room for the arrows
     scales = choose_scales(model, view=view, integrator=first if not fixed else None, forces="forces" in shown)
@@ -261,6 +264,7 @@ def page(setup, *, integrator: str | None = None, arrows=None, end: float | None
                  "kicks_once": {name: INTEGRATORS[name].kicks_once for name in methods},
                  "labels": list(model.labels), "masses": STEP_MASSES},
         "describe": {**template_data(model), "m": [float(m) for m in model.state.m]},   # export/description.py
+        "forces": forces,
     }
     text = _document(setup, data, shown=shown)
     if len(text.encode("utf-8")) > MAX_BYTES:
@@ -305,7 +309,7 @@ This file holds GlowScript 3.2 and the libraries bundled in it, each under its o
 
 {notice}
 -->
-<style>{_read(STYLE) % {"body": BODY_PX, "projector": PROJECTOR_PX}}{page_access.STYLE}</style>
+<style>{_read(STYLE) % {"body": BODY_PX, "projector": PROJECTOR_PX}}{page_access.STYLE}{offline_forces.STYLE}</style>
 </head>
 <body>
 <h1>{html.escape(title)}</h1>
@@ -334,11 +338,13 @@ This file holds GlowScript 3.2 and the libraries bundled in it, each under its o
 <p class="link"><label for="link">This set-up's link (add it to the file's address once the file is on a web site):</label>
 <input id="link" readonly size="28"></p>
 <details><summary>The program this page runs (Web VPython 3.2)</summary><pre id="program-text"></pre></details>
+{offline_forces.box_html(data["forces"])}
 </div>
 </main>
 <script type="application/json" id="offline-data">{_json(data)}</script>
 {scripts}{plain_ticks(clear_outside=False)}
 <script>{page_access.script()}</script>
+<script>{_read(offline_forces.SCRIPT)}</script>
 <script>{_read(SCRIPT)}</script>
 <script>{page_access.install_call(viewLabel=VIEW_LABEL)}</script>
 </body>

@@ -9,6 +9,7 @@ physics.forces.net_force adds the forces.
 from __future__ import annotations
 
 from physics.integrators import INTEGRATORS
+from scenes import DECLARED
 
 from .lines import ProgramError, commented
 
@@ -32,7 +33,7 @@ class ProgramForces:
             except ValueError as problem:
                 raise ProgramError(str(problem)) from None
             for name, value in values.items():
-                constants.add(name, value, is_vector=force.CONSTANTS[name].vector)
+                constants.add(name, value, is_vector=DECLARED[name].vector)
         self.uses_velocity = any(force.uses_velocity for force in self.forces)
 
     def lines(self, t: str, r: str, v: str, laws: bool) -> list[tuple[str, str]]:

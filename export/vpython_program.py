@@ -58,6 +58,7 @@ from physics.integrators import INTEGRATORS
 from physics.simulate import steps_to_reach
 from scenes import DECLARED
 from scenes._view import DEFAULT_VIEW, MAX_DRAWN_MASSES
+from scenes._written import add_forces
 
 from . import program_arrows, program_page
 from .exact_curve import exact_lines, plot_line
@@ -79,7 +80,7 @@ IMPORTS = ["from vpython import *",
 
 
 def program(setup, *, integrator: str | None = None, web: bool = False, arrows=None,
-            end: float | None = None, page: bool = False, header: bool = True) -> str:
+            end: float | None = None, page: bool = False, header: bool = True, added=()) -> str:
     """The VPython program for a configured scene (scenes._catalog.Setup), as text.
 
     integrator  the method (default: the scene's own, else euler-cromer, the page's update), as
@@ -95,10 +96,14 @@ def program(setup, *, integrator: str | None = None, web: bool = False, arrows=N
                 step worked out from until and dt as the program runs.
     header      False leaves out the header's comments (its description and the command of the
                 same case, which takes most of the time to write): to compare programs' code.
+    added       forces added after the model's own (export/offline_forces.py's place for the forces
+                the offline page's box adds)
 
     Raises ProgramError, or ValueError from the scene's build function, with a one-line message.
     """
     model = setup.build()
+    if added:
+        model = add_forces(model, added)
     _check_size(setup, model)
     case = _Case(setup, model, integrator, arrows, end, page)
     lines = IMPORTS + (case.header() if header else []) + case.constants_lines()

@@ -184,6 +184,10 @@ class Traced:
         exponent = self.tape.operand(other)
         return self.tape.write(f"_pow({self.name}, {exponent})", math.pow(self.value, _value(other)))
 
+    def __rpow__(self, other):
+        base = self.tape.operand(other)
+        return self.tape.write(f"_pow({base}, {self.name})", math.pow(_value(other), self.value))
+
     def __neg__(self):
         return self.tape.write(f"-{self.name}", -self.value)
 
@@ -219,6 +223,9 @@ class Traced:
 
     def sin(self):
         return self.tape.write(f"_sin({self.name})", math.sin(self.value))
+
+    def exp(self):
+        return self.tape.write(f"_exp({self.name})", math.exp(self.value))
 
     def __float__(self):
         raise Untraceable("the step turns a traced number into a float")
@@ -266,7 +273,7 @@ class CompiledLoop:
             if len(outputs) != len(names):
                 raise Untraceable("the tick changed the number of values")
             self.source = _loop_source(tape, names, [tape.operand(x) for x in outputs])
-            namespace = {"_sqrt": math.sqrt, "_cos": math.cos, "_sin": math.sin, "_pow": math.pow,
+            namespace = {"_sqrt": math.sqrt, "_cos": math.cos, "_sin": math.sin, "_exp": math.exp, "_pow": math.pow,
                          "_t0": self.t0, "_dt": self.dt, **tape.constants}
             exec(compile(self.source, "<compiled tick>", "exec"), namespace)
             self._loop = namespace["advance"]

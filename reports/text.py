@@ -38,6 +38,7 @@ def final_report(result: Result) -> str:
     lines = [f"{result.setup.name}: {plural(result.steps, 'step')} of dt = {number(model.dt)} s "
              f"with {result.integrator}",
              f"t = {number(t)} s"]
+    lines += [f"added force {name}: F = {text} N" for name, text in result.setup.written]
     extra_text = result.setup.hooks.extra_text  # a scene's own results first (resonance's amplitude
     if extra_text is not None:                  # table), then each of its masses
         lines.append(extra_text(result))

@@ -49,6 +49,7 @@ from ._hooks import SceneHooks
 from ._constants import (DECLARED, END_OF_CONSTANTS, ConstantError, Constant, check_value, parse_assignments,
                          read_constants, shown_path)
 from ._model import Model
+from ._written import add_written, parse_force_option
 
 DEFAULT_SCENE = "vertical"
 EXTRA_FOLDERS = "SPRING_SCENES"   # environment variable: more folders of scenes, like PATH
@@ -347,13 +348,15 @@ def resolve(values: dict) -> dict:
 class Setup:
     """A scene with its constants resolved: module, constants (with units), chosen values, and
     what the scene file gives beyond them (hooks: VIEW, measure_window, extra_json, ...; read
-    from the module once, scenes/_hooks.py)."""
+    from the module once, scenes/_hooks.py); and the forces written as expressions that are
+    added to it, as text: ((name, expression), ...) (--force, the pages' Add a force; _written.py)."""
 
     name: str
     module: object
     constants: dict[str, Constant]
     values: dict
     hooks: SceneHooks = None
+    written: tuple = ()
 
     def __post_init__(self):
         if self.hooks is None:
@@ -363,14 +366,20 @@ class Setup:
         """The scene's model. A ValueError is the physics refusing these constants; anything else
         (a teacher's typo inside build, a sys.exit()) is a ConstantError naming the file and line."""
         try:
-            return self.module.build(**self.values)
+            model = self.module.build(**self.values)
         except ValueError:
             raise
         except (Exception, SystemExit) as problem:
             raise ConstantError(_broken_file_message(Path(self.module.__file__), problem)) from None
+        return add_written(model, self.written, self.values)
 
     def with_values(self, **changes) -> "Setup":
-        return Setup(self.name, self.module, self.constants, resolve({**self.values, **changes}), self.hooks)
+        return Setup(self.name, self.module, self.constants, resolve({**self.values, **changes}), self.hooks,
+                     self.written)
+
+    def with_written(self, written) -> "Setup":
+        """These values with these written forces, ((name, expression), ...), instead of any before."""
+        return Setup(self.name, self.module, self.constants, self.values, self.hooks, tuple(written))
 
     def with_preset(self, name: str) -> "Setup":
         """These values with the preset's changes (critical damping from the m and k set now)."""
@@ -412,8 +421,10 @@ def listed_constants(module, constants: dict[str, Constant]) -> dict[str, Consta
     return {name: constants[name] if name in constants else offered[name] for name in order}
 
 
-def configure(name: str, *, assignments=(), scenario: int | None = None, preset: str | None = None) -> Setup:
-    """Defaults from the scene file, then the scenario's changes, the preset's, and `--set NAME=VALUE` ones.
+def configure(name: str, *, assignments=(), scenario: int | None = None, preset: str | None = None,
+              forces=()) -> Setup:
+    """Defaults from the scene file, then the scenario's changes, the preset's, and `--set NAME=VALUE` ones;
+    and the forces written as `NAME=EXPRESSION` (--force), added after the scene's own.
 
     A preset's b = None (critical damping) is worked out last, from the final m and k. The setup's
     constants are the scene's block, every constant of a force it accepts (listed_constants: on or
@@ -440,4 +451,8 @@ def configure(name: str, *, assignments=(), scenario: int | None = None, preset:
     for key, value in values.items():  # the file's own values and the presets' obey the same ranges
         check_value(key, tuple(value) if isinstance(value, list) else value, offered[key].unit)
     shown = {**constants, **{key: offered[key] for key in assigned if key not in constants}}
-    return Setup(name, module, shown, resolve(values))
+    try:
+        written = tuple(parse_force_option(text) for text in forces)
+    except ValueError as problem:
+        raise ConstantError(str(problem)) from None
+    return Setup(name, module, shown, resolve(values), written=written)
