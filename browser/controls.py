@@ -14,6 +14,7 @@ from urllib.parse import quote
 
 from physics.integrators import INTEGRATORS
 
+from export.idle_render import idle_render_script
 from export.numbers import time_decimals as file_time_decimals
 from scenes import catalog, format_value
 from scenes._constants import idle as idle_constants
@@ -120,6 +121,7 @@ class Controls:
         self._slider_rows(setup=setup, view=view)
         self.force_box = force_box(vp, self.commands.put) if force_box else None
         vp.wtext(text="").text = PLAIN_TICKS  # every graph's tick labels in plain decimals (browser/axes.py)
+        vp.wtext(text="").text = idle_render_script()  # the 3-D view drawn only when it changed (export/)
         vp.wtext(text="").text = GRAPH_READING  # a click reads a graph (browser/graph_reading.py)
         caption("\n\n")
         self.constants_text = vp.wtext(text="")

@@ -49,6 +49,7 @@ from . import page_access
 from .arrows import ARROW_LABELS, ARROWS, SEE_THROUGH, choose_scales
 from .description import template_data
 from .framing import frame
+from .idle_render import idle_render_script
 from .lines import ProgramError
 from .page_keys import keys_html
 from .plain_ticks import plain_ticks
@@ -342,7 +343,7 @@ This file holds GlowScript 3.2 and the libraries bundled in it, each under its o
 </div>
 </main>
 <script type="application/json" id="offline-data">{_json(data)}</script>
-{scripts}{plain_ticks(clear_outside=False)}
+{scripts}{plain_ticks(clear_outside=False)}{idle_render_script()}
 <script>{page_access.script()}</script>
 <script>{_read(offline_forces.SCRIPT)}</script>
 <script>{_read(SCRIPT)}</script>

@@ -17,10 +17,14 @@ from pathlib import Path
 import pytest
 
 CHROMIUM = "/usr/bin/chromium"
-# SwiftShader's software WebGL: with plain --disable-gpu the 3-D canvas renders blank.
+# SwiftShader's software WebGL: with plain --disable-gpu the 3-D canvas renders blank. The page
+# itself is composited in software (--disable-gpu-compositing): composited through SwiftShader, a
+# paused page cost Chromium's GPU process 0.4-0.6 s of CPU a second with nothing moving
+# (export/idle_render.py has the figures).
 CHROMIUM_ARGS = ["--no-sandbox", "--use-gl=angle", "--use-angle=swiftshader",
-                 "--enable-unsafe-swiftshader", "--disable-background-networking",
-                 "--disable-component-update", "--disable-sync", "--no-first-run"]
+                 "--enable-unsafe-swiftshader", "--disable-gpu-compositing",
+                 "--disable-background-networking", "--disable-component-update", "--disable-sync",
+                 "--no-first-run"]
 TIME = re.compile(r"^\s*t = (-?\d+\.\d+) s\s*$")   # the caption's `t = 12.34 s`
 # Playwright's own default, 30 s for a click, a screenshot or a page load, is exceeded on a busy
 # 2-core machine running the whole suite (software WebGL makes each screenshot take seconds). Each
