@@ -121,6 +121,7 @@ class CrossingMeter:
 
     def __init__(self, centres):
         self.centres = np.array(centres, dtype=float).reshape(-1)     # its own contiguous copy
+        self._mass_type = np.min_scalar_type(len(self.centres))        # 2 bytes a crossing for 10⁴ masses
         self.clear()
 
     def clear(self) -> None:
@@ -146,17 +147,17 @@ class CrossingMeter:
 
     def _keep(self, masses: np.ndarray, times: np.ndarray) -> None:
         if len(masses):
-            self._found.append((masses, times))
+            self._found.append((masses.astype(self._mass_type), times))
             self._sorted = None
 
     def _by_mass(self) -> tuple[np.ndarray, np.ndarray]:
         """Every crossing time so far, s, mass by mass and in time order within each; and where
         each mass's times begin in it, (N + 1,) (mass i's are times[starts[i]:starts[i + 1]])."""
         if self._sorted is None:
-            masses = np.concatenate([found[0] for found in self._found] or [np.zeros(0, dtype=int)])
+            masses = np.concatenate([found[0] for found in self._found] or [np.zeros(0, dtype=self._mass_type)])
             times = np.concatenate([found[1] for found in self._found] or [np.zeros(0)])
             # by mass, in time order within each (a radix sort where the mass numbers fit 16 bits)
-            order = np.argsort(masses.astype(np.min_scalar_type(len(self.centres))), kind="stable")
+            order = np.argsort(masses, kind="stable")
             starts = np.concatenate([[0], np.cumsum(np.bincount(masses, minlength=len(self.centres)))])
             self._sorted = (times[order], starts)
         return self._sorted
