@@ -487,6 +487,10 @@ class Graphs:
                     for s in samples]
         return {i: [float(E[i]) for E in per_mass] for i in range(len(m))}
 
+    def live_now(self, live) -> None:
+        """The scene graph's live dots at the state now, whenever they were last moved (after a jump)."""
+        self._plot_live(live, redraw=True)
+
     def _plot_live(self, live, *, redraw: bool) -> None:
         """Move the scene graph's live dots to the state now, at most every LIVE_EVERY seconds."""
         if self.live_dots is None:

@@ -178,7 +178,9 @@ window.offlineProgram = function (compiled, rate, GSprint, offline_page, canvas,
   // ---- one run of the program ----
 
   var current = null;              // the run now; a run replaced stops at its next rate()
-  var paused = false, steps = 0, release = null, speed = 1;
+  // with prefers-reduced-motion the page opens paused, its first frame drawn (Run starts it)
+  var paused = !!(window.matchMedia && window.matchMedia("(prefers-reduced-motion: reduce)").matches), steps = 0, release = null, speed = 1;
+  var jump = null, jumps = 0, jumpsDrawn = 0;   // the jump under way ({run, n}), jumps done, and drawn
   var compiled = {};               // program text -> GlowScript's JavaScript
 
   function holdUntilAsked() { return new Promise(function (resolve) { release = resolve; }); }
@@ -194,9 +196,22 @@ window.offlineProgram = function (compiled, rate, GSprint, offline_page, canvas,
   var YIELD_MS = 30, LAG_S = 0.25;
   function wait(ms) { return new Promise(function (resolve) { setTimeout(resolve, ms); }); }
 
+  // Jump to t: the run steps on to the jump's step without waiting and without drawing (rate()
+  // returns at once), letting the page breathe every JUMP_YIELD_MS on a long jump; there it is
+  // paused, and drawn once (browser/jump.py is the local page's).
+  var JUMP_YIELD_MS = 1000;
+
   function rateFor(run) {
     return async function (perSecond) {
-      while (run === current && paused && steps === 0) {
+      for (;;) {                     // a jump asked while held goes on from the hold
+        if (jump && jump.run === run && run === current) {
+          if (run.n < jump.n) {
+            if (performance.now() - jump.breathed > JUMP_YIELD_MS) { await wait(0); jump.breathed = performance.now(); }
+            return;
+          }
+          jumped(run);
+        }
+        if (!(run === current && paused && steps === 0)) break;
         if (run.stepped) { showStep(run); run.stepped = false; }
         run.clock = null;
         await holdUntilAsked();
@@ -260,10 +275,11 @@ window.offlineProgram = function (compiled, rate, GSprint, offline_page, canvas,
         drawEquilibrium(run);
         showMeasured(run);
       },
-      stepped: function (i, n, m, F, p, r) {
+      stepped: function (i, n, m, F, p, r, terms) {
         if (run !== current) return;
         var before = run.last[i];
-        run.steps[i] = {n: n, m: m, F: vec(F), p_i: before.p, r_i: before.r, p_f: vec(p), r_f: vec(r)};
+        run.steps[i] = {n: n, m: m, F: vec(F), p_i: before.p, r_i: before.r, p_f: vec(p), r_f: vec(r),
+                        terms: (terms || []).map(vec)};
         run.last[i] = {r: run.steps[i].r_f, p: run.steps[i].p_f};
         if (i === 0) run.n = n;
       }
@@ -291,7 +307,10 @@ window.offlineProgram = function (compiled, rate, GSprint, offline_page, canvas,
     var sizes = viewSizes();
     var main = window.offlineProgram(compiled[text], rateFor(run), printFor(run), function () { return pageFor(run); },
                                      sized(window.canvas, sizes.canvas), sized(window.graph, sizes.graph));
-    main().catch(function (error) {
+    main().then(function () {
+      run.ended = true;
+      if (jump && jump.run === run) jumped(run);   // the program ended before the jump's t
+    }, function (error) {
       if (run === current) say("The program stopped: " + String(error).split("\n")[0]);
     });
     showLink(setup);
@@ -372,6 +391,30 @@ window.offlineProgram = function (compiled, rate, GSprint, offline_page, canvas,
     }
     var more = run.last.length > count ? "\n(and " + (run.last.length - count) + " more masses)" : "";
     byId("step").textContent = blocks.join("\n") + more;
+    sayMotion(run);
+  }
+
+  // ---- the motion in words: export/description.py's template, filled with the program's numbers ----
+
+  function sayMotion(run) {
+    var D = DATA.describe, dt = run.setup.values.dt, n = run.n || 0;
+    var t = (n * dt).toFixed(Math.min(100, Math.max(2, timeDecimals(dt))));
+    var centres = ownSetUp(run) ? DATA.measured.equilibrium : null;
+    var masses = (run.last || []).map(function (now, i) {
+      var s = run.steps[i] && run.steps[i].n === n ? run.steps[i] : null;
+      var m = s ? s.m : (run.setup.values.m !== undefined ? run.setup.values.m : D.m[i]);
+      var method = DATA.fixed_methods ? DATA.fixed_methods[i] : run.setup.integrator;
+      var step = null;
+      if (s) {
+        var once = DATA.step.kicks_once[method];
+        step = {average: !once, parts: once ? s.terms.map(function (F, k) { return [D.labels[k], F]; }) : [],
+                F_net: once ? s.F : s.p_f.map(function (pf, k) { return (pf - s.p_i[k]) / dt; })};
+      }
+      return {who: run.last.length > 1 ? D.template.many.replace("{label}", DATA.step.labels[i]) : D.template.one,
+              r: now.r, v: now.p.map(function (c) { return c / m; }), centre: centres ? centres[i] : null, step: step,
+              position: "< " + now.r.map(function (c) { return pyG(c, D.digits); }).join(", ") + " >"};
+    });
+    byId("description").textContent = window.smAccess.sentences(D, t, masses, masses.length, pyG);
   }
 
   // ---- the controls ----
@@ -389,6 +432,46 @@ window.offlineProgram = function (compiled, rate, GSprint, offline_page, canvas,
     letGo();
   }
   function reset() { start(setup); }
+
+  // The time typed in the box, s ("2.5", "2.5 s"), or the one-line reason it cannot be one.
+  function jumpTime(text) {
+    var found = /^\s*([+-]?(\d+\.?\d*|\.\d+)([eE][+-]?\d+)?)\s*s?\s*$/.exec(text);
+    if (!found) return {problem: "jump to t: '" + text.trim().slice(0, 40) + "' is not a time in seconds; type a number such as 2.5"};
+    var t = Number(found[1]);
+    if (!isFinite(t)) return {problem: "jump to t: " + found[1] + " s is not a time the run can reach; type a number such as 2.5"};
+    if (t < 0) return {problem: "jump to t: the run starts at t = 0 s, so it cannot show t = " + pyG(t, 6) + " s"};
+    return {t: t};
+  }
+
+  // Jump to the box's t: the first step at or after it (as --headless and the program's n_until
+  // count), from t = 0 again if that is before now; paused there.
+  function jumpTo(text) {
+    var asked = jumpTime(text);
+    if (asked.problem) { say(asked.problem); return; }
+    var dt = setup.values.dt, n = Math.max(0, Math.ceil(asked.t / dt - 1e-9));
+    if (!current || n < current.n) start(setup);
+    paused = true;
+    steps = 0;
+    showRunButton();
+    byId("step").textContent = "";
+    jump = {run: current, n: n, breathed: performance.now()};
+    if (current.ended) jumped(current);
+    else letGo();
+  }
+
+  function jumped(run) {           // the jump is over: paused where it ended, then drawn once
+    var asked = jump.n;
+    jump = null;
+    jumps += 1;
+    var done = jumps;
+    run.clock = null;
+    if (run.n < asked) say("jump to t: the program stops at t = " + (run.n * run.dt).toFixed(Math.max(2, timeDecimals(run.dt))) +
+                           " s (its t_end), so the page shows that");
+    else say("");
+    window.requestAnimationFrame(function () {           // this frame draws the run where it is,
+      window.requestAnimationFrame(function () { jumpsDrawn = Math.max(jumpsDrawn, done); });   // and it has
+    });
+  }
 
   function showArrows(run) {
     var any = false;
@@ -440,12 +523,17 @@ window.offlineProgram = function (compiled, rate, GSprint, offline_page, canvas,
   function showSlider(name) {
     var spec = DATA.sliders[name], value = setup.values[name];
     byId("slider-" + name + "-value").textContent = DATA.constants[name].symbol + " = " + describe(value, DATA.constants[name].unit);
+    byId("slider-" + name).setAttribute("aria-valuetext", byId("slider-" + name + "-value").textContent);
   }
 
   function buildControls() {
     byId("run").addEventListener("click", function (e) { toggle(); e.target.blur(); });
     byId("step-button").addEventListener("click", function (e) { step(); e.target.blur(); });
     byId("reset").addEventListener("click", function (e) { reset(); e.target.blur(); });
+    byId("jump").addEventListener("click", function (e) { jumpTo(byId("jump-t").value); e.target.blur(); });
+    byId("jump-t").addEventListener("keydown", function (e) {
+      if (e.key === "Enter") { e.preventDefault(); jumpTo(byId("jump-t").value); }
+    });
     DATA.arrows.kinds.forEach(function (kind) {
       byId("arrow-" + kind).addEventListener("change", function () { if (current) showArrows(current); });
     });
@@ -455,6 +543,7 @@ window.offlineProgram = function (compiled, rate, GSprint, offline_page, canvas,
       input.addEventListener("input", function () {
         var value = valueAt();
         byId("slider-" + name + "-value").textContent = DATA.constants[name].symbol + " = " + describe(value, DATA.constants[name].unit);
+        input.setAttribute("aria-valuetext", byId("slider-" + name + "-value").textContent);   // said with its unit
       });
       input.addEventListener("change", function () {   // released: the run starts again with the new value
         var values = Object.assign({}, setup.values);
@@ -473,25 +562,8 @@ window.offlineProgram = function (compiled, rate, GSprint, offline_page, canvas,
       if (current) sizeView(current);
     });
     window.addEventListener("resize", function () { if (current) sizeView(current); });
-    document.addEventListener("keydown", function (e) {   // as the local page: Space, → and R
-      if (e.ctrlKey || e.altKey || e.metaKey) return;
-      var tag = e.target.tagName;
-      if (tag === "INPUT" || tag === "SELECT" || tag === "TEXTAREA") return;
-      var done = true;
-      if (e.key === " " && tag !== "BUTTON") toggle();
-      else if (e.key === "ArrowRight" && tag !== "BUTTON") step();
-      else if (e.key === "r" || e.key === "R") reset();
-      else if (e.key === "+" || e.key === "=") changeSpeed(1);
-      else if (e.key === "-" || e.key === "−" || e.key === "_") changeSpeed(-1);
-      else done = false;
-      if (done) e.preventDefault();
-    });
-  }
-
-  function changeSpeed(by) {
-    var menu = byId("speed");
-    menu.selectedIndex = Math.min(menu.options.length - 1, Math.max(0, menu.selectedIndex + by));
-    setSpeed(DATA.speeds[menu.value]);
+    byId("describe").addEventListener("click", function () { if (current) sayMotion(current); });
+    // the keys are export/page_access.js's (export/page_keys.py), as on the local page
   }
 
   function setSpeed(value) { speed = value; if (current) current.clock = null; }
@@ -505,7 +577,8 @@ window.offlineProgram = function (compiled, rate, GSprint, offline_page, canvas,
   }
 
   // What the page shows now, for a look from outside (the tests): the step reached, whether it is
-  // paused, the set-up, and which kinds of arrow are drawn.
+  // paused, the set-up, which kinds of arrow are drawn, the jumps made and drawn, and each mass's
+  // r and p as the program last reported them.
   window.offlineState = function () {
     var run = current || {};
     var drawn = {};
@@ -513,7 +586,8 @@ window.offlineProgram = function (compiled, rate, GSprint, offline_page, canvas,
       drawn[kind] = run.arrows[kind].length > 0 && run.arrows[kind].every(function (o) { return o.visible; });
     });
     return {n: run.n, paused: paused, speed: speed, integrator: setup.integrator, values: setup.values,
-            arrows: drawn, opacity: (run.balls || []).map(function (ball) { return ball.opacity; })};
+            arrows: drawn, opacity: (run.balls || []).map(function (ball) { return ball.opacity; }),
+            jumping: jump !== null, jumps: jumps, jumpsDrawn: jumpsDrawn, last: run.last};
   };
 
   // ---- start ----

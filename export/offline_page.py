@@ -10,7 +10,8 @@ handout's, which are the engine's: it prints `--headless`'s answer at the questi
 The page around the program (export/offline_page.js) gives the local page's lesson controls:
 Run/Pause, Step (one Δt written out in export/step_update.py's layout and digits), Reset, a slider
 for each of the scene's main constants (scenes/_sliders.py, as the local page has them), the
-arrows' check boxes and the keys Space, → and R. It never steps the physics itself: it holds the
+arrows' check boxes, Jump to t (the program run on to a time without drawing, then paused there)
+and the keys Space, →, R and J. It never steps the physics itself: it holds the
 program at rate() while paused, and starts it again with new constants written into its
 constants block (export/program_page.py has the lines the program adds for the page).
 
@@ -44,9 +45,12 @@ from scenes._sliders import round_slider_values, slider_names, slider_range, sym
 from scenes._view import DEFAULT_VIEW
 
 from . import files
+from . import page_access
 from .arrows import ARROW_LABELS, ARROWS, SEE_THROUGH, choose_scales
+from .description import template_data
 from .framing import frame
 from .lines import ProgramError
+from .page_keys import keys_html
 from .plain_ticks import plain_ticks
 from .program_command import description
 from .step_update import number, step_layout
@@ -72,6 +76,8 @@ MAX_BYTES = 7_000_000          # the issue's bound on the file's size
 STEP_MASSES = 4                # masses whose Step is written out, as on the local page (browser/view.py)
 FOV = 0.2                      # rad: the local page's long lens (browser/scene3d.py), the support and springs flat
 SPEEDS = {"¼×": 0.25, "½×": 0.5, "1×": 1.0, "2×": 2.0, "4×": 4.0}   # as the local page's speed menu (browser/controls.py)
+VIEW_LABEL = ("The 3-D view of the scene. Press D, or the Describe button, to hear where each mass is and "
+              "how it moves.")
 BODY_PX, PROJECTOR_PX = 18, 22  # px: the smallest text, as on the local page (browser/page_layout.py)
 # What only frames the picture: the writer chooses it from the motion, and a constant moved on the
 # page keeps the file's (the local page also keeps its arrow scales through a run).
@@ -236,6 +242,7 @@ def page(setup, *, integrator: str | None = None, arrows=None, end: float | None
     reach = max(framed.camera.range, scales.view_range) if shown else framed.camera.range
     data = {
         "scene": setup.name,
+        "until": float(model.until),   # the question time: where Jump to t starts
         "programs": programs,
         "integrator": first,
         "scene_integrator": model.methods()[0],
@@ -253,6 +260,7 @@ def page(setup, *, integrator: str | None = None, arrows=None, end: float | None
         "step": {"layouts": {name: dict(zip(("lines", "drift"), step_layout(name))) for name in methods},
                  "kicks_once": {name: INTEGRATORS[name].kicks_once for name in methods},
                  "labels": list(model.labels), "masses": STEP_MASSES},
+        "describe": {**template_data(model), "m": [float(m) for m in model.state.m]},   # export/description.py
     }
     text = _document(setup, data, shown=shown)
     if len(text.encode("utf-8")) > MAX_BYTES:
@@ -297,7 +305,7 @@ This file holds GlowScript 3.2 and the libraries bundled in it, each under its o
 
 {notice}
 -->
-<style>{_read(STYLE) % {"body": BODY_PX, "projector": PROJECTOR_PX}}</style>
+<style>{_read(STYLE) % {"body": BODY_PX, "projector": PROJECTOR_PX}}{page_access.STYLE}</style>
 </head>
 <body>
 <h1>{html.escape(title)}</h1>
@@ -305,28 +313,34 @@ This file holds GlowScript 3.2 and the libraries bundled in it, each under its o
 <div id="view"></div>
 <div id="panel">
 <div class="buttons"><button id="run" type="button">Pause</button> <button id="step-button" type="button">Step</button>
-<button id="reset" type="button">Reset</button> <label>speed <select id="speed">{speeds}</select></label>
+<button id="reset" type="button">Reset</button>
+<label>jump to t = <input id="jump-t" type="text" inputmode="decimal" size="5" value="{_short_time(data["until"])}"></label> s
+<button id="jump" type="button">Jump</button> <label>speed <select id="speed">{speeds}</select></label>
 <span id="time" class="time">t = 0.00 s</span></div>
 <p id="status" class="status" role="status"></p>
+<p class="describe"><button id="describe" type="button">Describe (D)</button>
+<span id="description" class="sm-description" role="status" aria-live="polite" aria-atomic="true"></span></p>
 <div class="arrows">arrows: {arrows}<br><span class="legend">{html.escape(data["arrows"]["legend"])}</span></div>
 {slider_rows}
 <div class="measure"><label><input type="checkbox" id="show-equilibrium"> equilibrium</label>
 <label><input type="checkbox" id="show-period"> period</label>
 <span id="measure-note" class="note"></span><pre id="period" class="period" hidden></pre></div>
-<p class="hint">Moving a slider restarts the run from t = 0. Keys: Space run/pause, → step, R reset,
-+ and − speed.
+<p class="hint">Moving a slider restarts the run from t = 0.
 <label><input type="checkbox" id="projector"> projector</label></p>
+<p class="hint">{keys_html()}</p>
 <h2>Answer at the question time</h2>
 <pre id="answer" class="answer"></pre>
 <pre id="step" class="step"></pre>
-<p class="link">This set-up's link (add it to the file's address once the file is on a web site):
+<p class="link"><label for="link">This set-up's link (add it to the file's address once the file is on a web site):</label>
 <input id="link" readonly size="28"></p>
 <details><summary>The program this page runs (Web VPython 3.2)</summary><pre id="program-text"></pre></details>
 </div>
 </main>
 <script type="application/json" id="offline-data">{_json(data)}</script>
 {scripts}{plain_ticks(clear_outside=False)}
+<script>{page_access.script()}</script>
 <script>{_read(SCRIPT)}</script>
+<script>{page_access.install_call(viewLabel=VIEW_LABEL)}</script>
 </body>
 </html>
 """
@@ -348,6 +362,11 @@ def link_fragment(setup, integrator: str | None = None) -> str:
     if integrator is not None and model.integrators is None and integrator != model.methods()[0]:
         parts.append(f"integrator={integrator}")
     return "&".join(parts)
+
+
+def _short_time(t: float) -> str:
+    """The question time as the Jump box shows it: 0.2, 30."""
+    return f"{t:g}"
 
 
 def _short(x) -> str:

@@ -130,7 +130,8 @@ def after_update_lines(case) -> list[str]:
     mass or "[i]" inside the loop over the masses."""
     written = program_arrows.WRITTEN if case.page else case.arrows
     lines = program_arrows.loop_lines(case.model, shown=written, single=case.single)
-    return lines + ([program_page.stepped_line(single=case.single, m=case.m)] if case.page else [])
+    terms = [force.TERM for force in case.model.forces]
+    return lines + ([program_page.stepped_line(single=case.single, m=case.m, terms=terms)] if case.page else [])
 
 
 def _check_size(setup, model) -> None:

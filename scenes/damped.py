@@ -33,5 +33,5 @@ def build(**constants):
 
 
 VIEW = {"support": "ceiling", "plot": "y", "arrows": ("p", "F_net"),
-        "sliders": ["m", "k"], "sliders_when_on": ["b", "F0", "omega"]}
+        "sliders": ["m"]}
 LAB = {"fit": ("k", "b"), "hidden": ("k", "b")}   # what Fit fits, what a mystery spring hides

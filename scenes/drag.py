@@ -83,4 +83,4 @@ def build(*, m, k, L0, g, b, C, A, rho, x0, spacing, dt, until):
 
 # The quadratic ball's exact entries are NaN (no closed form): headless and --plot skip them, but the
 # browser graphs would be sent NaN, so the browser shows no exact curves here.
-VIEW = {"support": "ceiling", "plot": "y", "trail": False, "exact": False, "sliders": ["m", "k", "b", "C", "x0"]}
+VIEW = {"support": "ceiling", "plot": "y", "trail": False, "exact": False, "sliders": ["m", "x0"]}

@@ -49,5 +49,5 @@ def build(*, x0, r0, anchor, L0, **constants):
 
 
 VIEW = {"support": "wall", "plot": "x", "arrows": ("p", "F_net"),
-        "sliders": ["m", "k"], "sliders_when_on": ["b", "F0", "omega"]}
+        "sliders": ["m"]}
 LAB = {"fit": ("k", "b"), "hidden": ("k", "b")}   # what Fit fits, what a mystery spring hides

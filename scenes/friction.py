@@ -69,4 +69,4 @@ def build(*, m, k, L0, g, mu_k, mu_s, b, x0, spacing, dt, until):
 # The friction block's exact entries are NaN (no closed form): the browser shows no exact curves here.
 # hold: the graph keeps the whole 30 s from the release, so both envelopes show from their start.
 VIEW = {"support": "wall", "plot": "x", "trail": False, "exact": False, "hold": True,
-        "sliders": ["mu_k", "b", "k", "x0"], "arrows": ("p", "F_net")}
+        "sliders": ["x0"], "arrows": ("p", "F_net")}

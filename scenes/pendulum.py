@@ -41,4 +41,4 @@ def build(**constants):
     return build_single_mass(label="bob", **constants)
 
 
-VIEW = {"support": "ceiling", "plot": "xyz", "trail": True, "sliders": ["m", "k", "g", "b"], "arrows": ("p", "F_net")}
+VIEW = {"support": "ceiling", "plot": "xyz", "trail": True, "sliders": ["m", "g", "b"], "arrows": ("p", "F_net")}

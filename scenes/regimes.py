@@ -81,5 +81,5 @@ def build(*, m, k, L0, g, b, under_fraction, over_multiple, x0, spacing, dt, unt
 
 
 # hold: all three settle within a few seconds; a scrolling graph would leave only flat lines.
-VIEW = {"support": "ceiling", "plot": "y", "trail": False, "exact": True, "sliders": ["m", "k", "b", "x0"],
+VIEW = {"support": "ceiling", "plot": "y", "trail": False, "exact": True, "sliders": ["m", "x0"],
         "hold": True}

@@ -386,5 +386,5 @@ def energy_note(setup) -> str:
 
 # The resonance graph shows the amplitudes; each spring's exact curve would only crowd the position graph.
 # Each row of springs in the colour of its b's line (rows).
-VIEW = {"support": "ceiling", "plot": "y", "trail": False, "exact": False, "sliders": ["b", "F0", "m", "k"],
+VIEW = {"support": "ceiling", "plot": "y", "trail": False, "exact": False, "sliders": ["m"],
         "rows": rows, "graphed": graphed, "energy_note": energy_note}

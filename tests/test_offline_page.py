@@ -159,7 +159,7 @@ def test_the_offline_program_reports_to_the_page_and_finds_the_question_step_its
     assert lines.index("dt = 0.1                 # s: time step Δt of the momentum update") < controls
     assert controls < lines.index("# ---- the objects ----")
     assert "n_until = ceil(until/dt - 1e-9)" in text and "    if n == n_until:" in text
-    assert "page.stepped(0, n + 1, m, Fnet, p, pos)" in text
+    assert "page.stepped(0, n + 1, m, Fnet, p, pos, [Fspring, Fgravity, Fdamping])" in text   # each force for the description
     assert '"forces": forcearrows + forcelabels' in text and '"split": [pararrow, perparrow' in text
     handout = program(catalog.configure("damped"), web=True)
     assert "offline_page" not in handout and "n_until" not in handout

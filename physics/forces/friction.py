@@ -63,7 +63,7 @@ class Friction(Force):
     responds = True
     LABEL = "friction"
     CONSTANTS = {
-        "mu_k": Declared("1", 0, 100, symbol="μ_k", slider_from_zero=True, default=0.0,
+        "mu_k": Declared("1", 0, 100, symbol="μ_k", slider=True, slider_from_zero=True, default=0.0,
                          meaning="kinetic friction coefficient in F = −μ_k N v̂, N = m g"),
         "mu_s": Declared("1", 0, 100, symbol="μ_s", slider_from_zero=True, default=0.0, switch=True,
                          meaning="static friction coefficient: a mass at rest stays while the other "
