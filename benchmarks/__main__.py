@@ -1,8 +1,8 @@
-"""Run the benchmarks: `python -m benchmarks [--quick] [--only NAME ...] [--list]`.
+"""Run the benchmarks: `python -m benchmarks [--quick] [--only NAME ...] [--list] [--against REF]`.
 
 Part 5 (a scene left running in headless Chromium for 10 minutes) is a separate command, since it
-takes minutes of wall time and needs Chromium and Playwright: `python -m benchmarks.long_run`
-(docs/long_run.md). Figures and how to read them: docs/performance.md.
+takes minutes of wall time and needs Chromium and Playwright: `python -m benchmarks.long_run`.
+Figures and how to read them: docs/performance.md; the log of every run: benchmarks/results/.
 
 Parts 1, 3 and 6 time the user's commands (`python main.py ...`) as whole processes; figures
 of the engine called in-process are labelled "internal API, no user path". Every figure is
@@ -10,6 +10,10 @@ compared with a reference measured in the same run (the page's vpython-vector lo
 a bare interpreter, scipy), so the ratios mean something even on a busy machine. The full run
 takes about 5 minutes on 2 cores (a solve_ivp loop over 1,000 frequencies is a minute of it);
 --quick about a minute.
+
+`--against REF` compares this tree with REF (a commit, branch or tag) instead: each benchmark's
+jobs run on both trees in turn, and a table gives each ratio with its spread, marking any figure
+more than 10 % worse (benchmarks/against.py).
 """
 from __future__ import annotations
 
@@ -20,7 +24,8 @@ import subprocess
 import sys
 import time
 
-from . import accuracy, batches, fit, fit_coverage, friction, resonance_sweep, single_mass, startup, where_the_work_is
+from . import (accuracy, allocation, against, batches, fit, fit_coverage, friction, resonance_sweep, single_mass,
+               startup, where_the_work_is)
 from .common import Settings, load_average
 
 BENCHMARKS = {
@@ -37,6 +42,8 @@ BENCHMARKS = {
     "friction": (friction, "part 9: `main.py friction` 10⁶ steps against `main.py damped` 10⁶ steps, as processes"),
     "fit-coverage": (fit_coverage, "part 10: the fit's σ against the truth on 400 closed-form records over the "
                                    "whole range (in this process)"),
+    "allocation": (allocation, "part 12: memory the resonance batch loop and command allocate per step, flat "
+                               "as the step count grows"),
 }
 # Not in the full run: minutes of wall time in headless Chromium. Run it as its own command.
 SEPARATE = {
@@ -66,12 +73,21 @@ def parse_arguments(argv=None):
     parser = argparse.ArgumentParser(
         prog="python -m benchmarks", description=__doc__.splitlines()[0],
         epilog="Part 5, the page left running in headless Chromium, is a separate command: "
-               "python -m benchmarks.long_run --help. Figures: docs/performance.md, docs/long_run.md.")
+               "python -m benchmarks.long_run --help. Figures: docs/performance.md.")
     parser.add_argument("--quick", action="store_true", help="fewer steps and repeats: about a minute in all")
     parser.add_argument("--only", metavar="NAME", action="append", choices=list(BENCHMARKS),
                         help="run only this benchmark (repeatable): " + ", ".join(BENCHMARKS))
     parser.add_argument("--list", action="store_true", help="list the benchmarks and exit")
-    return parser.parse_args(argv)
+    parser.add_argument("--against", metavar="REF",
+                        help="compare this tree with REF (a commit, branch or tag), checked out into a temporary "
+                             "worktree: each benchmark's jobs on both trees in turn, each ratio with its spread, "
+                             "any figure more than 10%% worse marked")
+    parser.add_argument("--repeats", metavar="N", type=int,
+                        help="with --against: runs of each job on each tree (default 5, --quick 3)")
+    arguments = parser.parse_args(argv)
+    if arguments.repeats is not None and (arguments.against is None or arguments.repeats < 1):
+        parser.error("--repeats needs --against, and a whole number of 1 or more")
+    return arguments
 
 
 def main(argv=None) -> int:
@@ -90,6 +106,15 @@ def main(argv=None) -> int:
     print(f"load average at start: {load_average()} (other work on the machine slows every figure; "
           "the ratios within one run are fairer)")
     start, cpu_start = time.perf_counter(), time.process_time()
+    if arguments.against is not None:
+        try:
+            against.compare(chosen, settings, arguments.against,
+                            repeats=arguments.repeats or settings.pick(5, 3))
+        except against.AgainstError as problem:
+            print(f"error: {problem}", file=sys.stderr)
+            return 2
+        print(f"\ntotal wall time {time.perf_counter() - start:.0f} s")
+        return 0
     for name in chosen:
         print()
         module, _ = BENCHMARKS[name]

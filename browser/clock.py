@@ -72,7 +72,7 @@ class RealTimeClock:
     between two frames or since the page last spoke, is skipped and counted in :attr:`skipped`.
 
     Why 5 s: a page is slow, not gone, while it speaks every few seconds. Software rendering on a
-    busy computer answered only every 0.5–5 s in our measurements (docs/long_run.md), and browsers
+    busy computer answered only every 0.5–5 s in our measurements (benchmarks/results/), and browsers
     wake a background tab's timers once a second; the model keeps real time through both, so the
     t the page shows when it next draws is the real-time one. A tab the browser has frozen goes
     quiet for good: the model runs on for at most 5 s, then waits.

@@ -28,7 +28,7 @@ as np.exp that traced numbers do not know) leaves the numpy tick in charge, seve
 That is never silent: the first time, an :class:`UntracedWarning` names the force and what it did
 (once per force and reason in a process); the command line shows it as one line on stderr.
 
-Why not numba: measured on the user command (docs/performance.md), importing and compiling with
+Why not numba: measured on the user command (benchmarks/results/), importing and compiling with
 numba costs as much as it saves at 10⁶ steps, it cannot compile physics/forces/ as written, and it
 adds some 200 MB; this module is a few hundred lines and keeps one copy of the physics.
 

@@ -28,7 +28,7 @@ Nothing here imports a front end: the page, --headless, --json and the offline p
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from typing import NamedTuple
 
 import numpy as np
 
@@ -40,9 +40,9 @@ SAMPLES_PER_PERIOD = 200  # samples per cycle a record needs for the crossings (
 MAX_SAMPLES = 100_000     # samples a record for the period keeps at most: a long run is measured over its end
 
 
-@dataclass(frozen=True)
-class Period:
-    """A period measured from the motion: the mean over `cycles` cycles, s, and their spread, s."""
+class Period(NamedTuple):
+    """A period measured from the motion: the mean over `cycles` cycles, s, and their spread, s.
+    (A named tuple: a run of 10⁴ masses makes 10⁴ of them, at half a frozen dataclass's cost.)"""
 
     measured: float
     spread: float
@@ -52,11 +52,28 @@ class Period:
 def upward_crossings(t, x, *, centre: float) -> np.ndarray:
     """The times, s, at which x rises through `centre` (from below it to at or above it), each
     on the straight line between the two samples around it. t (n,) s and x (n,) in any unit."""
-    t, x = np.asarray(t, dtype=float), np.asarray(x, dtype=float) - centre
-    below, after = x[:-1] < 0, x[1:] >= 0
-    n = np.flatnonzero(below & after & np.isfinite(x[:-1]) & np.isfinite(x[1:]))
-    # t* = t_n + (t_(n+1) − t_n) · (0 − x_n) / (x_(n+1) − x_n)
-    return t[n] + (t[n + 1] - t[n]) * (-x[n]) / (x[n + 1] - x[n])
+    _, times = _crossings(np.asarray(t, dtype=float), np.asarray(x, dtype=float)[:, None], np.array([centre]))
+    return times
+
+
+def _crossings(t: np.ndarray, x: np.ndarray, centre: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Where each column of x (n, N) rises through its centre (N,) between two samples: (column,
+    time s) of each crossing, in time order within a column, with t (n,) the samples' times.
+
+    With y = x − centre, a crossing is y_n < 0 ≤ y_(n+1), both finite. x < centre is y < 0 for
+    every x and centre (IEEE subtraction keeps the sign, and its NaN and inf compare alike), so
+    y is worked out at the crossings alone: one comparison of the samples, not a subtraction too.
+    """
+    below = x < centre
+    # below, then not below (at or above, or NaN); flat indices, several times faster than nonzero's
+    k = np.flatnonzero(below[:-1] > below[1:])
+    n, i = np.divmod(k, x.shape[1])
+    flat = x.reshape(-1)
+    y_n, y_next = flat[k] - centre[i], flat[k + x.shape[1]] - centre[i]
+    finite = np.isfinite(y_n) & np.isfinite(y_next)     # −inf < 0 ≤ y, or NaN after: no crossing time
+    n, i, y_n, y_next = n[finite], i[finite], y_n[finite], y_next[finite]
+    # t* = t_n + (t_(n+1) − t_n) · (0 − y_n) / (y_(n+1) − y_n)
+    return i, t[n] + (t[n + 1] - t[n]) * (-y_n) / (y_next - y_n)
 
 
 def period_from_crossings(times) -> Period | None:
@@ -78,9 +95,16 @@ def measured_period(t, x, *, centre: float) -> Period | None:
 def why_no_period(t, x, *, centre: float | None) -> str:
     """Why x(t) gives no measured period, in one sentence (for a report's note)."""
     if centre is None:
-        return "the motion has no equilibrium to swing about (nothing pulls the mass back), so it does not repeat"
-    crossings = len(upward_crossings(t, x, centre=centre))
+        return why_none(None, crossings=0, end=0.0)
     end = float(np.asarray(t)[-1]) if len(t) else 0.0
+    return why_none(centre, crossings=len(upward_crossings(t, x, centre=centre)), end=end)
+
+
+def why_none(centre: float | None, *, crossings: int, end: float) -> str:
+    """Why a motion about `centre` that crossed it upward `crossings` times by t = `end` s gives no
+    measured period, in one sentence."""
+    if centre is None:
+        return "the motion has no equilibrium to swing about (nothing pulls the mass back), so it does not repeat"
     return (f"the motion rises through its equilibrium only {crossings} time{'' if crossings == 1 else 's'} "
             f"by t = {end:.4g} s, and a period needs {MIN_CYCLES} whole cycles ({MIN_CYCLES + 1} crossings): "
             f"it does not repeat (damped too strongly to swing, or running away), or the run is too short")
@@ -88,34 +112,86 @@ def why_no_period(t, x, *, centre: float | None) -> str:
 
 class CrossingMeter:
     """Upward crossings of each mass's centre, gathered from samples that arrive a few at a time
-    (the page's run): the same times upward_crossings gives for the whole record at once.
+    (the page's run, a headless run's recorder): the same times upward_crossings gives for the
+    whole record at once, worked out for every mass together (10⁴ masses cost about what one does
+    in numpy calls), and nothing of the samples kept but the last.
 
     centres  (N,) the centre of each mass, in the unit of the samples (nan: none, no crossings)
     """
 
     def __init__(self, centres):
-        self.centres = np.asarray(centres, dtype=float)
+        self.centres = np.array(centres, dtype=float).reshape(-1)     # its own contiguous copy
+        self._mass_type = np.min_scalar_type(len(self.centres))        # 2 bytes a crossing for 10⁴ masses
         self.clear()
 
     def clear(self) -> None:
-        self.times: list[list[float]] = [[] for _ in self.centres]
-        self._last = None     # (t, x of each mass) of the latest sample: the bridge to the next ones
+        self._found: list[tuple[np.ndarray, np.ndarray]] = []   # (mass, time) of each add's crossings
+        self._sorted = None           # every crossing time by mass, and where each mass's begin
+        self._last = None             # (t, x of each mass) of the latest sample: the bridge to the next ones
+
+    @property
+    def end(self) -> float:
+        """The time of the latest sample, s (0 before any)."""
+        return 0.0 if self._last is None else float(self._last[0])
 
     def add(self, t, x) -> None:
         """Samples t (n,) s and x (n, N) of every mass, in time order after the ones before."""
         t, x = np.asarray(t, dtype=float), np.asarray(x, dtype=float).reshape(len(t), -1)
         if not len(t):
             return
-        if self._last is not None:
-            t, x = np.concatenate([[self._last[0]], t]), np.concatenate([[self._last[1]], x])
-        for i, centre in enumerate(self.centres):
-            if math.isfinite(centre):
-                self.times[i] += upward_crossings(t, x[:, i], centre=centre).tolist()
-        self._last = (t[-1], x[-1])
+        if self._last is not None:                      # the bridge from the last sample to the first new one
+            self._keep(*_crossings(np.array([self._last[0], t[0]]), np.stack([self._last[1], x[0]]), self.centres))
+        if len(t) > 1:
+            self._keep(*_crossings(t, x, self.centres))
+        self._last = (t[-1], x[-1].copy())
+
+    def _keep(self, masses: np.ndarray, times: np.ndarray) -> None:
+        if len(masses):
+            self._found.append((masses.astype(self._mass_type), times))
+            self._sorted = None
+
+    def _by_mass(self) -> tuple[np.ndarray, np.ndarray]:
+        """Every crossing time so far, s, mass by mass and in time order within each; and where
+        each mass's times begin in it, (N + 1,) (mass i's are times[starts[i]:starts[i + 1]])."""
+        if self._sorted is None:
+            masses = np.concatenate([found[0] for found in self._found] or [np.zeros(0, dtype=self._mass_type)])
+            times = np.concatenate([found[1] for found in self._found] or [np.zeros(0)])
+            # by mass, in time order within each (a radix sort where the mass numbers fit 16 bits)
+            order = np.argsort(masses, kind="stable")
+            starts = np.concatenate([[0], np.cumsum(np.bincount(masses, minlength=len(self.centres)))])
+            self._sorted = (times[order], starts)
+        return self._sorted
+
+    @property
+    def times(self) -> list[np.ndarray]:
+        """Each mass's upward crossing times so far, s, in order: a list of N arrays."""
+        times, starts = self._by_mass()
+        return np.split(times, starts[1:-1])
+
+    def counts(self) -> np.ndarray:
+        """How many times each mass has crossed its centre upward so far, (N,)."""
+        return np.diff(self._by_mass()[1])
 
     def period(self, i: int) -> Period | None:
         """Mass i's period from its crossings so far."""
-        return period_from_crossings(self.times[i])
+        times, starts = self._by_mass()
+        return period_from_crossings(times[starts[i]:starts[i + 1]])
+
+    def periods(self) -> list[Period | None]:
+        """Every mass's period from its crossings so far: period(i) of each i, the same numbers,
+        worked out for the masses with the same number of crossings together."""
+        times, starts = self._by_mass()
+        counts = np.diff(starts)
+        found: list[Period | None] = [None] * len(counts)
+        tally = np.bincount(counts)
+        for count in np.flatnonzero(tally)[np.flatnonzero(tally) >= MIN_CYCLES + 1].tolist():
+            masses = np.flatnonzero(counts == count)
+            cycles = np.diff(times[starts[masses][:, None] + np.arange(count)], axis=1)
+            # row by row these are np.mean and np.std of each mass's own cycles, bit for bit
+            means, spreads = np.mean(cycles, axis=1), np.std(cycles, axis=1, ddof=1)
+            for i, mean, spread in zip(masses.tolist(), means.tolist(), spreads.tolist()):
+                found[i] = Period(mean, spread, count - 1)
+        return found
 
 
 def is_driven(forces, state) -> bool:

@@ -4,7 +4,9 @@ The engine (physics/simulate.py) steps; this module holds what it records. A sch
 step number is recorded next (every n-th step, or the first step at or after each time of a
 grid); the recorder keeps those steps as flat rows of floats, packed into arrays a block at a
 time; Samples are what one advance() recorded, and a Trajectory is a run from its start with the
-energy of every sample.
+energy of every sample. A Watch is shown those steps, and steps it asks for, without keeping them:
+what a run measures as it goes (the period's crossings, a scene's largest amplitude), so that a
+run of 10⁴ masses keeps no more memory at its ten-thousandth step than at its first.
 """
 from __future__ import annotations
 
@@ -19,6 +21,7 @@ from .state import State, velocity
 
 BLOCK = 1024                 # recorded rows packed into one array at a time
 PREPARED_NUMBERS = 1 << 26   # the most numbers (512 MB) a recording keeps in an array made beforehand
+WATCHED_NUMBERS = 1 << 17    # numbers a Watch gathers (1 MB) before passing them on
 
 
 def steps_to_reach(until: float, dt: float) -> int:
@@ -76,6 +79,96 @@ class Samples:
         return len(self.t)
 
 
+class Watch:
+    """What a run looks at as it goes without keeping it: the period's crossings (CoordinateWatch),
+    a scene's largest amplitude over its window (WindowLargest). Keeping every step of 10⁴ masses
+    to look at it afterwards is 640 kB of new memory a step.
+
+    A watch is shown the start of a run (when the run starts at step 0), then, in order, every
+    step the run records and every step any of the run's watches asks for by its `schedule`
+    (None: none besides the recorded ones): one at a time as see(t, r, p), t in s and r, p (N, D)
+    the positions and momenta then, or a block at a time as see_block(t (n,), r, p (n, N, D)).
+    The arrays are the run's own and change after the call: a watch copies what it keeps.
+    flush() comes at the end of every advance.
+    """
+
+    schedule = None
+
+    def see(self, t: float, r: np.ndarray, p: np.ndarray) -> None:
+        raise NotImplementedError
+
+    def see_block(self, t: np.ndarray, r: np.ndarray, p: np.ndarray) -> None:
+        for n in range(len(t)):
+            self.see(float(t[n]), r[n], p[n])
+
+    def flush(self) -> None:
+        pass
+
+
+class CoordinateWatch(Watch):
+    """One coordinate of every mass, passed on a block of samples at a time as sink.add(t, x), t (n,)
+    s and x (n, N): what physics/period.py's CrossingMeter times the period by. The arrays passed
+    are reused for the next block: a sink copies what it keeps.
+
+    axis      which component of r: 0, 1 or 2 (x, y, z)
+    schedule  the steps it asks for besides the recorded ones (time_grid(...)), or None
+    """
+
+    def __init__(self, sink, *, axis: int, schedule=None):
+        self.sink, self.axis, self.schedule = sink, int(axis), schedule
+        self._t = self._x = None
+        self._seen = 0
+
+    def see(self, t, r, p) -> None:
+        x = r[..., self.axis]
+        if self._x is None:               # made once, on the first sample: the same arrays all run
+            self._x = np.empty((max(1, WATCHED_NUMBERS // max(1, len(x))), len(x)))
+            self._t = np.empty(len(self._x))
+        elif self._seen == len(self._x):
+            self.flush()
+        self._t[self._seen] = t
+        self._x[self._seen] = x
+        self._seen += 1
+
+    def see_block(self, t, r, p) -> None:
+        self.flush()
+        self.sink.add(t, r[..., self.axis])
+
+    def flush(self) -> None:
+        if self._seen:
+            self.sink.add(self._t[:self._seen], self._x[:self._seen])
+            self._seen = 0
+
+
+class WindowLargest(Watch):
+    """The largest value of quantity(state) for each mass over a window of a run, from `start` (to
+    round-off) to one step after `end`, s: a scene's measurement (resonance: the largest amplitude
+    A = √(x² + (v/ω)²) of each spring once the transient has died away). It asks for every step
+    of the window (unless `ask` is False: a run that records every step shows it every step
+    anyway); `largest` is (N,) (None until a step of the window is shown), and `last` the time of
+    the last step shown, s.
+    """
+
+    def __init__(self, quantity, *, window: tuple[float, float], initial: State, dt: float, ask: bool = True):
+        """quantity(state) -> (N,); window (start, end), s; the run's initial state and Δt, s."""
+        self.quantity, self.m, self.dt = quantity, initial.m, float(dt)
+        self.start, self.end = float(window[0]), float(window[1])
+        self.schedule = time_grid(dt, t0=initial.t, dt=dt, start=self.start, end=self.end) if ask else None
+        self.largest, self.last = None, None
+
+    def see(self, t, r, p) -> None:
+        self.last = t
+        if self.start - 1e-9 * self.dt <= t <= self.end + self.dt:
+            value = self.quantity(State(t=t, r=r, p=p, m=self.m))
+            self.largest = np.array(value, dtype=float) if self.largest is None else \
+                np.maximum(self.largest, value, out=self.largest)
+
+    @property
+    def reached(self) -> bool:
+        """Whether the run was shown the end of the window (else `largest` is not the window's)."""
+        return self.largest is not None and self.last is not None and self.last >= self.end
+
+
 class Recorder:
     """The steps recorded during one advance: which step is due next (`mark`, from the schedule),
     and the recorded rows of floats (the step number, then the values), packed into arrays a
@@ -83,16 +176,21 @@ class Recorder:
 
     schedule  step number done -> the next step number to record (every(n), time_grid(...)), or None
     target    the step number the advance ends at; with `final` it is recorded too
+    watches   Watches shown the start (at step 0), every recorded step and every step their own
+              schedules ask for, none of which is kept unless recorded
     stride    n for every(n), whose marks the traced loop works out itself (and caps at `last`,
               the target if `final`); 0 for other schedules, which it asks through record()
     """
 
-    def __init__(self, engine, schedule=None, *, target: float = math.inf, final: bool = True):
+    def __init__(self, engine, schedule=None, *, target: float = math.inf, final: bool = True, watches=()):
         self.engine = engine
         self.schedule = schedule if schedule is not None else (lambda done: math.inf)
         self.target, self.final = target, final
         self.last = target if final else math.inf
-        self.stride = schedule.stride if isinstance(schedule, every) else 0
+        self.watches = tuple(watches)
+        own = [watch.schedule for watch in self.watches if watch.schedule is not None]   # steps only watched
+        self.stride = schedule.stride if isinstance(schedule, every) and not own else 0
+        self._watched = (lambda done: math.inf) if not own else (lambda done: min(ask(done) for ask in own))
         start = engine.start
         self.width = 1 + 2 * start.r.size + 2 * start.count
         self.rows: list[float] = []    # this block's rows, flat: the step number, every component of r, p, P_nc, W_nc
@@ -101,15 +199,21 @@ class Recorder:
         # first row (Samples.rows), with no array per block to copy again at the end
         self.filled = 0
         self.buffer = np.empty((1 + self._expected(engine.steps), self.width))
-        self.mark = self._next(engine.steps)
+        # the next step kept in full, and the next step only the watches see
+        self.kept, self.watched = self._next(engine.steps), self._watched(engine.steps)
+        self.mark = min(self.kept, self.watched)
+        if engine.steps == 0:
+            for watch in self.watches:
+                watch.see(start.t, start.r, start.p)
 
     def _expected(self, done: int) -> int:
         """How many rows the schedule keeps from step `done` to the target (0 if unknown or too many):
         every(n) works it out; another schedule (a time grid) is asked, up to as many rows as fit."""
-        n, target, most = self.stride, self.target, PREPARED_NUMBERS // self.width
+        target, most = self.target, PREPARED_NUMBERS // self.width
         if not math.isfinite(target):
             return 0
-        if n:
+        if isinstance(self.schedule, every):
+            n = self.schedule.stride
             count = int(target) // n - done // n + (1 if self.final and int(target) % n else 0)
         else:
             count, mark = 0, self._next(done)
@@ -122,9 +226,20 @@ class Recorder:
         return min(mark, self.target) if self.final else mark
 
     def record(self, done, *, values=None, arrays=None):
-        """Keep step number `done` (its values flattened, or its arrays); returns the next mark."""
-        self.add(done, values=values, arrays=arrays)
-        self.mark = self._next(done)
+        """Step number `done` is marked (its values flattened, or its arrays): the watches see it,
+        and it is kept where the schedule records it. Returns the next mark."""
+        if self.watches:
+            if self.stride:
+                self.flush()              # rows the traced loop kept on its own are seen first
+            t, (r, p) = self.engine.time_of(done), _state_arrays(self.engine, values, arrays)
+            for watch in self.watches:
+                watch.see(t, r, p)
+        if self.stride or done == self.kept:      # with a stride every mark is kept
+            self.add(done, values=values, arrays=arrays)
+            self.kept = self._next(done)
+        if done == self.watched:
+            self.watched = self._watched(done)
+        self.mark = min(self.kept, self.watched)
         return self.mark
 
     def add(self, done, *, values=None, arrays=None):
@@ -143,8 +258,14 @@ class Recorder:
 
     def flush(self):
         if self.rows:
-            self._keep(np.fromiter(self.rows, dtype=float, count=len(self.rows)).reshape(-1, self.width))
+            block = np.fromiter(self.rows, dtype=float, count=len(self.rows)).reshape(-1, self.width)
             self.rows.clear()          # the same list: the traced loop may hold its extend
+            if self.stride and self.watches:     # kept by the traced loop, not yet seen
+                start = self.engine.start
+                r, p, _ = _columns(block, start)
+                for watch in self.watches:
+                    watch.see_block(start.t + block[:, 0] * self.engine.dt, r, p)
+            self._keep(block)
 
     def _keep(self, block: np.ndarray) -> None:
         end = 1 + self.filled + len(block)
@@ -156,6 +277,8 @@ class Recorder:
 
     def samples(self) -> Samples:
         self.flush()
+        for watch in self.watches:
+            watch.flush()
         start = self.engine.start
         if self.blocks:
             rows = np.empty((1 + self.filled + sum(map(len, self.blocks)), self.width))
@@ -167,13 +290,29 @@ class Recorder:
         return Samples(t=start.t + rows[1:, 0] * self.engine.dt, r=r, p=p, work=work, m=start.m, rows=rows)
 
 
+def _state_arrays(engine, values, arrays) -> tuple[np.ndarray, np.ndarray]:
+    """r and p (N, D) of a marked step, from the traced loop's flat values (r's components, then
+    p's, row by row) or the numpy tick's arrays (r, p first)."""
+    if arrays is not None:
+        return arrays[0], arrays[1]
+    shape = engine.start.r.shape
+    size = shape[0] * shape[1]
+    return (np.asarray(values[:size], dtype=float).reshape(shape),
+            np.asarray(values[size:2 * size], dtype=float).reshape(shape))
+
+
 def _fill(row: np.ndarray, done: int, arrays) -> np.ndarray:
     """Row (or a (1, width) block) = the step number, then every component of the arrays in order."""
     flat, offset = row.reshape(-1), 1
     flat[0] = done
     for a in arrays:
         size = np.size(a)
-        flat[offset:offset + size].reshape(np.shape(a))[...] = a    # one pass, whatever a's layout
+        part = flat[offset:offset + size].reshape(np.shape(a))
+        if part.ndim == 2:        # column by column: r and p are column-major, the row is not, and
+            for j in range(part.shape[1]):      # one pass of (N, 3) runs 3-number inner loops
+                part[:, j] = a[:, j]            # (3× slower at 10⁴ masses)
+        else:
+            part[...] = a
         offset += size
     return row
 

@@ -165,18 +165,20 @@ class Simulation:
         """Advance to the first step at or after time t, s (see advance)."""
         return self.advance(steps_to_reach(t - self.t, self.dt), **options)
 
-    def advance(self, steps: int, *, record=None, final: bool = True, progress=None) -> Samples:
+    def advance(self, steps: int, *, record=None, final: bool = True, progress=None, watches=()) -> Samples:
         """Take `steps` steps of Δt from where the engine is, and return the steps recorded.
 
         record    a schedule (every(n), time_grid(...)) of the step numbers to record, or None
         final     also record the last step of this call
         progress  called as progress(done, total, t) about once a second on long runs
+        watches   Watches (physics/recording.py) shown the start (from step 0), each recorded step
+                  and each step their schedules ask for, none of them kept unless recorded
 
         Raises BlowUpError (the state is kept at the check that found it) or Cancelled.
         """
         steps = int(steps)
         target = self.steps + steps
-        recorder = Recorder(self, record, target=target, final=final)
+        recorder = Recorder(self, record, target=target, final=final, watches=watches)
         report = _Progress(progress, total=steps, first=self.steps)
         with np.errstate(over="ignore", invalid="ignore"):
             while self.steps < target:         # a chunk of steps at a time, then the checks

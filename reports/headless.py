@@ -21,12 +21,14 @@ import numpy as np
 from physics.accuracy import judge_dt
 from physics.integrators import describe
 from physics.period import record_window
-from physics.recording import Trajectory, every, steps_to_reach, time_grid, trajectory
+from physics.recording import CoordinateWatch, Trajectory, WindowLargest, every, steps_to_reach, time_grid, trajectory
 from physics.run_cost import RunTooLong, check_cost
 from physics.simulate import BlowUpError, Simulation
 from physics.stability import judge
 from export.step_update import number
 from scenes import ConstantError, Model, Setup
+
+from .periods import Timing, timing
 
 # A run is refused before it starts if the engine estimates it longer than MAX_RUN_SECONDS
 # (physics.run_cost.check_cost); each row of a CSV file or figure adds ROW_SECONDS to that.
@@ -40,14 +42,17 @@ class TooManySteps(ConstantError):
 @dataclass(frozen=True)
 class Result:
     """A finished headless run: the scene's setup and model, the method of each mass, the
-    recorded steps (every step, or the start, the measuring window, the motion often enough to
-    time its period, and the end) and the count."""
+    recorded steps (every step, or only the start and the end), the count, and what the run
+    looked at as it went without keeping it: the crossings its period is timed by, and the
+    largest of the scene's measure over its measuring window (None where it has none)."""
 
     setup: Setup
     model: Model
     methods: tuple[str, ...]     # the method of each mass (physics.integrators.methods_for)
     trajectory: Trajectory
     steps: int
+    timing: Timing
+    measured: Optional[WindowLargest] = None
 
     @property
     def integrator(self) -> str:
@@ -107,22 +112,29 @@ class Result:
 @dataclass(frozen=True)
 class Plan:
     """A headless run checked before it starts: the configured scene (with the `until` that is run),
-    its model, the engine at its start, the time to run to, and what to record (None: the end only)."""
+    its model, the engine at its start, the time to run to, what to record (None: the end only),
+    what the run times its period by and the watch that shows it the steps, and the scene's
+    measure over its window (None where it has none)."""
 
     setup: Setup
     model: Model
     engine: Simulation
     until: float
     record: object
+    timing: Timing
+    watches: tuple
+    measured: Optional[WindowLargest] = None
 
 
 def plan(setup: Setup, *, model: Optional[Model] = None, integrator: Optional[str] = None,
          until: Optional[float] = None, every_step: bool = True) -> Plan:
     """Check a run of `setup` to `until` (default: its question time) once, before any step.
 
-    every_step  record every step (for --csv and --plot); else the end, the window a scene
-                measures in (resonance: the steady-state amplitudes), and enough of the motion to
-                time its period (physics/period.py's record_window)
+    every_step  record every step (for --csv and --plot); else only the end. Either way the run
+                looks at the motion as it goes, without keeping it: often enough to time its
+                period (physics/period.py's record_window, reports/periods.py's timing), and at
+                every step of the window a scene measures in (resonance: the largest amplitude
+                of each spring, the scene's measure_now; physics/recording.py's WindowLargest)
     Raises TooManySteps if the run would take longer than MAX_RUN_SECONDS on this computer (the
     engine's own measured cost, plus ROW_SECONDS for each row recorded), naming the count and the
     longest --until that fits. (That the run reaches the end of the scene's measuring window is
@@ -139,16 +151,23 @@ def plan(setup: Setup, *, model: Optional[Model] = None, integrator: Optional[st
                    shortest=0.0 if window is None else window[1])
     except RunTooLong as problem:
         raise TooManySteps(problem.worded("--until")) from None
-    if every_step:
-        record = every(1)
+    # the motion, often enough to time its crossings of the centre (the period, reports/periods.py),
+    # and the scene's measure over its window: looked at as the run goes, not kept (every step of
+    # 10⁴ masses would be 640 kB a step)
+    period = record_window(model.forces, model.state.m, model.dt, t0=model.state.t, until=until)
+    timed = None if period is None else time_grid(period[0], t0=model.state.t, dt=model.dt, start=period[1])
+    if every_step:           # every step is kept, and so shown to the watches already
+        record, timed = every(1), None
     else:
-        measuring = None if window is None else time_grid(model.dt, t0=model.state.t, dt=model.dt,
-                                                          start=window[0], end=window[1])
-        # the motion, often enough to time its crossings of the centre (the period, reports/periods.py)
-        period = record_window(model.forces, model.state.m, model.dt, t0=model.state.t, until=until)
-        timing = None if period is None else time_grid(period[0], t0=model.state.t, dt=model.dt, start=period[1])
-        record = either(measuring, timing)
-    return Plan(setup=setup, model=model, engine=engine, until=until, record=record)
+        record = None
+    measure = setup.hooks.measure_now
+    largest = None if window is None or measure is None else WindowLargest(
+        lambda state: measure(model, state), window=window, initial=model.state, dt=model.dt, ask=not every_step)
+    timed_by = timing(setup, model)
+    watches = (CoordinateWatch(timed_by.meter, axis=timed_by.axis, schedule=timed),) + \
+        (() if largest is None else (largest,))
+    return Plan(setup=setup, model=model, engine=engine, until=until, record=record, timing=timed_by,
+                watches=watches, measured=largest)
 
 
 def _check_window(run: Plan) -> None:
@@ -159,14 +178,6 @@ def _check_window(run: Plan) -> None:
             f"the scene measures from t = {number(window[0])} s to {number(window[1])} s (settle, then "
             f"{number(run.setup.values['periods'])} periods of the slowest drive), after the run ends at "
             f"t = {number(run.until)} s; set until to at least {number(window[1])} s, or a smaller settle")
-
-
-def either(*schedules):
-    """A schedule recording every step any of these records (physics/recording.py); None for none."""
-    kept = [schedule for schedule in schedules if schedule is not None]
-    if len(kept) < 2:
-        return kept[0] if kept else None
-    return lambda done: min(schedule(done) for schedule in kept)
 
 
 # ---- the run ----
@@ -188,12 +199,13 @@ def simulate(setup: Setup, *, model: Optional[Model] = None, integrator: Optiona
     stream = sys.stderr if progress == "stderr" else progress     # looked up now, not at import
     printer = None if stream is None else _ProgressLine(stream)
     try:
-        samples = run.engine.run_until(run.until, record=run.record, progress=printer)
+        samples = run.engine.run_until(run.until, record=run.record, progress=printer, watches=run.watches)
     finally:   # on a terminal the line is redrawn in place: end it, so what follows starts a line
         if printer is not None:
             printer.end()
     return Result(setup=run.setup, model=run.model, methods=tuple(run.engine.methods),
-                  trajectory=trajectory(run.engine, samples), steps=run.engine.steps)
+                  trajectory=trajectory(run.engine, samples), steps=run.engine.steps, timing=run.timing,
+                  measured=run.measured)
 
 
 class _ProgressLine:

@@ -105,11 +105,23 @@ def _periods(out: dict, result: Result) -> None:
         elif reports[0].formula is None:
             out.setdefault("notes", []).append(f"period.formula: null, {reports[0].formula_note}")
         return
-    for body, report in zip(out["bodies"], reports):
-        body["period"] = None if period_json(report) is None else cleaned(period_json(report))
+    for body, report, entry in zip(out["bodies"], reports, _cleaned_periods(reports)):
+        body["period"] = entry
         note = report.measured_note if report.measured is None else report.formula_note if report.formula is None else ""
         if note:
             body["period_note"] = note   # the keys as_json's own steps give to 15 digits already
+
+
+def _cleaned_periods(reports) -> list[Optional[dict]]:
+    """period_json of each report with its figures to 15 digits: the figures of every mass cleaned
+    as one array per key, which gives what cleaned() gives each alone (10⁴ masses: one call, not 10⁴)."""
+    entries = [period_json(report) for report in reports]
+    for key in ("measured", "spread", "formula"):
+        values = clean_array([np.nan if entry is None or entry[key] is None else entry[key] for entry in entries])
+        for entry, value in zip(entries, values.tolist()):
+            if entry is not None and entry[key] is not None:
+                entry[key] = value
+    return entries
 
 
 def _final_state(result: Result) -> dict:

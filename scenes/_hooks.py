@@ -3,11 +3,15 @@
 Every scene has VIEW (what to draw, scenes/_view.py). A scene may also define these functions,
 which the front ends call instead of probing the module for them:
 
-    measure_window(values) -> (start, end)   s: the window a headless run records and measures in
-                                             (resonance: the steady-state amplitudes), given the
-                                             scene's constants; a run must reach `end`
+    measure_window(values) -> (start, end)   s: the window a headless run measures in (resonance:
+                                             the steady-state amplitudes), given the scene's
+                                             constants; a run must reach `end`
+    measure_now(model, state) -> (N,)        what the scene measures at each step of that window;
+                                             a headless run keeps the largest of each mass over
+                                             the window (reports' Result.measured), not the steps
     extra_json(result) -> dict               the scene's own keys in `--headless --json`, from the
-                                             finished run (reports' Result: setup, model, trajectory)
+                                             finished run (reports' Result: setup, model,
+                                             trajectory, measured)
     extra_text(result) -> str                the scene's own lines at the end of `--headless`
     view_graph(setup) -> dict                the page's own graph (browser/graphs.py)
 
@@ -31,6 +35,10 @@ class MeasureWindow(Protocol):
     def __call__(self, values: Mapping[str, Any]) -> tuple[float, float]: ...
 
 
+class MeasureNow(Protocol):
+    def __call__(self, model: Any, state: Any) -> Any: ...
+
+
 class ExtraJson(Protocol):
     def __call__(self, result: Any) -> dict: ...
 
@@ -39,7 +47,7 @@ class ExtraText(Protocol):
     def __call__(self, result: Any) -> str: ...
 
 
-HOOKS = ("measure_window", "extra_json", "extra_text", "view_graph")
+HOOKS = ("measure_window", "measure_now", "extra_json", "extra_text", "view_graph")
 
 
 @dataclass(frozen=True)
@@ -48,6 +56,7 @@ class SceneHooks:
 
     view: Mapping[str, Any] = field(default_factory=dict)
     measure_window: Optional[MeasureWindow] = None
+    measure_now: Optional[MeasureNow] = None
     extra_json: Optional[ExtraJson] = None
     extra_text: Optional[ExtraText] = None
     view_graph: Optional[Callable[[Any], dict]] = None

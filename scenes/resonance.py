@@ -12,9 +12,10 @@ is no peak at all (the preset "critical damping", b = 2√(mk), shows this).
 
 The scene IS the sweep: one batch with a spring per (b, ω) pair, a row of `count` springs for each b,
 stepped together by the engine (the forces take per-mass b and ω). The page shows every row and
-their amplitudes now; a headless run records the measuring window (`settle` to `settle` + a few
-periods of the slowest drive) and :func:`extra_json` gives the measured and exact curves, from the
-same single run that gives the final state.
+their amplitudes now; a headless run keeps each spring's largest amplitude over the measuring
+window (`settle` to `settle` + a few periods of the slowest drive: :func:`measure_now`, looked at
+as the run goes, none of its steps kept) and :func:`extra_json` gives the measured and exact
+curves, from the same single run that gives the final state.
 """
 from typing import NamedTuple
 
@@ -22,7 +23,7 @@ import numpy as np
 
 from physics.exact import critical_damping, steady_state_amplitude
 from physics.forces import Driving, Gravity, LinearDamping, Spring
-from physics.simulate import time_grid, trajectory
+from physics.recording import WindowLargest
 from physics.state import make_state, velocity
 
 from ._constants import DECLARED, SMALLEST, ConstantError
@@ -57,7 +58,6 @@ SMOOTH_POINTS = 401            # ω values on which extra_json gives the exact c
 # would read as several per cent). --integrator still chooses another method.
 DEFAULT_INTEGRATOR = "rk4"
 ROW_DEPTH = 1.0                # m: distance between the rows of different b, front to back
-BLOCK_VALUES = 2**17           # numbers per array when measuring the amplitudes: 1 MB, kept in the cache
 
 
 class Sweep(NamedTuple):
@@ -196,47 +196,34 @@ def amplitude_now(model, state) -> np.ndarray:
     return np.sqrt(x**2 + (v / omega) ** 2)
 
 
-def amplitudes(setup, model, trajectory) -> Sweep | None:
-    """The sweep measured from a run's recorded steps: the largest A over the measuring window.
+def measure_now(model, state) -> np.ndarray:
+    """What a headless run measures at each step of the window (scenes/_hooks.py): each spring's
+    amplitude_now. The run keeps the largest of each over the window, and nothing of its steps."""
+    return amplitude_now(model, state)
+
+
+def amplitudes(setup, model, measured: WindowLargest | None) -> Sweep | None:
+    """The sweep a run measured: each spring's largest A over the measuring window (a
+    physics/recording.py WindowLargest of measure_now, reports' Result.measured).
 
     None if the run did not reach the end of the window (until < settle + the periods).
     """
     v = setup.values
-    start, end = measure_window(v)
-    inside = np.flatnonzero((trajectory.t >= start - 1e-9 * v["dt"]) & (trajectory.t <= end + v["dt"]))
-    if trajectory.t[-1] < end or not inside.size:
+    if measured is None or not measured.reached:
         return None
-    measured = _largest_amplitude(model, trajectory, first=inside[0], last=inside[-1])
     omega, b_each, omega_all, b_all = _grid_of(v)
     shape = (len(b_each), len(omega))
     exact = curve_amplitude(v, b=b_all, omega=omega_all)
-    return Sweep(omega=omega, b=b_each, amplitude=measured.reshape(shape), exact=exact.reshape(shape))
-
-
-def _largest_amplitude(model, trajectory, *, first: int, last: int) -> np.ndarray:
-    """The largest amplitude_now of each mass over the recorded samples first to last, (N,) m.
-
-    Worked out a block of samples at a time, each about BLOCK_VALUES numbers per array, so that no
-    array as large as the whole window ((samples, N): 38 MB at 10⁴ masses) is ever made.
-    """
-    State = type(model.state)
-    per_block = max(1, BLOCK_VALUES // model.state.count)
-    largest = None
-    for start in range(first, last + 1, per_block):
-        block = slice(start, min(start + per_block, last + 1))     # the times are in order: no copy
-        A = amplitude_now(model, State(t=trajectory.t[block], r=trajectory.r[block], p=trajectory.p[block],
-                                       m=trajectory.m)).max(axis=0)
-        largest = A if largest is None else np.maximum(largest, A, out=largest)
-    return largest
+    return Sweep(omega=omega, b=b_each, amplitude=measured.largest.reshape(shape), exact=exact.reshape(shape))
 
 
 def sweep(setup, *, integrator=None) -> Sweep:
     """Run the scene's batch to the end of the measuring window and measure every amplitude."""
     model = setup.build()
-    engine = model.simulation(integrator)
-    start, end = measure_window(setup.values)
-    samples = engine.run_until(end, record=time_grid(model.dt, t0=0.0, dt=model.dt, start=start, end=end))
-    return amplitudes(setup, model, trajectory(engine, samples, with_energy=False))
+    window = measure_window(setup.values)
+    measured = WindowLargest(lambda state: measure_now(model, state), window=window, initial=model.state, dt=model.dt)
+    model.simulation(integrator).run_until(window[1], watches=(measured,))
+    return amplitudes(setup, model, measured)
 
 
 def extra_json(result) -> dict:
@@ -248,7 +235,7 @@ def extra_json(result) -> dict:
     and "exact_amplitude_note" says so.
     """
     v = result.setup.values
-    measured = amplitudes(result.setup, result.model, result.trajectory)
+    measured = amplitudes(result.setup, result.model, result.measured)
     omega, b_each, omega_all, b_all = _grid_of(v)
     exact = curve_amplitude(v, b=b_all, omega=omega_all)
     smooth = np.linspace(v["omega_min"], v["omega_max"], SMOOTH_POINTS)
@@ -274,7 +261,7 @@ def extra_text(result) -> str:
     """The resonance curves for the headless report: a table of A against ω, measured from the run
     and exact, one pair of columns per b (the numbers --json gives, as a teacher reads them)."""
     v = result.setup.values
-    measured = amplitudes(result.setup, result.model, result.trajectory)
+    measured = amplitudes(result.setup, result.model, result.measured)
     omega, b_each, omega_all, b_all = _grid_of(v)
     exact = curve_amplitude(v, b=b_all, omega=omega_all).reshape(len(b_each), len(omega))
     start, end = measure_window(v)

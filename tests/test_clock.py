@@ -174,7 +174,7 @@ def test_a_few_stalled_frames_do_not_cap_the_budget_for_good():
     """Four frames stalled by something else (60 ms for 20 steps) must not latch max_steps low.
 
     The old budget ignored frames under 10 steps, so once a stall pushed max_steps below 10 it
-    never rose again (measured: 8 steps a frame, 0.4 × real time at Δt = 1e-3 s; docs/long_run.md).
+    never rose again (measured: 8 steps a frame, 0.4 × real time at Δt = 1e-3 s; benchmarks/results/).
     """
     budget = StepBudget(seconds_per_frame=0.015, first_guess=50e-6)
     assert budget.max_steps == 300

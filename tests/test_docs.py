@@ -19,7 +19,7 @@ import pytest
 ROOT = Path(__file__).resolve().parent.parent
 GUIDES = ["README.md", "docs/model.md", "docs/teaching.md", "docs/homework.md", "docs/lab.md",
           "docs/handout.md", "docs/architecture.md"]
-DOCS = GUIDES + ["docs/performance.md", "docs/long_run.md"]
+DOCS = GUIDES + ["docs/performance.md", "benchmarks/results/README.md"]
 PATH = re.compile(r"`((?:physics|scenes|browser|reports|export|lab|cli|tests|benchmarks|examples|docs)/[\w./-]*)`")
 NAME = re.compile(r"`((?:physics|scenes|browser|reports|export|lab)\.\w+(?:\.\w+)?)`")
 LINK = re.compile(r"\]\(((?!https?:|#)[^)#\s]+)")

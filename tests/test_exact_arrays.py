@@ -134,21 +134,3 @@ def test_lengths_are_numpys_norm_of_each_row_bit_for_bit():
     vectors = rng.normal(size=(5000, 3)) * rng.uniform(1e-3, 1e3, size=(5000, 1))
     np.testing.assert_array_equal(exact.lengths(vectors), [np.linalg.norm(a) for a in vectors])
 
-
-def test_the_amplitudes_measured_block_by_block_are_those_of_the_whole_window(monkeypatch):
-    """scenes/resonance.py measures the largest A = √(x² + (v/ω)²) over the window a block of
-    samples at a time; with blocks of 2 samples it gives the whole window's maxima bit for bit."""
-    from reports.headless import simulate
-    from scenes import resonance
-    setup = catalog.configure("resonance", assignments=["settle=2", "until=9", "periods=2"])
-    result = simulate(setup, progress=None)
-    whole = resonance.amplitudes(setup, result.model, result.trajectory)
-    monkeypatch.setattr(resonance, "BLOCK_VALUES", 2 * result.model.state.count)
-    blocks = resonance.amplitudes(setup, result.model, result.trajectory)
-    np.testing.assert_array_equal(blocks.amplitude, whole.amplitude)
-    t = result.trajectory.t
-    window = (t >= 2.0 - 1e-9) & (t <= 2.0 + 2 * 2 * np.pi / 2.0 + setup.values["dt"])
-    State = type(result.model.state)
-    each = resonance.amplitude_now(result.model, State(t=t[window], r=result.trajectory.r[window],
-                                                       p=result.trajectory.p[window], m=result.trajectory.m))
-    np.testing.assert_array_equal(blocks.amplitude.ravel(), each.max(axis=0))
