@@ -42,19 +42,19 @@ PRIME_SLIDERS = ("<script>$('.ui-slider').each(function () {"
                  " if (change) change({originalEvent: {}}); });</script>")
 
 
-# The Jump box is vpython's winput, an <input> just before the Jump button: this names it (for the
-# tests and a screen reader) and makes Enter in it press Jump, after the box has sent its text.
 UNSEEN = ("position:absolute; width:1px; height:1px; overflow:hidden; clip:rect(0 0 0 0); "
           "white-space:nowrap")   # read by a screen reader, not drawn
-JUMP_SCRIPT = ("<script>(function () { var mark = document.querySelector('.sm-jumped'); if (!mark) return;"
+# The Jump box is vpython's winput, an <input> just before the Jump button: this names it (for the
+# tests and a screen reader) and makes Enter in it press its Jump button, after the box has sent its
+# text. A notebook keeps the captions of the scenes it ran before: each box is set up once.
+JUMP_SCRIPT = ("<script>document.querySelectorAll('.sm-jumped').forEach(function (mark) {"
                " var box = mark.parentNode; while (box && box.tagName !== 'INPUT') box = box.previousElementSibling;"
                " if (!box || box.dataset.jump) return; box.dataset.jump = '1'; box.id = 'sm-jump-t';"
-               " box.setAttribute('aria-label', 'jump to t, in seconds');"
+               " box.classList.add('sm-jump-t'); box.setAttribute('aria-label', 'jump to t, in seconds');"
                " box.style.fontSize = 'inherit'; box.style.height = 'auto'; box.style.width = '4.5em';"
-               " box.addEventListener('keyup', function (e) { if (e.key !== 'Enter') return;"
-               " var buttons = document.querySelectorAll('button');"
-               " for (var i = 0; i < buttons.length; i++) if (buttons[i].textContent.trim() === 'Jump') buttons[i].click(); });"
-               "})();</script>")
+               " var button = box.nextElementSibling; while (button && button.tagName !== 'BUTTON') button = button.nextElementSibling;"
+               " box.addEventListener('keyup', function (e) { if (e.key === 'Enter' && button) button.click(); });"
+               "});</script>")
 
 
 class _OwnLine:

@@ -26,10 +26,13 @@ CHROMIUM_ARGS = ["--no-sandbox", "--use-gl=angle", "--use-angle=swiftshader",
                  "--disable-background-networking", "--disable-component-update", "--disable-sync",
                  "--no-first-run"]
 TIME = re.compile(r"^\s*t = (-?\d+\.\d+) s\s*$")   # the caption's `t = 12.34 s`
-# Playwright's own default, 30 s for a click, a screenshot or a page load, is exceeded on a busy
-# 2-core machine running the whole suite (software WebGL makes each screenshot take seconds). Each
-# of those waits for an event, so a generous limit costs nothing when the machine is quick.
-PATIENCE_MS = 120_000
+# The suite's one patience: how long any wait for an event on a page (a click, a screenshot, a page
+# load, a text, a jump) may take before the test fails. Playwright's own default, 30 s, was exceeded
+# on a busy 2-core machine running the whole suite (software WebGL draws a frame in a second or
+# more there). Every wait is for an event, so a generous limit costs nothing when the machine is
+# quick; no test waits for the animation to reach a time (it jumps there: jump_to).
+PATIENCE_MS = 180_000
+PATIENCE = PATIENCE_MS / 1000   # s, for wait_for
 # After its page closes, the program ends on its own: CLOSE_GRACE (0.5 s), then its own exit, about
 # 1 s on an idle machine but 2-4 s on a busy one (the README says "a second or two"). A wall-time
 # bound of 2 s failed under load, so the tests bound it by what they guard against: that the
@@ -128,8 +131,9 @@ def free_port() -> int:
         return sock.getsockname()[1]
 
 
-def wait_for(predicate, *, timeout: float = 30.0, what: str):
-    """Poll predicate() until it returns something true, and return that; fail after `timeout` s."""
+def wait_for(predicate, *, timeout: float = PATIENCE, what: str):
+    """Poll predicate() until it returns something true, and return that; fail after `timeout` s
+    (the suite's patience: a wait is for an event, never for time to pass)."""
     deadline = time.monotonic() + timeout
     while time.monotonic() < deadline:
         value = predicate()
@@ -142,23 +146,27 @@ def wait_for(predicate, *, timeout: float = 30.0, what: str):
 # ---- Jump to t (browser/jump.py, export/offline_page.js): a test asks for the simulated time it needs ----
 
 # The local page's Jump box is vpython's text box, which sends its text when the focus leaves it:
-# the box is filled and left, then Jump pressed, in one go (in that order the page's events reach
-# the program); what the page says after the jump carries its count, so the wait is for this jump.
-_LOCAL_JUMP = """t => { const box = document.getElementById('sm-jump-t');
-  const mark = document.querySelector('.sm-jumped');
+# the box is filled and left, then its Jump pressed, in one go (in that order the page's events
+# reach the program); what the page says after the jump carries its count, so the wait is for this
+# jump. `root` is the page's body, or a notebook cell (a notebook keeps earlier scenes' captions).
+_LOCAL_JUMP = """(root, t) => { const box = root.querySelector('.sm-jump-t');
+  const mark = root.querySelector('.sm-jumped');
   const before = Number(mark.dataset.jumps);
   box.value = t; box.dispatchEvent(new Event('blur'));
-  for (const b of document.querySelectorAll('button')) if (b.textContent.trim() === 'Jump') { b.click(); break; }
+  let button = box.nextElementSibling;
+  while (button && button.tagName !== 'BUTTON') button = button.nextElementSibling;
+  button.click();
   return before; }"""
 
 
-def jump_to(page, t: float) -> float:
-    """Jump the local page to t, s, and wait until it shows it, paused (the page says so last,
-    after the state, graphs and caption it drew). Returns the t reached: the first step at or
-    after t, as --headless reaches a time."""
-    page.locator("#sm-jump-t").wait_for(state="attached")
-    before = page.evaluate(_LOCAL_JUMP, repr(float(t)))
-    mark = page.locator(f".sm-jumped[data-jumps='{before + 1}']")
+def jump_to(where, t: float) -> float:
+    """Jump the local page (a Playwright page, or a notebook cell's locator) to t, s, and wait
+    until it shows it, paused (the page says so last, after the state, graphs and caption it
+    drew). Returns the t reached: the first step at or after t, as --headless reaches a time."""
+    root = where.locator("body") if hasattr(where, "goto") else where
+    root.locator(".sm-jump-t").first.wait_for(state="attached")
+    before = root.evaluate(_LOCAL_JUMP, repr(float(t)))
+    mark = root.locator(f".sm-jumped[data-jumps='{before + 1}']")
     mark.wait_for(state="attached")
     return float(mark.get_attribute("data-t"))
 

@@ -90,6 +90,50 @@ VIEW = {{"support": "ceiling", "plot": "y"}}
 '''
 
 
+# A fit (tests/test_measured_files.py) runs the model a dozen times or more, each run past the
+# record's end by up to a period: Held's pace and hold would make each run seconds long, or hold one
+# for good. Its stand-in waits once per run instead: SLOW s when a run first passes SLOW_FROM, while
+# the gate is shut. So the first run of the model that passes SLOW_FROM ends more than a second after
+# it began, whatever the computer, and once the gate is open every run is at full speed.
+SLOW_FROM = 2.05           # s: past the 2,000 steps of Δt's judgement and the cost's trial (2 s at Δt = 1 ms)
+SLOW = 1.1                 # s: the wait, once per run
+
+ONCE = '''
+"""A force of 0 N that makes each run wait once: see tests/held_run.py."""
+import os
+import time
+from dataclasses import dataclass
+
+import numpy as np
+
+from physics.forces import Force
+
+GATE = {gate!r}
+LAST = [0.0]      # the t of the last call: a t smaller than it is a new run
+
+
+@dataclass(frozen=True, eq=False)
+class Held(Force):
+    """F = 0 N. A run passing t = {slow_from} s waits {slow} s there, once, until GATE exists."""
+
+    def __call__(self, t, r, v, m):
+        now = float(t)      # a plain number: the fast loop cannot trace this, so the wait stays in
+        if LAST[0] < {slow_from} <= now and not os.path.exists(GATE):
+            time.sleep({slow})
+        LAST[0] = now
+        return np.zeros_like(r)
+'''
+
+
+def slow_scene(folder: Path) -> tuple[dict, Path]:
+    """The `held` scene with the force that waits once per run (ONCE), for a fit; returns the
+    environment that finds it, and the gate file (absent: each run waits SLOW s at SLOW_FROM)."""
+    env, gate = held_scene(folder)
+    values = dict(gate=str(gate), slow_from=SLOW_FROM, slow=SLOW)
+    (folder / "_held.py").write_text(textwrap.dedent(ONCE).format(**values), encoding="utf-8")
+    return env, gate
+
+
 def held_scene(folder: Path) -> tuple[dict, Path]:
     """Write the `held` scene into `folder`; returns the environment that finds it, and the gate file
     (absent: the run waits at HOLD_FROM; open_gate lets it finish)."""

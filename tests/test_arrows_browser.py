@@ -15,7 +15,7 @@ import numpy as np
 import pytest
 
 import main
-from browser_support import require_browser, screenshot_folder, wait_for
+from browser_support import jump_to, require_browser, screenshot_folder, wait_for
 from export.arrows import choose_scales
 from scenes._view import DEFAULT_VIEW
 from export.step_update import update_force
@@ -32,11 +32,11 @@ SCREENSHOTS = screenshot_folder()
 class Page:
     """A scene's page, with its arrows read back from the GlowScript objects."""
 
-    def __init__(self, browser, args, viewport=(1280, 1000)):
+    def __init__(self, browser, args, viewport=(1024, 768)):
         self.program = Program(args[0]) if len(args) == 1 else ProgramWith(args)
         self.page = browser.new_page(viewport={"width": viewport[0], "height": viewport[1]})
-        self.page.goto(self.program.url(), timeout=30_000)
-        self.page.locator("#arrow-objects").wait_for(state="attached", timeout=60_000)
+        self.page.goto(self.program.url())
+        self.page.locator("#arrow-objects").wait_for(state="attached")
 
     def objects(self) -> dict:
         return json.loads(self.page.locator("#arrow-objects").get_attribute("data-objects"))
@@ -45,7 +45,7 @@ class Page:
         return np.array(self.page.evaluate("i => { const a = glowObjs[i].axis; return [a.x, a.y, a.z]; }", index))
 
     def click(self, name):
-        self.page.get_by_role("button", name=name).click(timeout=120_000)   # a row of springs draws slowly
+        self.page.get_by_role("button", name=name).click()
 
     def close(self):
         self.page.close()
@@ -85,13 +85,13 @@ def test_step_read_out_and_arrows_are_the_engines(browser, capsys, args):
     model = setup.build()
     rows = steps_table(capsys, args)
     engine = model.simulation()
-    page = Page(browser, args)
+    # vertical's page gives the README's picture of a Step (docs/screenshots/momentum-update.png), at its size
+    page = Page(browser, args, viewport=(1280, 1000) if args == ("vertical",) else (1024, 768))
     try:
         first = page.objects()
         scales = choose_scales(model, view={**DEFAULT_VIEW, **setup.hooks.view})
         assert (first["p_unit"], first["F_unit"]) == (scales.p_unit, scales.F_unit)
-        wait_for(lambda: shown_time(page.page) > 1.0, timeout=60, what="the run to go")
-        page.click("Pause")
+        jump_to(page.page, 1.0)                     # paused there
         page.click("Reset")
         wait_for(lambda: shown_time(page.page) == 0.0, what="Reset")
         for n, row in enumerate(rows, start=1):
@@ -100,7 +100,7 @@ def test_step_read_out_and_arrows_are_the_engines(browser, capsys, args):
             engine.advance(1)
             after = engine.state
             page.click("Step")
-            text = wait_for(lambda: (t := page.page.locator(".step-readout").inner_text(timeout=30_000))
+            text = wait_for(lambda: (t := page.page.locator(".step-readout").inner_text())
                             .startswith(f"t = {row[1]} s") and t, what=f"step {n}'s read-out")
             assert f"F_net = {row[2]} N" in text and f"= {row[3]} kg·m/s" in text
             assert f"v_f = p_f / m = {row[4]} m/s" in text and f"= {row[5]} m" in text
@@ -122,14 +122,16 @@ def test_step_read_out_and_arrows_are_the_engines(browser, capsys, args):
             if n == 2 and args == ("vertical",):   # the README's picture of a Step
                 page.page.screenshot(path=str(SCREENSHOTS / "momentum-update.png"))
         # Run on: the p arrow is back, at the same scale, equal to the engine's p at the t shown
+        # (Run, then a jump to 2 s, paused there)
         page.click("Run")
-        wait_for(lambda: shown_time(page.page) > 2.0, timeout=60, what="the run to go on")
-        page.click("Pause")
-        page.page.get_by_role("button", name="Run").wait_for(timeout=30_000)
+        wait_for(lambda: shown_time(page.page) > 3 * model.dt, what="the run to go on")
+        jump_to(page.page, 2.0)
+        page.page.get_by_role("button", name="Run").wait_for()
         objects = page.objects()
         assert (objects["p_unit"], objects["F_unit"]) == (first["p_unit"], first["F_unit"])
         t = shown_time(page.page)
         steps = round(t / model.dt)
+        assert t == pytest.approx(2.0)
         engine = model.simulation()
         engine.advance(steps)
         wait_for(lambda: np.allclose(page.axis(objects["p"][0]), engine.state.p[0] / first["p_unit"],
@@ -145,18 +147,16 @@ def test_screenshots_with_arrows(browser, scene):
     if scene == "pendulum":
         args = (scene, "--arrows", "p,F_net,split")
     # one program and one page for both window sizes (issue 31: a program and a run to t = 2 s each
-    # before): paused at t > 2 s, then the window grows and the page follows it
+    # before): jumped to t = 2 s (paused there, issue 35), then the window grows and the page follows it
     page = Page(browser, args, viewport=shots[0])
     try:
-        wait_for(lambda: shown_time(page.page) > 2.0, timeout=120, what="the run to go")
-        page.click("Pause")
-        page.page.get_by_role("button", name="Run").wait_for(timeout=120_000)
+        jump_to(page.page, 2.0)
         for width, height in shots:
             page.page.set_viewport_size({"width": width, "height": height})
-            wait_for(lambda: page.page.evaluate("() => window.innerWidth") == width, timeout=60,
+            wait_for(lambda: page.page.evaluate("() => window.innerWidth") == width,
                      what=f"the window at {width} px")
             page.page.evaluate("() => new Promise(done => requestAnimationFrame(() => requestAnimationFrame(done)))")
-            page.page.screenshot(path=str(SCREENSHOTS / f"arrows-{scene}-{width}x{height}.png"), timeout=120_000)
+            page.page.screenshot(path=str(SCREENSHOTS / f"arrows-{scene}-{width}x{height}.png"))
             objects = page.objects()
             visible = page.page.evaluate("ids => ids.map(i => glowObjs[i].visible)", objects["p"] + objects["F_net"])
             assert any(visible), f"{scene} at {width}x{height}: no arrow shown"

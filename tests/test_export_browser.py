@@ -20,12 +20,12 @@ from pathlib import Path
 
 import pytest
 
-from browser_support import free_port, require_browser, wait_for
+from browser_support import free_port, require_browser, screenshot_folder, wait_for
 from test_browser import Program, shown_time
 from test_handout import headless_answer
 
 ROOT = Path(__file__).resolve().parent.parent
-SCREENSHOTS = Path("/tmp/export-screenshots")
+SCREENSHOTS = screenshot_folder()
 
 pytestmark = pytest.mark.browser
 sync_api, Image = require_browser()
@@ -78,10 +78,9 @@ def test_exported_program_draws_with_the_real_vpython(browser, tmp_path):
                 return True
             except sync_api.Error:
                 return process.poll() is not None
-        wait_for(opened, timeout=60, what="the program's vpython page")
+        wait_for(opened, what="the program's vpython page")
         assert process.poll() is None, process.stderr.read()
-        wait_for(lambda: any("r = <" in line for line in output), timeout=60,
-                 what="the program's final print")
+        wait_for(lambda: any("r = <" in line for line in output), what="the program's final print")
         SCREENSHOTS.mkdir(exist_ok=True)
 
         def drawn():
@@ -94,7 +93,7 @@ def test_exported_program_draws_with_the_real_vpython(browser, tmp_path):
             scene = whole.crop((box["x"], box["y"], box["x"] + box["width"], bottom))
             plot = whole.crop((box["x"], bottom, box["x"] + box["width"], whole.height))   # the graph is below
             return (scene, plot) if count(plot, orange) > 200 and count(plot, black) > 200 else None
-        scene, plot = wait_for(drawn, timeout=120, what="the program's graph on its page")
+        scene, plot = wait_for(drawn, what="the program's graph on its page")
         assert count(scene, dim_orange) > 200, "the sphere (see-through: vertical shows its arrows)"
         assert count(scene, light_grey) > 300, "the helix and the support"
         assert count(plot, orange) > 200, "the position curve, in the sphere's colour"
@@ -118,7 +117,7 @@ def test_download_program_button_hands_over_the_chosen_case(browser, tmp_path):
     assert expected.returncode == 0, expected.stderr
     program = Program(scene)
     try:
-        page = browser.new_page(viewport={"width": 1280, "height": 1100}, accept_downloads=True)
+        page = browser.new_page(viewport={"width": 1024, "height": 768}, accept_downloads=True)
         page.goto(program.url())
         wait_for(lambda: shown_time(page) > 0, what="the scene to run")
         page.locator("select").filter(has_text="euler-cromer").select_option("verlet")

@@ -24,14 +24,13 @@ def test_friction_in_web_vpython_answers_as_in_python(stand_in, tmp_path, browse
     web = main_py(*CASE, "--webvpython", "-")
     assert web.returncode == 0, web.stderr
     assert "if dot(ps, ps + Fs*dt) <=" in web.stdout
-    page = browser.new_page(viewport={"width": 1280, "height": 800})   # conftest's: the module's Chromium
+    page = browser.new_page(viewport={"width": 640, "height": 480})   # conftest's: the module's Chromium
     errors = []
     page.on("pageerror", lambda error: errors.append(str(error)))
     try:
         lines = run_in_glowscript(page, web.stdout, answers=len(printed), folder=tmp_path)
         # on to t_end: the held block's lines run on without error until the program ends
-        wait_for(lambda: page.evaluate("window.ended || window.failed"), timeout=240,
-                 what="the program to end in GlowScript")
+        wait_for(lambda: page.evaluate("window.ended || window.failed"), what="the program to end in GlowScript")
         assert page.evaluate("window.ended") and not page.evaluate("window.failed") and not errors, \
             (page.evaluate("window.failed"), errors)
     finally:

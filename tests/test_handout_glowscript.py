@@ -6,7 +6,8 @@ export/offline_page.py): jQuery, jQuery UI, glow, RSrun and RScompiler, the five
 holds. GlowScript's own editor page (GlowScript.html) would need its editor, split and font files
 too; a page of a few lines loads the five and compiles the program as that page does
 (`glowscript_compile(source, {lang: 'vpython', version: '3.2'})`, then `__main__()`), with
-print() caught. tests/test_handout.py checks the answer's digits with GlowScript's str.format under
+print() caught, and rate() answering at once (the program's arithmetic, not its real-time pace, is
+what is checked: a run to t_end takes no wall time to speak of). tests/test_handout.py checks the answer's digits with GlowScript's str.format under
 node as well.
 """
 from __future__ import annotations
@@ -32,6 +33,8 @@ RUNNER = """<!DOCTYPE html><html><head><meta charset="utf-8"></head><body>
 <script>
 window.printed = []; window.failed = null; window.ended = false;
 window.GSprint = function () { window.printed.push(Array.prototype.slice.call(arguments).join(" ")); };
+var steps = 0;   // rate(): on at once, letting the page breathe every 1000 steps
+window.rate = function () { steps += 1; return steps % 1000 ? Promise.resolve() : new Promise(function (go) { setTimeout(go, 0); }); };
 var source = %(source)s;
 try {
   var compiled = window.glowscript_compile(source, {lang: "vpython", version: "3.2"});
@@ -59,7 +62,7 @@ def run_in_glowscript(page, program: str, answers: int, folder: Path) -> list[st
         lines = page.evaluate("window.printed")
         return lines if sum("kg·m/s" in line for line in lines) >= answers else None
 
-    return wait_for(printed, timeout=240, what="the program's answer in GlowScript")
+    return wait_for(printed, what="the program's answer in GlowScript")
 
 
 @pytest.fixture(scope="module")
@@ -79,7 +82,7 @@ def test_the_web_vpython_program_answers_as_the_command_line_in_glowscript(case,
     """The question's command line (case) and what only the program is given (program)."""
     done = main_py(*case, *program, "--webvpython", "-")
     assert done.returncode == 0, done.stderr
-    page = chromium.new_page(viewport={"width": 1280, "height": 800})
+    page = chromium.new_page(viewport={"width": 640, "height": 480})
     try:
         lines = run_in_glowscript(page, done.stdout, answers=1, folder=tmp_path)
         # the run goes on to t_end (--until 1: 1 s): its arrow lines run without error to its end

@@ -11,8 +11,6 @@ last digit; the jump to the question time prints --headless's answer; Step, Run 
 """
 from __future__ import annotations
 
-import csv
-import io
 
 import pytest
 

@@ -21,7 +21,7 @@ from pathlib import Path
 
 import pytest
 
-from browser_support import CHROMIUM, ENDS_WITHIN
+from browser_support import CHROMIUM, ENDS_WITHIN, PATIENCE
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -433,13 +433,13 @@ def test_busy_or_invalid_port_raises_a_clear_error_without_importing_vpython(san
 def test_real_browser_connects_and_closing_the_page_ends_the_program(run_driver, browser):
     driver = run_driver()
     port = driver.http_port()
-    page = browser.new_page()          # conftest's browser: the module's Chromium
+    page = browser.new_page(viewport={"width": 800, "height": 600})   # conftest's browser: the module's Chromium
     try:
         failed = []
         page.on("response", lambda r: r.status >= 400 and failed.append((r.status, r.url)))
-        page.goto(f"http://127.0.0.1:{port}/", timeout=15_000)
-        driver.expect(r"^CONNECTED ", timeout=15)
-        contact = driver.expect(r"^CONTACT since=([\d.]+) advanced=([\d.]+)$", timeout=10)
+        page.goto(f"http://127.0.0.1:{port}/")
+        driver.expect(r"^CONNECTED ", timeout=PATIENCE)
+        contact = driver.expect(r"^CONTACT since=([\d.]+) advanced=([\d.]+)$", timeout=PATIENCE)
         since, advanced = map(float, contact.groups())
         assert since < 1.0 and advanced > 0.3  # the page keeps polling, and we see it
         assert failed == []

@@ -14,10 +14,10 @@ from __future__ import annotations
 import pytest
 
 from browser.mass_labels import mass_labels
-from browser_support import wait_for
+from browser_support import jump_to, wait_for
 from scenes import catalog
 from scenes._view import DEFAULT_VIEW
-from test_browser import Program, shown_time
+from test_browser import Program
 
 pytestmark = pytest.mark.browser
 
@@ -66,7 +66,7 @@ def drawn_labels(page, count: int):
         fresh = [label for label in labels if label["box"] and label["box"]["W"] == width
                  and label["box"]["H"] == height]
         return len(labels) == count and len(fresh) == count and fresh
-    return wait_for(ready, timeout=120.0, what=f"{count} labels drawn on the canvas at its size")
+    return wait_for(ready, what=f"{count} labels drawn on the canvas at its size")
 
 
 def overlap(a, b) -> bool:
@@ -92,7 +92,7 @@ def test_every_mass_label_is_inside_the_canvas_at_every_window_size(browser, sce
     page = browser.new_page(viewport={"width": SIZES[0][0], "height": SIZES[0][1]})
     try:
         page.goto(program.url())
-        wait_for(lambda: shown_time(page) >= 8.0, timeout=180.0, what="t to reach 8 s")
+        jump_to(page, 8.0)
         for width, height in SIZES:
             page.set_viewport_size({"width": width, "height": height})
             labels = drawn_labels(page, count)

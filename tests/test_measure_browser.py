@@ -13,7 +13,8 @@ panel, its numbers compared with the engine's (physics/simulate.py run here to t
 * phase space's last points are the engine's (x, v) and the closed form's, and the energy bars
   are the engine's K, U of each force (from the equilibrium) and −W_nc.
 
-Every wait is for the page's own clock or text, never a fixed time.
+Each page is jumped to the t it needs (issue 35); every wait is for the page's own text, never a
+fixed time.
 """
 from __future__ import annotations
 
@@ -26,7 +27,7 @@ import pytest
 
 from browser.measure_panel import with_spread
 from browser.page_layout import BODY_PX, PROJECTOR_PX
-from browser_support import launched, require_browser, screenshot_folder, wait_for
+from browser_support import jump_to, launched, require_browser, screenshot_folder, wait_for
 from physics.energy import energy_parts
 from physics.equilibrium import equilibrium
 from physics.period import CrossingMeter, formula_period
@@ -38,7 +39,6 @@ pytestmark = pytest.mark.browser
 sync_api, Image = require_browser()
 SCREENSHOTS = screenshot_folder()
 SIZES = ((1024, 768), (1280, 800), (1920, 1080))
-WAIT = 180.0          # s: a frame on a busy machine with software WebGL
 
 
 @pytest.fixture(scope="module")
@@ -47,23 +47,29 @@ def browser():
         yield chromium
 
 
-def opened(browser, *args, size=(1280, 800)):
+def opened(browser, *args, size=(1280, 800), t: float = 0.5):
+    """The page, jumped to t (paused there)."""
     program = Program(*args)
     page = browser.new_page(viewport={"width": size[0], "height": size[1]})
     page.goto(program.url())
-    wait_for(lambda: shown_time(page) > 0.2, timeout=WAIT, what="the page's clock to start")
+    jump_to(page, t)
     return program, page
 
 
 def pause(page) -> float:
-    page.get_by_role("button", name="Pause").click()
+    """Paused (pressing Pause if it runs); the t it shows."""
+    if page.get_by_role("button", name="Pause").count():
+        page.get_by_role("button", name="Pause").click()
     page.get_by_role("button", name="Run").wait_for()
     return shown_time(page)
 
 
 def run_to(page, t: float) -> None:
+    """Run (t goes on), then jump to t: paused there."""
+    now = shown_time(page)
     page.get_by_role("button", name="Run").click()
-    wait_for(lambda: shown_time(page) >= t, timeout=WAIT, what=f"the page's clock to reach {t} s")
+    wait_for(lambda: shown_time(page) > now, what="the run to go on")
+    jump_to(page, t)
 
 
 def box(page, label: str):
@@ -112,7 +118,7 @@ def test_the_panel_is_closed_at_first_and_fits_every_window_open(browser):
                               graph: box(document.querySelector('.glowscript-graph canvas.base')),
                               client: document.documentElement.clientWidth}; }""")
                     return shown if shown["sideways"] == 0 and shown["font"] >= smallest else None
-                shown = wait_for(fits, timeout=WAIT, what=f"the open panel to fit {width} × {height}, projector {projector}")
+                shown = wait_for(fits, what=f"the open panel to fit {width} × {height}, projector {projector}")
                 if (width, height) == (1280, 800):
                     for name in ("canvas", "graph"):
                         place = shown[name]
@@ -139,8 +145,8 @@ def test_stopwatch_lines_marker_and_reading_the_graph(browser):
         page.get_by_role("button", name="Stop (S)").wait_for()
         for n in range(1, 4):
             page.get_by_role("button", name="Step").click()
-            wait_for(lambda: shown_time(page) == pytest.approx(t0 + n * dt, abs=1e-9), timeout=WAIT, what="a Step")
-        wait_for(lambda: stopwatch(page) == pytest.approx(3 * dt, abs=0.006), timeout=WAIT, what="the stopwatch")
+            wait_for(lambda: shown_time(page) == pytest.approx(t0 + n * dt, abs=1e-9), what="a Step")
+        wait_for(lambda: stopwatch(page) == pytest.approx(3 * dt, abs=0.006), what="the stopwatch")
         page.evaluate("() => document.activeElement && document.activeElement.blur()")   # keys to the page
         page.keyboard.press("+")                       # 2×
         run_to(page, t0 + 3 * dt + 2.0)
@@ -149,10 +155,10 @@ def test_stopwatch_lines_marker_and_reading_the_graph(browser):
         page.keyboard.press("l")                       # a lap, by its key
         page.keyboard.press("s")                       # stop, by its key
         page.get_by_role("button", name="Start (S)").wait_for()
-        wait_for(lambda: stopwatch(page) == pytest.approx(t1 - t0, abs=0.006), timeout=WAIT, what="the reading")
+        wait_for(lambda: stopwatch(page) == pytest.approx(t1 - t0, abs=0.006), what="the reading")
         assert f"1: {t1 - t0:.2f}" in page.locator(".sm-measure").inner_text()
         page.keyboard.press("c")
-        wait_for(lambda: stopwatch(page) == 0.0, timeout=WAIT, what="C to clear it")
+        wait_for(lambda: stopwatch(page) == 0.0, what="C to clear it")
 
         # the lines, where the forces put them: L0 and L0 + m g / k below the anchor
         v = setup.values
@@ -160,7 +166,7 @@ def test_stopwatch_lines_marker_and_reading_the_graph(browser):
             box(page, label).check()
         labels = wait_for(lambda: (texts := page.evaluate(
             "() => glowObjs.filter(o => o && o.constructor && o.constructor.name === 'label' && o.visible)"
-            ".map(o => o.text)")) and any("equilibrium" in t for t in texts) and texts, timeout=WAIT, what="the lines")
+            ".map(o => o.text)")) and any("equilibrium" in t for t in texts) and texts, what="the lines")
         expected = {"natural length": -v["L0"], "equilibrium": -(v["L0"] + v["m"] * v["g"] / v["k"])}
         for name, y in expected.items():
             said = next(t for t in labels if t.startswith(name))
@@ -171,7 +177,7 @@ def test_stopwatch_lines_marker_and_reading_the_graph(browser):
         lowest = float(np.min(samples.r[:, 0, 1]))
         box(page, "marker").check()
         wait_for(lambda: page.evaluate("() => glowObjs.some(o => o && o.text && o.text.startsWith('marker ') && "
-                                       "o.text.indexOf('=') > 0 && o.visible)"), timeout=WAIT,
+                                       "o.text.indexOf('=') > 0 && o.visible)"),
                  what="the marker shown (the page has taken the box's click)")
         canvas = page.locator(".glowscript-canvas-wrapper canvas").first.bounding_box()
         x = canvas["x"] + 0.8 * canvas["width"]
@@ -185,7 +191,7 @@ def test_stopwatch_lines_marker_and_reading_the_graph(browser):
             """A click on the picture puts the marker there (one message): its reading."""
             before = marker()
             page.mouse.click(x, pixel_y)
-            return wait_for(lambda: (value := marker()) != before and value, timeout=WAIT, what="the marker to move")
+            return wait_for(lambda: (value := marker()) != before and value, what="the marker to move")
         top, bottom = canvas["y"] + 0.3 * canvas["height"], canvas["y"] + 0.7 * canvas["height"]
         y_top, y_bottom = clicked_at(top), clicked_at(bottom)
         metres_per_pixel = (y_top - y_bottom) / (bottom - top)
@@ -196,7 +202,7 @@ def test_stopwatch_lines_marker_and_reading_the_graph(browser):
         page.mouse.down()
         page.mouse.move(x, aim, steps=5)
         page.mouse.up()
-        wait_for(lambda: abs(marker() - lowest) <= 1.5 * metres_per_pixel, timeout=WAIT,
+        wait_for(lambda: abs(marker() - lowest) <= 1.5 * metres_per_pixel,
                  what=f"the dragged marker to read the lowest turning point, {lowest:.3f} m")
         page.screenshot(path=str(SCREENSHOTS / "measure-lines.png"))
 
@@ -210,7 +216,7 @@ def test_stopwatch_lines_marker_and_reading_the_graph(browser):
             graph.click(position={"x": fraction * place["width"], "y": 0.5 * place["height"]})
             picks = wait_for(lambda: (read := page.locator(".sm-read").first).count() and
                              len(p := json.loads(read.get_attribute("data-picks") or "[]")) == len(picks) + 1 and p,
-                             timeout=WAIT, what="the graph's reading")
+                             what="the graph's reading")
         for t, y, label in picks:
             if label == "y (simulation)":
                 n = int(np.argmin(np.abs(samples.t - t)))
@@ -231,6 +237,8 @@ def test_stopwatch_lines_marker_and_reading_the_graph(browser):
 
 def test_period_phase_space_and_energy_bars_are_the_engines(browser):
     setup = catalog.configure("damped").with_values(dt=0.01)
+    model = setup.build()
+    period = formula_period(model.forces, model.state, closed_form=True)[0][0]
     program, page = opened(browser, "damped", "--integrator", "rk4", "--set", "dt=0.01")
     try:
         page.locator(".sm-measure-toggle").click()
@@ -239,8 +247,9 @@ def test_period_phase_space_and_energy_bars_are_the_engines(browser):
         box(page, "period").check()
         # five cycles at least: each crossing is found between samples 0.05 s apart, and what that
         # costs a crossing shifts the mean by at most its range over the number of cycles
+        jump_to(page, round(6.5 * period, 2))
         wait_for(lambda: (found := re.search(r"over (\d+) cycles", page.locator(".sm-period").inner_text()))
-                 and int(found.group(1)) >= 5, timeout=WAIT, what="five cycles measured")
+                 and int(found.group(1)) >= 5, what="five cycles measured")
         t = pause(page)
         text = page.locator(".sm-period").inner_text().replace("\u00a0", " ")
         model, engine, first, samples = engine_at(setup, "rk4", t)
@@ -258,7 +267,7 @@ def test_period_phase_space_and_energy_bars_are_the_engines(browser):
         page.locator("select").filter(has=page.locator("option", has_text="phase space")).select_option("phase space")
         series = wait_for(lambda: page.evaluate("""() => { const g = glowObjs.find(o => o && o.graph_options &&
               !o.__deleted && o.title === 'Phase space'); return g && g.graph_series.every(s => s.data.length) &&
-              g.graph_series.map(s => [s.label, s.data[s.data.length - 1]]); }"""), timeout=WAIT, what="phase space")
+              g.graph_series.map(s => [s.label, s.data[s.data.length - 1]]); }"""), what="phase space")
         last = samples.t[-1]
         y, vy = samples.r[-1, 0, 1], samples.p[-1, 0, 1] / samples.m[0]
         exact_r, exact_v = model.exact(np.array([last]))
@@ -272,7 +281,7 @@ def test_period_phase_space_and_energy_bars_are_the_engines(browser):
         # the energy bars: K, U spring, U gravity (from the equilibrium), −W_nc (damping), total
         page.locator("select").filter(has=page.locator("option", has_text="phase space")).select_option("energy bars")
         cells = page.locator(".sm-bar-value")
-        wait_for(lambda: cells.count() == 5, timeout=WAIT, what="the energy bars")
+        wait_for(lambda: cells.count() == 5, what="the energy bars")
         labels = page.locator(".sm-bar-label").all_inner_texts()
         assert labels == ["K", "U spring", "U gravity", "−W_nc (damping)", "total"]
         shown = [float(value) for value in cells.evaluate_all("cells => cells.map(c => c.dataset.joules)")]

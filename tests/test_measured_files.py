@@ -145,16 +145,38 @@ def test_a_fit_longer_than_a_second_shows_its_progress(monkeypatch):
 
 
 def test_the_command_line_passes_the_fits_progress_to_stderr(tmp_path):
-    """A fit that takes seconds by construction (rk4 at Δt = 0.5 ms over 120 s of data: 240,000 steps
-    a run, and a fit takes a dozen runs or more, on any machine a class has): progress lines on
-    standard error, the result after."""
-    path = tmp_path / "long.csv"
-    path.write_text("t (s),y (m)\n" + spring_rows(np.arange(0, 120, 0.05)))
-    done = cli("damped", "--data", str(path), "--fit", "k", "--set", "m=0.5", "--integrator", "rk4",
-               "--set", "dt=0.0005", timeout=900)
-    assert done.returncode in (0, 3), done.stderr
-    assert re.search(r"^fitting: \d+ runs of the model so far \(\d+ s\)$", done.stderr, re.MULTILINE), done.stderr
-    assert "k = " in done.stdout
+    """A fit that takes more than a second by construction, on any machine: the model is
+    tests/held_run.py's `held` scene with its force that waits once per run (slow_scene), SLOW s
+    where a run first passes SLOW_FROM while the gate is shut, so the fit's first run over this
+    2.5 s record ends over a second after the fit began, with a progress line on standard error.
+    Once it is read the gate opens, the fit goes on at full speed, and the result follows. (It
+    was a fit made slow by its size, 240,000 rk4 steps a run: a minute under load, and on a fast
+    enough machine no progress line at all.)"""
+    from held_run import SLOW_FROM, open_gate, slow_scene
+
+    until = 2.5
+    assert SLOW_FROM < until
+    env, gate = slow_scene(tmp_path / "scenes")
+    record = tmp_path / "held.csv"                     # the same motion (Held pushes with 0 N), at full speed
+    made = cli("vertical", "--headless", "--set", "dt=0.001", "--until", str(until), "--csv", str(record))
+    assert made.returncode == 0, made.stderr
+    fit = subprocess.Popen([sys.executable, "main.py", "held", "--data", str(record), "--fit", "k",
+                            "--set", "dt=0.001"], cwd=ROOT, env=env, text=True,
+                           stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+    try:
+        said = []
+        while not said or not (said[-1].startswith("fitting:") or said[-1] == ""):
+            said.append(fit.stderr.readline())
+        open_gate(gate)
+        out, rest = fit.communicate(timeout=240)
+    finally:
+        if fit.poll() is None:
+            fit.kill()
+            fit.wait()
+    assert re.fullmatch(r"fitting: \d+ runs of the model so far \(\d+ s\)\n", said[-1]), said
+    assert fit.returncode in (0, 3), rest
+    found = re.search(r"^k = (\S+) ", out, re.MULTILINE)
+    assert found and float(found.group(1)) == pytest.approx(40.0, rel=1e-3), out
 
 
 # ---- the lab's messages (issue 28 item 5) ----

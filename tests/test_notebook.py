@@ -8,8 +8,9 @@ config and runtime folders, a random token) with a copy of examples/scenes.ipynb
 the project through PYTHONPATH. One headless Chromium opens it with Playwright and runs cells as a
 student would, with Ctrl+Enter, in this order:
 
-* `vertical` runs under its cell: its 3-D canvas shows the orange mass, the position graph has a
-  curve, and t advances; Pause and Run, clicked in the page, reach the kernel (the screenshot
+* `vertical` runs under its cell and t advances; Pause and Jump to t = 4 s, clicked in the page,
+  reach the kernel, and there its 3-D canvas shows the orange mass and the position graph has a
+  curve; Run goes on (the screenshot
   notebook.png is taken here, into docs/screenshots/ only with UPDATE_SCREENSHOTS=1);
 * running the cell again starts the scene again from t = 0 in that cell;
 * its p and F_net arrows show, with their legend and check boxes, and unchecking the boxes hides them;
@@ -35,7 +36,7 @@ from pathlib import Path
 
 import pytest
 
-from browser_support import (CHROMIUM, TIME, colours, curve_pixels, free_port,
+from browser_support import (CHROMIUM, TIME, colours, curve_pixels, free_port, jump_to,
                              pixels_like, screenshot_folder, wait_for)
 from scenes import catalog
 
@@ -162,8 +163,8 @@ def page(jupyter, browser):
     base, token = jupyter
     page = browser.new_page(viewport={"width": 1280, "height": 1500})
     try:
-        page.goto(f"{base}notebooks/scenes.ipynb?token={token}", timeout=90_000)
-        page.locator(".jp-Notebook-ExecutionIndicator[data-status='idle']").wait_for(timeout=90_000)
+        page.goto(f"{base}notebooks/scenes.ipynb?token={token}")
+        page.locator(".jp-Notebook-ExecutionIndicator[data-status='idle']").wait_for()
         run(code_cells(page).first)
         yield page
     finally:
@@ -184,7 +185,7 @@ def execution_count(cell) -> int | None:
     return int(found.group(1)) if found else None
 
 
-def run(cell, timeout: float = 120.0) -> None:
+def run(cell) -> None:
     """Run the cell in place (Ctrl+Enter) and wait until it has finished.
 
     Just after the page loads, Notebook 7 can drop the keystroke: its keyboard shortcuts are
@@ -203,8 +204,7 @@ def run(cell, timeout: float = 120.0) -> None:
             time.sleep(0.05)
         if started():
             break
-    wait_for(lambda: execution_count(cell) not in (None, before), timeout=timeout,
-             what="the cell to finish")
+    wait_for(lambda: execution_count(cell) not in (None, before), what="the cell to finish")
 
 
 def shown_time(cell) -> float | None:
@@ -218,10 +218,8 @@ def shown_time(cell) -> float | None:
 
 def wait_until_running(cell, *, past: float = 0.0) -> float:
     """Wait for the scene in this cell to show t > past, then for t to advance further."""
-    start = wait_for(lambda: (shown_time(cell) or 0) > past and shown_time(cell), timeout=90.0,
-                     what=f"t to pass {past} s")
-    return wait_for(lambda: (shown_time(cell) or 0) > start and shown_time(cell), timeout=30.0,
-                    what="t to advance")
+    start = wait_for(lambda: (shown_time(cell) or 0) > past and shown_time(cell), what=f"t to pass {past} s")
+    return wait_for(lambda: (shown_time(cell) or 0) > start and shown_time(cell), what="t to advance")
 
 
 def look(where, **parts):
@@ -288,32 +286,31 @@ def assert_mass_drawn(image, what: str) -> None:
 def test_a_scene_runs_under_its_cell_and_pause_reaches_the_kernel(page):
     cell = scene_cell(page, "vertical")
     run(cell)
-    wait_until_running(cell, past=4.0)  # a little over one period, for the screenshot's graphs
+    wait_until_running(cell)
     assert "k = 40 N/m" in cell.inner_text()  # the scene's own constants, with units
 
     cell.get_by_role("button", name="Pause").click()
     cell.get_by_role("button", name="Run").wait_for()
-    paused = shown_time(cell)
+    paused = jump_to(cell, 4.0)  # a little over one period, for the screenshot's graphs; still paused
+    assert shown_time(cell) == paused == 4.0
     seen = look(cell, cell=cell, canvas=canvas(cell), position=graph(cell, 0))
     assert_mass_drawn(seen["canvas"], "vertical")
     assert curve_pixels(seen["position"]) > 50, "the position graph shows no curve"
     SCREENSHOT.parent.mkdir(parents=True, exist_ok=True)
     seen["cell"].save(SCREENSHOT)
-    time.sleep(1.0)
-    assert shown_time(cell) == paused, "t moved while paused"
+    assert shown_time(cell) == paused, "t moved while paused"     # through a screenshot's frames
 
     cell.get_by_role("button", name="Run").click()
-    wait_for(lambda: shown_time(cell) > paused, timeout=30.0, what="t to advance after Run")
+    wait_for(lambda: shown_time(cell) > paused, what="t to advance after Run")
 
 
 @browser
 @needs_browser
 def test_running_the_cell_again_starts_the_scene_again_from_0(page):
     cell = running_scene_cell(page, "vertical")
-    wait_for(lambda: (shown_time(cell) or 0) > 10.0, timeout=60.0, what="t to pass 10 s")
-    before = shown_time(cell)  # t only grows while the scene runs, so a smaller t means a new run
+    before = jump_to(cell, 10.5)  # paused there: only a new run shows a smaller t
     run(cell)
-    first = wait_for(lambda: shown_time(cell) is not None and (shown_time(cell),), timeout=60.0,
+    first = wait_for(lambda: shown_time(cell) is not None and (shown_time(cell),),
                      what="the scene to show t again")[0]
     assert first < before, f"t went from {before} s to {first} s, not back to 0"
     assert cell.locator("b").filter(has_text=TIME).count() == 1  # the old output is gone
@@ -351,8 +348,7 @@ def test_the_notebook_shows_the_arrows_and_its_check_boxes_reach_the_kernel(page
     def drawn():
         image = look(cell, canvas=canvas(cell))["canvas"]
         return arrow_pixels(image, "p"), arrow_pixels(image, "F_net"), pixels_like(image, orange, within=60)
-    shown = wait_for(lambda: max((seen := drawn())[:2]) > 150 and seen, timeout=120.0,
-                     what="the p or F_net arrow on the canvas")
+    shown = wait_for(lambda: max((seen := drawn())[:2]) > 150 and seen, what="the p or F_net arrow on the canvas")
     boxes.nth(0).uncheck()
     boxes.nth(1).uncheck()
     # a solid ball's highlights give a few yellowish pixels: a shown p arrow under 40 of them is
@@ -363,14 +359,14 @@ def test_the_notebook_shows_the_arrows_and_its_check_boxes_reach_the_kernel(page
         last[:] = drawn()
         return last[0] < 40 and last[1] < 10
     try:
-        wait_for(gone, timeout=120.0, what="both arrows to go after their boxes were unchecked")
+        wait_for(gone, what="both arrows to go after their boxes were unchecked")
     except pytest.fail.Exception:
         pytest.fail(f"the arrows stayed after their boxes were unchecked: (p, F_net, orange) pixels {last}")
     # see-through, the ball had few pixels of its own orange; solid, it has far more
     assert last[2] > max(100, 2 * shown[2]), f"the mass did not turn solid with no arrow shown: {shown} then {last}"
     boxes.nth(0).check()
     boxes.nth(1).check()
-    wait_for(lambda: max(drawn()[:2]) > 150, timeout=120.0, what="the arrows back after checking their boxes")
+    wait_for(lambda: max(drawn()[:2]) > 150, what="the arrows back after checking their boxes")
 
 
 @browser
@@ -408,7 +404,7 @@ def test_the_scene_menu_switches_scene_inside_the_cell(page):
     cell = running_scene_cell(page, "resonance")
     menu = cell.locator("select").filter(has=page.locator("option", has_text="integrators"))
     menu.select_option("damped")
-    wait_for(lambda: "damped:" in cell.inner_text(), timeout=60.0, what="the damped scene's title")
+    wait_for(lambda: "damped:" in cell.inner_text(), what="the damped scene's title")
     assert "b = 1 kg/s" in cell.inner_text()
     wait_until_running(cell)
     assert cell.locator(".glowscript-graph canvas.base").count() == 2  # resonance's own graph has gone
@@ -474,20 +470,20 @@ def test_the_measure_panel_works_in_the_notebook(page):
     panel.locator("span").filter(has_text=re.compile(r"^ ?period")).first.locator(
         "xpath=preceding-sibling::input[1]").check()
     wait_for(lambda: cell.locator(".sm-period").count() and "formula 2π/ω" in cell.locator(".sm-period").inner_text(),
-             timeout=120.0, what="the period's line")
+             what="the period's line")
     panel.locator("select").select_option("energy bars")
-    wait_for(lambda: cell.locator(".sm-bar-value").count() == 5, timeout=120.0, what="the energy bars")
+    wait_for(lambda: cell.locator(".sm-bar-value").count() == 5, what="the energy bars")
     joules = [float(v) for v in cell.locator(".sm-bar-value").evaluate_all("cells => cells.map(c => c.dataset.joules)")]
     assert joules[-1] == pytest.approx(sum(joules[:-1]), rel=1e-12, abs=1e-12)
     watch = wait_for(lambda: (value := float(cell.locator(".sm-stopwatch").inner_text().replace("\u00a0", " ")
-                                             .split()[0])) > 0 and value, timeout=120.0, what="the stopwatch to count")
+                                             .split()[0])) > 0 and value, what="the stopwatch to count")
     assert watch > 0
     overlay = cell.locator(".glowscript-graph canvas.overlay").first
     overlay.scroll_into_view_if_needed()
     place = overlay.bounding_box()
     overlay.click(position={"x": 0.4 * place["width"], "y": 0.5 * place["height"]})
     read = wait_for(lambda: cell.locator(".sm-read").count() and cell.locator(".sm-read").first.inner_text(),
-                    timeout=120.0, what="the graph's reading").replace("\u00a0", " ")
+                    what="the graph's reading").replace("\u00a0", " ")
     # the point nearest the click, of the simulated curve or of the exact one beside it
     assert re.fullmatch(r"Read: t = [\d.]+ s, y (\(simulation\)|exact) = [−-]?[\d.]+ m", read), read
     look(cell, cell=cell)["cell"].save(SCREENSHOT.parent / "notebook-measure.png")

@@ -18,7 +18,7 @@ import pytest
 from browser.page_layout import LINE_FACTOR, PROJECTOR_PX
 from scenes import catalog
 from test_browser import MEASURE, ROOT, Program, laid_out, shown_time, speed_shown
-from browser_support import wait_for
+from browser_support import jump_to, wait_for
 
 pytestmark = pytest.mark.browser
 
@@ -29,21 +29,25 @@ def line_widths(page) -> list[float]:
 
 
 def test_keys_tab_and_projector_mode(browser):
-    """Space pauses and runs, → steps one Δt, R resets, + and − change the speed (real key presses,
+    """Space runs and pauses, → steps one Δt, R resets, + and − change the speed (real key presses,
     the focus on the page, not on a control); Tab reaches the buttons with a visible outline;
-    P turns projector mode on: text at least 22 px and thicker graph lines."""
+    P turns projector mode on: text at least 22 px and thicker graph lines. The page is jumped to
+    t = 1 s first, paused there."""
     dt = catalog.configure("damped").build().dt
     program = Program("damped")
     page = browser.new_page(viewport={"width": 1280, "height": 800})
     try:
-        page.goto(program.url(), timeout=30_000)
-        wait_for(lambda: shown_time(page) >= 1.0, timeout=90.0, what="t to reach 1 s")
+        page.goto(program.url())
+        jump_to(page, 1.0)                  # paused there
         laid_out(page, graphs=2)
         widths = line_widths(page)
         page.evaluate("() => document.activeElement && document.activeElement.blur()")      # the focus on the page itself
 
-        page.keyboard.press("Space")
-        page.get_by_role("button", name="Run").wait_for(timeout=30_000)
+        page.keyboard.press("Space")        # runs: t goes on from 1 s
+        page.get_by_role("button", name="Pause").wait_for()
+        wait_for(lambda: shown_time(page) > 1.0, what="Space to run")
+        page.keyboard.press("Space")        # pauses
+        page.get_by_role("button", name="Run").wait_for()
         paused = shown_time(page)
         page.keyboard.press("ArrowRight")
         stepped = wait_for(lambda: (t := shown_time(page)) != paused and t, what="→ to step")
@@ -57,7 +61,7 @@ def test_keys_tab_and_projector_mode(browser):
         page.keyboard.press("-")
         wait_for(lambda: speed_shown(page) == "½×", what="− to slow down")
         page.keyboard.press("Space")
-        page.get_by_role("button", name="Pause").wait_for(timeout=30_000)
+        page.get_by_role("button", name="Pause").wait_for()
 
         page.keyboard.press("Tab")
         focused = page.evaluate("() => [document.activeElement.tagName, getComputedStyle(document.activeElement)"
@@ -74,7 +78,7 @@ def test_keys_tab_and_projector_mode(browser):
         page.evaluate("() => document.activeElement && document.activeElement.blur()")
         page.keyboard.press("p")
         m = wait_for(lambda: (m := page.evaluate(MEASURE)) and m["fonts"]["buttons"] >= PROJECTOR_PX and m,
-                     timeout=120.0, what="projector mode's larger text")
+                     what="projector mode's larger text")
         for name, size in m["fonts"].items():
             assert size >= PROJECTOR_PX, f"{name} in {size} px text in projector mode"
         thick = line_widths(page)

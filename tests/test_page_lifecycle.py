@@ -30,7 +30,7 @@ from pathlib import Path
 import pytest
 
 from browser.controls import PRESET_PROMPT
-from browser_support import ENDS_WITHIN, TIME, colours, free_port, launched, require_browser, wait_for
+from browser_support import ENDS_WITHIN, TIME, colours, free_port, jump_to, launched, require_browser, wait_for
 
 ROOT = Path(__file__).resolve().parent.parent
 
@@ -78,13 +78,13 @@ def _listening(port: int) -> bool:
 
 
 def shown_time(page) -> float:
-    text = page.locator("b").filter(has_text=TIME).first.inner_text(timeout=60_000)
+    text = page.locator("b").filter(has_text=TIME).first.inner_text()
     return float(TIME.match(text).group(1))
 
 
-def running_past(page, t: float, timeout: float = 60) -> float:
-    return wait_for(lambda: (lambda now: now if now > t else None)(shown_time(page)), timeout=timeout,
-                    what=f"t to pass {t} s")
+def running_past(page, t: float = 0.0) -> float:
+    """The t shown once it is past t: the page runs (its next frame, for a t it shows now)."""
+    return wait_for(lambda: (lambda now: now if now > t else None)(shown_time(page)), what=f"t to pass {t} s")
 
 
 def screenshot(page, path: Path) -> None:
@@ -119,15 +119,17 @@ def exit_seconds_after(close, process) -> float:
 
 
 def test_a_reload_shows_the_scene_again_and_the_program_keeps_running(browser, program):
-    page = browser.new_page()
+    page = browser.new_page(viewport={"width": 1024, "height": 768})
     page.goto(program.url)
+    jump_to(page, 5.0)                          # paused there; then Run
+    page.get_by_role("button", name="Run").click()
     running_past(page, 5.0)
     canvas_not_blank(page, "before-reload")
     page.reload()
-    after = running_past(page, 0.3)
+    after = running_past(page)
     assert program.poll() is None
     assert after < 5.0  # built again on the new page, from t = 0
-    running_past(page, after + 0.5)  # and it keeps running
+    running_past(page, after)  # and it keeps running
     canvas_not_blank(page, "after-reload")
     assert page.locator("canvas").count() >= 3  # the 3-D view and the two graphs
     assert "Traceback" not in "".join(program.errors)
@@ -149,20 +151,20 @@ def test_a_reload_shows_the_preset_that_runs_in_its_menu(browser, program):
     preset no longer holds, and the reloaded menu says so."""
     page = browser.new_page(viewport={"width": 1280, "height": 1000})   # the sliders inside the window
     page.goto(program.url)
-    running_past(page, 1.0)
+    running_past(page)
     page.locator("select").filter(has=page.locator("option", has_text="Moon gravity")).select_option("Moon gravity")
     wait_for(lambda: "g = 1.62 m/s²" in constants_line(page), what="the Moon's g in the constants")
     page.reload()
-    running_past(page, 0.3)
+    running_past(page)
     wait_for(lambda: "g = 1.62 m/s²" in constants_line(page), what="the Moon's g after the reload")
     assert preset_shown(page) == "Moon gravity"
 
     track = page.locator(".ui-slider").nth(1).bounding_box()          # vertical: m, then k: a new k
     page.mouse.click(track["x"] + 0.8 * track["width"], track["y"] + track["height"] / 2)
-    wait_for(lambda: "k = 40 N/m" not in constants_line(page), timeout=120.0, what="the new k")
+    wait_for(lambda: "k = 40 N/m" not in constants_line(page), what="the new k")
     wait_for(lambda: preset_shown(page) == PRESET_PROMPT, what="the menu to leave the preset")
     page.reload()
-    running_past(page, 0.3)
+    running_past(page)
     wait_for(lambda: "g = 1.62 m/s²" in constants_line(page) and "k = 40 N/m" not in constants_line(page),
              what="the constants kept after the reload")
     assert preset_shown(page) == PRESET_PROMPT
@@ -171,34 +173,34 @@ def test_a_reload_shows_the_preset_that_runs_in_its_menu(browser, program):
 
 
 def test_a_second_tab_says_so_and_closing_it_leaves_the_first_running(browser, program):
-    first = browser.new_page()
+    first = browser.new_page(viewport={"width": 1024, "height": 768})
     first.goto(program.url)
-    running_past(first, 0.5)
-    second = browser.new_page()
+    running_past(first)
+    second = browser.new_page(viewport={"width": 1024, "height": 768})
     second.goto(program.url)
     message = second.locator("#tab-message")
-    message.wait_for(timeout=60_000)
+    message.wait_for()
     assert "already open in another tab" in message.inner_text()
     screenshot(second, Path(tempfile.gettempdir()) / "lifecycle-second-tab.png")
     second.close()
     time.sleep(2.5)  # longer than the program takes to end after its last tab closes
     assert program.poll() is None
     now = shown_time(first)
-    running_past(first, now + 0.5)  # the first tab still runs
+    running_past(first, now)  # the first tab still runs
     assert "Traceback" not in "".join(program.errors)
     assert exit_seconds_after(first.close, program) < ENDS_WITHIN
 
 
 def test_a_page_reached_through_another_host_name_is_refused(browser, program):
-    page = browser.new_page()
+    page = browser.new_page(viewport={"width": 1024, "height": 768})
     response = page.goto(f"http://{REBOUND}:{program.port}/")
     assert response.status == 421
     assert "glowscript" not in page.content() and page.locator("canvas").count() == 0
     assert page.goto(f"http://{REBOUND}:{program.port}/glow.min.js").status == 421
     page.close()
-    own = browser.new_page()
+    own = browser.new_page(viewport={"width": 1024, "height": 768})
     own.goto(program.url)  # the program's own address still works, and only its page connected
-    running_past(own, 0.3)
+    running_past(own)
     own.close()
     program.wait(timeout=10)
     assert "Traceback" not in "".join(program.errors)
@@ -206,9 +208,9 @@ def test_a_page_reached_through_another_host_name_is_refused(browser, program):
 
 def test_ctrl_c_while_the_page_runs_is_one_line_and_status_130(browser, program):
     """Ctrl-C ends the program as it does any command; closing the tab (above) is status 0."""
-    page = browser.new_page()
+    page = browser.new_page(viewport={"width": 1024, "height": 768})
     page.goto(program.url)
-    running_past(page, 0.5)
+    running_past(page)
     program.send_signal(signal.SIGINT)
     assert program.wait(timeout=10) == 130
     program.errors_read.join(timeout=30)   # stderr closed: the reader has taken the last line
@@ -225,9 +227,9 @@ def fetch_page(url: str) -> None:
 
 def test_closing_the_tab_soon_after_another_fetch_of_the_page_still_ends_on_its_own(browser, program):
     """A fetch of "/" that no page follows (curl, a prefetch) is not a reload to wait 20 s for."""
-    page = browser.new_page()
+    page = browser.new_page(viewport={"width": 1024, "height": 768})
     page.goto(program.url)
-    running_past(page, 0.5)
+    running_past(page)
     fetch_page(program.url)
     closed_at = time.monotonic()
     page.close()

@@ -13,9 +13,9 @@ from __future__ import annotations
 import pytest
 
 from browser.page_layout import BODY_PX, PROJECTOR_PX
-from browser_support import wait_for
+from browser_support import jump_to, wait_for
 from test_arrows_browser import ProgramWith
-from test_browser import shown_time
+
 
 pytestmark = pytest.mark.browser
 
@@ -41,7 +41,7 @@ def open_page(browser, args, viewport):
 def test_the_camera_follows_the_falling_balls_of_drag(browser, viewport):
     program, page = open_page(browser, ["drag", "--preset", "falling"], viewport)
     try:
-        wait_for(lambda: shown_time(page) >= 6.0, timeout=180.0, what="t to reach 6 s")
+        jump_to(page, 6.0)
         camera = page.evaluate(CAMERA)
         balls = camera["spheres"]
         assert len(balls) == 2
@@ -76,11 +76,11 @@ def test_integrators_graphs_each_methods_error_on_a_log_scale_as_the_engine_has_
     from physics.recording import time_grid
     from scenes import catalog
 
-    program, page = open_page(browser, ["integrators"], {"width": 1280, "height": 800})
+    program, page = open_page(browser, ["integrators"], {"width": 1024, "height": 768})
     try:
         # 7 s: by then |x − x_exact| of every method has crossed zero between two steps after its first
         # period (verlet's first such dip comes after 5 s: read at 5.0 s on a busy machine, it had none)
-        wait_for(lambda: shown_time(page) >= 7.0, timeout=240.0, what="t to reach 7 s")
+        jump_to(page, 7.0)
         graphs = page.evaluate(GRAPH_DATA)
         [error] = [g for g in graphs if g["title"].startswith("Error")]
         assert error["ytitle"] == "log₁₀ of the largest |x − x_exact| over a period (m)"
@@ -129,9 +129,8 @@ def test_legends_wrap_between_entries_and_projector_mode_enlarges_the_3d_labels(
 
     program, page = open_page(browser, ["drag"], {"width": 1024, "height": 768})
     try:
-        wait_for(lambda: shown_time(page) >= 1.0, timeout=180.0, what="t to reach 1 s")
-        pairs = wait_for(lambda: len(p := page.evaluate(LEGEND_PAIRS)) >= 6 and p, timeout=60.0,
-                         what="the legends")
+        jump_to(page, 1.0)
+        pairs = wait_for(lambda: len(p := page.evaluate(LEGEND_PAIRS)) >= 6 and p, what="the legends")
         lines = {round(top) for pair in pairs for top in (pair["box"][0], pair["label"][0])}
         assert len(lines) > 2, "no legend wrapped: the test needs a legend longer than its graph"
         for pair in pairs:
@@ -143,10 +142,9 @@ def test_legends_wrap_between_entries_and_projector_mode_enlarges_the_3d_labels(
         assert page.evaluate(LABEL_HEIGHTS) == [LABEL_HEIGHT, LABEL_HEIGHT]
         page.locator("body").press("p")
         grown = round(LABEL_HEIGHT * PROJECTOR_PX / BODY_PX)
-        wait_for(lambda: page.evaluate(LABEL_HEIGHTS) == [grown, grown], timeout=30.0,
-                 what=f"the 3-D labels to grow to {grown} px")
+        wait_for(lambda: page.evaluate(LABEL_HEIGHTS) == [grown, grown], what=f"the 3-D labels to grow to {grown} px")
         page.locator("body").press("p")
-        wait_for(lambda: page.evaluate(LABEL_HEIGHTS) == [LABEL_HEIGHT, LABEL_HEIGHT], timeout=30.0,
+        wait_for(lambda: page.evaluate(LABEL_HEIGHTS) == [LABEL_HEIGHT, LABEL_HEIGHT],
                  what="the 3-D labels back to their size")
     finally:
         page.close()

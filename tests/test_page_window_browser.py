@@ -15,7 +15,8 @@ which hid the first item):
 
 The fifth, a teacher's folder whose files are missing from the scene menu, is in
 tests/test_teacher_folder_browser.py. Screenshots go to the screenshot folder
-(tests/browser_support.py). Every wait is for the page's own clock or layout, never a fixed time.
+(tests/browser_support.py). Each page is jumped to the t it needs; every wait is for the page's
+own layout, never a fixed time.
 """
 from __future__ import annotations
 
@@ -26,14 +27,13 @@ import numpy as np
 import pytest
 
 from browser.page_layout import BODY_PX, PROJECTOR_PX
-from browser_support import launched, require_browser, screenshot_folder, wait_for
+from browser_support import jump_to, launched, require_browser, screenshot_folder, wait_for
 from test_browser import Program, drawable_scenes, graph_count, shown_time
 
 pytestmark = pytest.mark.browser
 sync_api, Image = require_browser()
 SCREENSHOTS = screenshot_folder()
 SIZES = ((1024, 768), (1280, 800), (1920, 1080))
-LAYOUT_WAIT = 120.0     # s: a resize is laid out at the page's next layout (every 0.7 s), later when busy
 
 # What a window shows: how far the page scrolls sideways when asked to scroll right, where the
 # text of the graphs' tick labels ends, the check boxes' sizes, and the graphs' widths.
@@ -70,7 +70,7 @@ def set_projector(page, on: bool, height: int) -> None:
     if page.evaluate("() => !!window.smProjector") != on:
         page.evaluate("() => document.activeElement && document.activeElement.blur()")   # keys to the page
         page.keyboard.press("p")
-        wait_for(lambda: page.evaluate("() => !!window.smProjector") == on, timeout=60, what="projector mode")
+        wait_for(lambda: page.evaluate("() => !!window.smProjector") == on, what="projector mode")
 
 
 def each_window(page):
@@ -89,19 +89,21 @@ def laid_out(page, width: int) -> dict:
     def settled():
         shown = page.evaluate(WINDOW)
         return shown if shown["graphWidths"] and all(w < shown["client"] for w in shown["graphWidths"]) else None
-    return wait_for(settled, timeout=LAYOUT_WAIT, what=f"the page laid out at {width} px")
+    return wait_for(settled, what=f"the page laid out at {width} px")
 
 
 def picture(data_url: str):
     return Image.open(io.BytesIO(base64.b64decode(data_url.split(",", 1)[1]))).convert("RGB")
 
 
-def opened(browser, scene: str, *, until: float, size=(1280, 800)):
+def opened(browser, scene: str, *, until: float, size=(1024, 768)):
+    """The scene's page, jumped to `until` (paused there), with every graph made; each test then
+    takes it through every window size (SIZES)."""
     program = Program(scene)
     page = browser.new_page(viewport={"width": size[0], "height": size[1]})
     page.goto(program.url())
-    wait_for(lambda: shown_time(page) >= until, timeout=300.0, what=f"the page's clock to reach {until} s")
-    wait_for(lambda: page.locator(".glowscript-graph canvas.base").count() == graph_count(scene), timeout=120.0,
+    jump_to(page, until)
+    wait_for(lambda: page.locator(".glowscript-graph canvas.base").count() == graph_count(scene),
              what="every graph on the page")
     return program, page
 
@@ -114,8 +116,7 @@ def test_no_window_scrolls_sideways_and_the_check_boxes_grow_with_the_text(brows
             def fits():
                 shown = laid_out(page, width)
                 return shown if shown["sideways"] == 0 and shown["tickRight"] <= shown["client"] else None
-            shown = wait_for(fits, timeout=LAYOUT_WAIT,
-                             what=f"{scene} at {width} × {height}{' in projector mode' if projector else ''} "
+            shown = wait_for(fits, what=f"{scene} at {width} × {height}{' in projector mode' if projector else ''} "
                                   f"to fit the window: {page.evaluate(WINDOW)}")
             smallest = PROJECTOR_PX if projector else BODY_PX
             assert shown["boxes"] and min(shown["boxes"]) >= smallest, \
@@ -152,7 +153,8 @@ def test_nothing_is_drawn_outside_a_graphs_frame(browser):
         for width, height, projector in each_window(page):
             laid_out(page, width)
             now = shown_time(page)
-            wait_for(lambda: shown_time(page) > now, timeout=120.0, what="the run to go on")   # a redraw since
+            page.get_by_role("button", name="Step").click()      # a new point: the graphs redrawn since
+            wait_for(lambda: shown_time(page) > now, what="a Step")
             for graph in page.evaluate(GRAPH_PICTURES):
                 assert outside_the_frame(graph) == 0, \
                     f"{graph['title']!r} has marks outside its frame at {width} × {height}, projector {projector}"
@@ -174,10 +176,8 @@ BALL = """() => {
 
 
 def test_the_pendulums_ball_stands_out_of_its_trail(browser):
-    program, page = opened(browser, "pendulum", until=12.0)
+    program, page = opened(browser, "pendulum", until=12.0)     # paused there
     try:
-        page.get_by_role("button", name="Pause").click()
-        page.get_by_role("button", name="Run").wait_for()
         for width, height, projector in each_window(page):
             laid_out(page, width)
             path = SCREENSHOTS / f"window-pendulum-{width}x{height}{'-projector' if projector else ''}.png"
@@ -208,14 +208,13 @@ def curve_drawn(graph) -> bool:
 
 
 def test_resizing_the_window_keeps_the_curves_of_a_paused_page(browser):
-    program, page = opened(browser, "damped", until=3.0)
+    program, page = opened(browser, "damped", until=3.0)        # paused there
     try:
-        page.get_by_role("button", name="Pause").click()
         page.get_by_role("button", name="Run").wait_for()
         paused = shown_time(page)
         for width, height, projector in each_window(page):
             laid_out(page, width)
-            wait_for(lambda: all(curve_drawn(graph) for graph in page.evaluate(GRAPH_PICTURES)), timeout=LAYOUT_WAIT,
+            wait_for(lambda: all(curve_drawn(graph) for graph in page.evaluate(GRAPH_PICTURES)),
                      what=f"every graph's curves at {width} × {height}, projector {projector}")
         assert shown_time(page) == paused          # no new points came: the page stayed paused
         page.screenshot(path=str(SCREENSHOTS / "window-paused-resized.png"))

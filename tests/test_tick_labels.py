@@ -39,7 +39,7 @@ DRAW = """([low, high, pixels]) => {
 
 @pytest.fixture(scope="module")
 def page(browser):
-    tab = browser.new_page()
+    tab = browser.new_page(viewport={"width": 640, "height": 480})
     try:
         tab.set_content("<html><body></body></html>")
         for name in ("jquery.min.js", "glow.min.js"):
