@@ -14,15 +14,14 @@ arrows' check boxes and the keys Space, → and R. It never steps the physics it
 program at rate() while paused, and starts it again with new constants written into its
 constants block (export/program_page.py has the lines the program adds for the page).
 
-Which constants the page may change is worked out here, from the writer itself: a constant is
-offered (a slider, or a value from the address `vertical.html#k=60&dt=0.05`) only over a span
-where writing its new value into the constants block gives the very program the writer would write
-for it, apart from what only frames the picture (the sphere's size, the support, the arrows'
-scales). A constant that changes which lines the program has (a force switched on from 0, a
-closed form of another kind, a label naming a value) is left as the file has it: the address
-may not set it, and says how to write a file that has it. Two constants moved together can still
-cross a line (b past critical damping as m and k fall): within the sliders' spans the built-in
-scenes do not, and what changes then is the exact curve's formula, not the run.
+Which constants the page may change, the set-up its programs are written for and its presets are
+worked out in export/offline_setup.py, from the writer itself: a constant is offered (a slider, a
+preset, or a value from the address `vertical.html#k=60&dt=0.05`) only over a span where writing
+its new value into the constants block gives the very program the writer would write for it. The
+exact curve's cases are branches of the program and the labels expressions of the constants, so
+driven's m, k and ω and friction's μ_k and b move as freely as vertical's k. A constant that would
+change which lines the program has is left as the file has it: the address may not set it, and
+says which command writes a file that has it.
 """
 from __future__ import annotations
 
@@ -30,7 +29,6 @@ import hashlib
 import html
 import json
 import os
-from dataclasses import dataclass
 
 import numpy as np
 
@@ -39,8 +37,7 @@ from physics.integrators import INTEGRATORS
 from physics.period import formula_period, measured_period, record_spacing, why_no_period
 from physics.recording import steps_to_reach
 from physics.simulate import BlowUpError, every, trajectory
-from scenes import DECLARED
-from scenes._sliders import round_slider_values, slider_names, slider_range, symbol
+from scenes._sliders import symbol
 from scenes._view import DEFAULT_VIEW
 
 from . import files
@@ -50,6 +47,7 @@ from .lines import ProgramError
 from .plain_ticks import plain_ticks
 from .program_command import description
 from .step_update import number, step_layout
+from .offline_setup import FRAMING, code, page_setup, preset_data, preset_values, settable, sliders
 from .vpython_program import program
 
 HERE = os.path.dirname(os.path.abspath(__file__))
@@ -73,9 +71,6 @@ STEP_MASSES = 4                # masses whose Step is written out, as on the loc
 FOV = 0.2                      # rad: the local page's long lens (browser/scene3d.py), the support and springs flat
 SPEEDS = {"¼×": 0.25, "½×": 0.5, "1×": 1.0, "2×": 2.0, "4×": 4.0}   # as the local page's speed menu (browser/controls.py)
 BODY_PX, PROJECTOR_PX = 18, 22  # px: the smallest text, as on the local page (browser/page_layout.py)
-# What only frames the picture: the writer chooses it from the motion, and a constant moved on the
-# page keeps the file's (the local page also keeps its arrow scales through a run).
-FRAMING = ("radius = ", "box(", "pscale = ", "Fscale = ")
 
 
 def library(name: str) -> str:
@@ -90,72 +85,6 @@ def library(name: str) -> str:
     if "</script" in text.lower() or "<!--" in text:   # would end or confuse the <script> it goes in
         raise ProgramError(f"export/glowscript/{name} cannot be written into a page whole")
     return text
-
-
-@dataclass(frozen=True)
-class Settable:
-    """A constant the page may change: its declaration, as the browser checks it, and the span
-    this file can run (file_low to file_high)."""
-
-    name: str
-    written: float
-    scene_default: float
-    file_low: float
-    file_high: float
-
-    def as_data(self) -> dict:
-        declared = DECLARED[self.name]
-        unit = declared.unit
-        return {"written": self.written, "scene_default": self.scene_default, "unit": unit,
-                "symbol": symbol(self.name), "low": declared.low, "high": declared.high,
-                "above_low": declared.above_low, "whole": declared.whole, "words": declared.words(unit),
-                "file_low": self.file_low, "file_high": self.file_high}
-
-
-def _code(text: str, skip: str) -> list[str]:
-    """A program's code to compare: its lines without comments, framing, or the line of `skip`."""
-    code = []
-    for line in text.splitlines():
-        line = line.split(" # ", 1)[0].rstrip()
-        if line.lstrip().startswith("#") or line.startswith(FRAMING) or line.startswith(f"{skip} = "):
-            continue
-        code.append(line)
-    return code
-
-
-def _same_program(setup, name: str, value: float, base: list[str], integrator) -> bool:
-    """Whether the program for setup with name = value is `base` but for that constant's line."""
-    try:
-        changed = setup.with_values(**{name: value})
-        changed.build()
-        text = program(changed, integrator=integrator, web=True, arrows=(), page=True, header=False)
-    except (ValueError, ProgramError):
-        return False
-    return _code(text, name) == base
-
-
-def settable(setup, *, integrator=None, view: dict) -> list[Settable]:
-    """The constants the page may change and the span of each: every plain number (not a count)
-    whose line in the constants block can take the ends of its slider's span (a tenth to three
-    times the scene's value, or from 0: scenes/_sliders.py's slider_range) and give the program
-    the writer writes for them. From 0, a force's constant switches the force off; its line then
-    adds exactly nothing, so the file's program runs it unchanged (probed just above 0)."""
-    text = program(setup, integrator=integrator, web=True, arrows=(), page=True, header=False)
-    found = []
-    for name, constant in setup.constants.items():
-        value = setup.values[name]
-        if not isinstance(value, (int, float)) or isinstance(value, bool) or DECLARED[name].whole:
-            continue
-        if not any(line.startswith(f"{name} = ") for line in text.splitlines()):
-            continue
-        default = constant.value if isinstance(constant.value, (int, float)) else value
-        values = round_slider_values(name, float(value), default)
-        low, high = (values[0], values[-1]) if values else slider_range(name, float(value), default)[:2]
-        base = _code(text, name)
-        probes = [low if low > 0 else high * 1e-3, high]
-        if all(_same_program(setup, name, probe, base, integrator) for probe in probes if probe != value):
-            found.append(Settable(name, float(value), float(default), float(low), float(high)))
-    return found
 
 
 def measured(model, *, view: dict, integrator: str | None) -> dict:
@@ -197,19 +126,6 @@ def measured(model, *, view: dict, integrator: str | None) -> dict:
             "period": lines, "window": end, "formula_note": formula_why if formula is None else ""}
 
 
-def sliders(setup, view: dict, offered: dict[str, Settable]) -> dict[str, dict]:
-    """The page's sliders: the local page's (scenes/_sliders.py), for the constants this file can change."""
-    made = {}
-    for name in slider_names(setup, view):
-        if name not in offered:
-            continue
-        value, default = float(setup.values[name]), offered[name].scene_default
-        values = round_slider_values(name, value, default)
-        low, high, step = slider_range(name, value, default)
-        made[name] = {"values": values or None, "low": low, "high": high, "step": step}
-    return made
-
-
 def page(setup, *, integrator: str | None = None, arrows=None, end: float | None = None) -> str:
     """The whole HTML file for a configured scene (scenes._catalog.Setup), as text.
 
@@ -226,10 +142,13 @@ def page(setup, *, integrator: str | None = None, arrows=None, end: float | None
     fixed = list(model.integrators) if model.integrators is not None else None
     first = model.methods(integrator)[0]
     names = [first] if fixed else [first] + [name for name in INTEGRATORS if name != first]
-    programs = {name: program(setup, integrator=None if fixed else name, web=True, arrows=shown, page=True,
-                              end=end)
+    written = page_setup(setup, view)     # with the forces its sliders switch on, on (offline_setup.py)
+    programs = {name: program(written, integrator=None if fixed else name, web=True, arrows=shown, page=True,
+                              end=end, header_of=setup)
                 for name in names}
-    offered = {found.name: found for found in settable(setup, integrator=None if fixed else first, view=view)}
+    offered = {found.name: found for found in settable(written, integrator=None if fixed else first, own=setup,
+                                                      also=preset_values(setup))}
+    command = f"python main.py {setup.name} --html {setup.name}.html"
     methods = sorted(set(fixed or INTEGRATORS))
     framed = frame(model, view)   # the local page's camera (export/framing.py), and room for the arrows
     scales = choose_scales(model, view=view, integrator=first if not fixed else None, forces="forces" in shown)
@@ -244,6 +163,7 @@ def page(setup, *, integrator: str | None = None, arrows=None, end: float | None
         "all_constants": list(setup.constants),
         "smallest": 1e-9,
         "sliders": sliders(setup, view, offered),
+        "presets": preset_data(setup, view, offered, command),
         "arrows": {"kinds": list(ARROWS), "see_through": SEE_THROUGH, "legend": scales.legend()},
         "camera": {"centre": [float(x) for x in framed.camera.centre], "range": float(reach),
                    "pitch": float(framed.camera.pitch), "fov": FOV},

@@ -67,7 +67,7 @@ from .program_answer import HELPERS, answer_line
 from .program_command import command, description
 from .program_constants import ProgramConstants, constants_block
 from .program_forces import ProgramForces, update
-from .program_masses import ANCHOR, mass_count, masses, which_mass
+from .program_masses import ANCHOR, mass_count, masses, started, which_mass
 from .program_objects import objects
 
 WEB_FIRST_LINE = "Web VPython 3.2"
@@ -79,7 +79,7 @@ IMPORTS = ["from vpython import *",
 
 
 def program(setup, *, integrator: str | None = None, web: bool = False, arrows=None,
-            end: float | None = None, page: bool = False, header: bool = True) -> str:
+            end: float | None = None, page: bool = False, header: bool = True, header_of=None) -> str:
     """The VPython program for a configured scene (scenes._catalog.Setup), as text.
 
     integrator  the method (default: the scene's own, else euler-cromer, the page's update), as
@@ -95,17 +95,23 @@ def program(setup, *, integrator: str | None = None, web: bool = False, arrows=N
                 step worked out from until and dt as the program runs.
     header      False leaves out the header's comments (its description and the command of the
                 same case, which takes most of the time to write): to compare programs' code.
+    header_of   the set-up the header describes, where it is not `setup` (the offline page's
+                programs have the forces its sliders switch on, on; their header is the file's)
 
     Raises ProgramError, or ValueError from the scene's build function, with a one-line message.
     """
     model = setup.build()
     _check_size(setup, model)
     case = _Case(setup, model, integrator, arrows, end, page)
-    lines = IMPORTS + (case.header() if header else []) + case.constants_lines()
+    constants, lists = case.constants_lines()
+    # number() and vector_text() come before the loop, or before the lists where the masses' labels use them
+    early = any("number(" in line for line in lists)
+    described = case if header_of is None else _Case(header_of, header_of.build(), integrator, arrows, end, page)
+    lines = IMPORTS + (described.header() if header else []) + constants + (HELPERS if early else []) + lists
     lines += program_page.controls_lines() if page else []
     lines += ["", "# ---- the objects ----"] + objects(model, case.view, case.constants, case.single)
     lines += case.exact_objects() + scene_setup_lines(case)
-    lines += HELPERS + case.loop() + case.answer()
+    lines += ([] if early else HELPERS) + case.loop() + case.answer()
     lines = align_comments(lines)
     if web:
         lines = [WEB_FIRST_LINE] + [line for line in lines if line not in IMPORTS]
@@ -178,10 +184,14 @@ class _Case:
                 f"# Written by the spring-mass simulator with {how}. Edit the constants and run it again.",
                 f"# The same case on the simulator's page: {command(self.setup, self.model, self.integrator)}"]
 
-    def constants_lines(self) -> list[str]:
+    def constants_lines(self) -> tuple[list[str], list[str]]:
+        """(the constants block, the lists of one value per mass where there are several masses)."""
         lists, used = masses(self.setup, self.model, self.constants, self.methods)
-        lines = ["", "# ---- constants (unit: meaning) ----"] + constants_block(self.setup, self.constants, used)
-        return lines + (["", "# ---- the masses: one spring each ----"] + lists if lists else [])
+        ruled = [rule.name for rule in started(self.model, self.constants)]
+        lines = ["", "# ---- constants (unit: meaning) ----"] + constants_block(self.setup, self.constants, used, ruled)
+        if ruled:   # one mass: its start worked out from the constants, right after them
+            return lines + lists, []
+        return lines, (["", "# ---- the masses: one spring each ----"] + lists if lists else [])
 
     def exact_objects(self) -> list[str]:
         if self.exact is None:
