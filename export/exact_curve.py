@@ -69,10 +69,16 @@ def on_line(model, roles: Roles) -> bool:
     return True
 
 
+def exact_value(constants, *, axis: str) -> str:
+    """The exact position's coordinate `axis`, from x (exact_lines): the anchor's point plus the
+    spring's length along û."""
+    return f"({Roles(constants).name(Role.ANCHOR)} + (s_eq + x)*u).{axis}"
+
+
 def plot_line(constants, *, index: str, axis: str) -> str:
-    """The line that plots the exact position on the graph of `axis`, from x (exact_lines): the
-    anchor's point plus the spring's length along û (`index`: "" for one mass, "[i]" in a loop)."""
-    return f"exact{index}.plot(t, ({Roles(constants).name(Role.ANCHOR)} + (s_eq + x)*u).{axis})"
+    """The line that plots the exact position on the graph of `axis` (`index`: "" for one mass,
+    "[i]" in a loop)."""
+    return f"exact{index}.plot(t, {exact_value(constants, axis=axis)})"
 
 
 @dataclass(frozen=True)

@@ -30,14 +30,8 @@ import html
 import json
 import os
 
-import numpy as np
-
-from physics.equilibrium import equilibrium
 from physics.integrators import INTEGRATORS
-from physics.period import formula_period, measured_period, record_spacing, why_no_period
-from physics.recording import steps_to_reach
-from physics.simulate import BlowUpError, every, trajectory
-from scenes._sliders import symbol
+from scenes._sliders import slider_names, symbol
 from scenes._view import DEFAULT_VIEW
 
 from . import files
@@ -46,8 +40,11 @@ from .framing import frame
 from .lines import ProgramError
 from .plain_ticks import plain_ticks
 from .program_command import description
-from .step_update import number, step_layout
-from .offline_setup import FRAMING, code, page_setup, preset_data, preset_values, settable, sliders
+from .graph_reading import GRAPH_READING
+from .offline_judge import stability_data
+from .offline_setup import FRAMING, code, page_setup, preset_data, preset_values, settable, sliders  # noqa: F401
+from .offline_tools import STEP_MASSES, measured, tools_data
+from .step_update import step_layout
 from .vpython_program import program
 
 HERE = os.path.dirname(os.path.abspath(__file__))
@@ -64,10 +61,10 @@ LIBRARIES = (
 )
 COMPILER = "RScompiler.3.2.min.js"   # run anew for each program compiled (see _document)
 NOTICE = os.path.join(GLOWSCRIPT, "NOTICE")
-SCRIPT = os.path.join(HERE, "offline_page.js")
+# the page's own scripts, in the order they run (the core first; the others hook into its runs)
+SCRIPTS = [os.path.join(HERE, name) for name in ("offline_page.js", "offline_judge.js", "offline_tools.js")]
 STYLE = os.path.join(HERE, "offline_page.css")
 MAX_BYTES = 7_000_000          # the issue's bound on the file's size
-STEP_MASSES = 4                # masses whose Step is written out, as on the local page (browser/view.py)
 FOV = 0.2                      # rad: the local page's long lens (browser/scene3d.py), the support and springs flat
 SPEEDS = {"¼×": 0.25, "½×": 0.5, "1×": 1.0, "2×": 2.0, "4×": 4.0}   # as the local page's speed menu (browser/controls.py)
 BODY_PX, PROJECTOR_PX = 18, 22  # px: the smallest text, as on the local page (browser/page_layout.py)
@@ -85,45 +82,6 @@ def library(name: str) -> str:
     if "</script" in text.lower() or "<!--" in text:   # would end or confuse the <script> it goes in
         raise ProgramError(f"export/glowscript/{name} cannot be written into a page whole")
     return text
-
-
-def measured(model, *, view: dict, integrator: str | None) -> dict:
-    """The period and the equilibrium of the file's own set-up, worked out by the physics the local
-    page uses (physics/period.py, physics/equilibrium.py): each mass's equilibrium, m, and a line
-    per mass (at most STEP_MASSES) giving its period measured over the page's window (upward
-    crossings of the equilibrium along the graphed axis) beside 2π/ω_d, or why there is none."""
-    centre = equilibrium(model.forces, model.state)
-    axis = "xyz".index(view["plot"][0])
-    covered = False if model.exact is None else np.isfinite(model.exact_where_valid([0.0])[0][0]).all(axis=-1)
-    formula, formula_why = formula_period(model.forces, model.state, closed_form=covered)
-    end = max(view["window"], model.until)
-    every_s = record_spacing(model.forces, model.state.m, model.dt)   # s between samples
-    traj, why = None, ""
-    if centre is None or every_s is None:
-        why = "nothing pulls the mass back to an equilibrium, so the motion does not repeat"
-    else:
-        engine = model.simulation(integrator)
-        try:
-            samples = engine.advance(steps_to_reach(end - model.state.t, model.dt),
-                                     record=every(max(1, int(every_s / model.dt))))
-            traj = trajectory(engine, samples, with_energy=False)
-        except BlowUpError as problem:
-            why = f"the run blew up ({problem})"
-    lines = []
-    for i in range(min(model.state.count, STEP_MASSES)):
-        head = f"{model.labels[i]}: " if model.state.count > 1 else ""
-        if traj is not None:
-            x = traj.r[:, i, axis]
-            found = measured_period(traj.t, x, centre=float(centre[i, axis]))
-            said = (f"T = {number(found.measured)} ± {number(found.spread, 2)} s over {found.cycles} cycles"
-                    if found is not None else "no period: " + why_no_period(traj.t, x, centre=float(centre[i, axis])))
-        else:
-            said = "no period: " + why
-        if formula is not None and np.isfinite(formula[i]):
-            said += f"; 2π/ω_d = {number(formula[i])} s"
-        lines.append(head + said)
-    return {"equilibrium": None if centre is None else centre.tolist(), "axis": axis,
-            "period": lines, "window": end, "formula_note": formula_why if formula is None else ""}
 
 
 def page(setup, *, integrator: str | None = None, arrows=None, end: float | None = None) -> str:
@@ -153,6 +111,7 @@ def page(setup, *, integrator: str | None = None, arrows=None, end: float | None
     framed = frame(model, view)   # the local page's camera (export/framing.py), and room for the arrows
     scales = choose_scales(model, view=view, integrator=first if not fixed else None, forces="forces" in shown)
     reach = max(framed.camera.range, scales.view_range) if shown else framed.camera.range
+    shown_sliders = [name for name in slider_names(setup, view) if name in offered]
     data = {
         "scene": setup.name,
         "programs": programs,
@@ -163,10 +122,14 @@ def page(setup, *, integrator: str | None = None, arrows=None, end: float | None
         "all_constants": list(setup.constants),
         "smallest": 1e-9,
         "sliders": sliders(setup, view, offered),
+        "shown_sliders": shown_sliders,
         "presets": preset_data(setup, view, offered, command),
+        "judge": stability_data(methods),
+        "tools": tools_data(model, view=view, scales=scales, written_model=written.build()),
         "arrows": {"kinds": list(ARROWS), "see_through": SEE_THROUGH, "legend": scales.legend()},
         "camera": {"centre": [float(x) for x in framed.camera.centre], "range": float(reach),
-                   "pitch": float(framed.camera.pitch), "fov": FOV},
+                   "pitch": float(framed.camera.pitch), "fov": FOV, "box": list(framed.box),
+                   "grow": float(reach / framed.camera.range)},
         "speeds": SPEEDS,
         "measured": {**measured(model, view=view, integrator=None if fixed else first),
                      "radius": float(framed.radius)},
@@ -193,18 +156,11 @@ def _read(path: str) -> str:
 def _document(setup, data: dict, *, shown) -> str:
     title = description(setup)[0].lstrip("# ")
     notice = _read(NOTICE).replace("--", "- -")    # an HTML comment may not hold "--"
-    arrows = "".join(f'<label><input type="checkbox" id="arrow-{kind}"{" checked" if kind in shown else ""}> '
-                     f'{html.escape(ARROW_LABELS[kind])}</label> ' for kind in ARROWS)
-    slider_rows = "".join(
-        f'<div class="slider"><input type="range" id="slider-{name}" aria-label="{html.escape(symbol(name))}" '
-        + (f'min="0" max="{len(spec["values"]) - 1}" step="1"' if spec["values"] else
-           f'min="{spec["low"]!r}" max="{spec["high"]!r}" step="{spec["step"]!r}"')
-        + f'> <span id="slider-{name}-value"></span></div>' for name, spec in data["sliders"].items())
     # GlowScript's compiler compiles once per load of its file (its own editor page loads the file
     # again for every run), so the page keeps the file as text and runs it before each compile.
     scripts = "".join(f'<script type="text/x-glowscript-compiler" id="compiler">{library(name)}</script>\n'
                       if name == COMPILER else f"<script>{library(name)}</script>\n" for name, _ in LIBRARIES)
-    speeds = "".join(f'<option{" selected" if value == 1 else ""}>{label}</option>' for label, value in SPEEDS.items())
+    own = "".join(f"<script>{_read(path)}</script>\n" for path in SCRIPTS)
     return f"""<!DOCTYPE html>
 <!-- {files.HANDOUT_MARK} (python main.py {setup.name} --html): {html.escape(title)} -->
 <html lang="en">
@@ -221,35 +177,73 @@ This file holds GlowScript 3.2 and the libraries bundled in it, each under its o
 </head>
 <body>
 <h1>{html.escape(title)}</h1>
-<main>
+<main id="main">
+<div id="left">
 <div id="view"></div>
-<div id="panel">
+{_panel(data, shown)}
+</div>
+<div id="graphs"></div>
+</main>
+<script type="application/json" id="offline-data">{_json(data)}</script>
+{scripts}{plain_ticks(clear_outside=False)}
+{GRAPH_READING}
+{own}<script>OfflinePage.begin();</script>
+</body>
+</html>
+"""
+
+
+def _panel(data: dict, shown) -> str:
+    """The controls under the view: the run's buttons and time, the error read-out and status line,
+    the Measure panel, the preset, integrator and graph menus, the arrows, the sliders, the answer,
+    the Step read-out and the link."""
+    arrows = "".join(f'<label><input type="checkbox" id="arrow-{kind}"{" checked" if kind in shown else ""}> '
+                     f'{html.escape(ARROW_LABELS[kind])}</label> ' for kind in ARROWS)
+    slider_rows = "".join(
+        f'<div class="slider"><input type="range" id="slider-{name}" aria-label="{html.escape(symbol(name))}" '
+        + (f'min="0" max="{len(spec["values"]) - 1}" step="1"' if spec["values"] else
+           f'min="{spec["low"]!r}" max="{spec["high"]!r}" step="{spec["step"]!r}"')
+        + f'> <span id="slider-{name}-value"></span></div>' for name, spec in data["sliders"].items())
+    speeds = "".join(f'<option{" selected" if value == 1 else ""}>{label}</option>' for label, value in SPEEDS.items())
+    presets = '<option value="">choose a preset</option>' + "".join(
+        f'<option value="{n}">{html.escape(preset["label"])}</option>' for n, preset in enumerate(data["presets"]))
+    methods = "" if data["fixed_methods"] else (
+        '<label>integrator <select id="integrator">' +
+        "".join(f'<option{" selected" if name == data["integrator"] else ""}>{html.escape(name)}</option>'
+                for name in data["programs"]) + "</select></label>")
+    places = "".join(f'<option value="{value}">{label}</option>'
+                     for label, value in (("energy graph", "energy"), ("phase space", "phase"), ("energy bars", "bars")))
+    lines = "".join(f'<label><input type="checkbox" id="line-{kind}"> {label}</label> '
+                    for kind, label in (("natural", "natural length"), ("equilibrium", "equilibrium"),
+                                        ("marker", "marker (click in the picture)")))
+    return f"""<div id="panel">
 <div class="buttons"><button id="run" type="button">Pause</button> <button id="step-button" type="button">Step</button>
 <button id="reset" type="button">Reset</button> <label>speed <select id="speed">{speeds}</select></label>
-<span id="time" class="time">t = 0.00 s</span></div>
+<label><input type="checkbox" id="projector"> projector</label></div>
+<div class="time-row"><span id="time" class="time">t = 0.00 s</span> <span id="error" class="error"></span></div>
 <p id="status" class="status" role="status"></p>
+<button id="measure-toggle" type="button" aria-expanded="false">Measure ▸</button>
+<div id="measure" class="measure" hidden>
+<div>stopwatch <button id="stopwatch-start" type="button">Start (S)</button> <button id="stopwatch-lap" type="button">Lap (L)</button>
+<button id="stopwatch-clear" type="button">Clear (C)</button> <b id="stopwatch">0.00 s</b></div>
+<div><label><input type="checkbox" id="show-period"> period</label></div>
+<pre id="period" class="period" hidden></pre>
+<div>lines: {lines}<span id="lines-note" class="note"></span></div>
+<div><label>graph <select id="graph-place">{places}</select></label>
+<i>Click a graph to read a point; click a second point for the difference.</i></div>
+</div>
+<div class="menus"><label>preset <select id="preset">{presets}</select></label> {methods}</div>
 <div class="arrows">arrows: {arrows}<br><span class="legend">{html.escape(data["arrows"]["legend"])}</span></div>
 {slider_rows}
-<div class="measure"><label><input type="checkbox" id="show-equilibrium"> equilibrium</label>
-<label><input type="checkbox" id="show-period"> period</label>
-<span id="measure-note" class="note"></span><pre id="period" class="period" hidden></pre></div>
-<p class="hint">Moving a slider restarts the run from t = 0. Keys: Space run/pause, → step, R reset,
-+ and − speed.
-<label><input type="checkbox" id="projector"> projector</label></p>
+<p class="hint">Moving a slider, choosing a preset or an integrator restarts the run from t = 0. Keys: Space
+run/pause, → step, R reset, + and − speed.</p>
 <h2>Answer at the question time</h2>
 <pre id="answer" class="answer"></pre>
 <pre id="step" class="step"></pre>
 <p class="link">This set-up's link (add it to the file's address once the file is on a web site):
-<input id="link" readonly size="28"></p>
+<input id="link" readonly></p>
 <details><summary>The program this page runs (Web VPython 3.2)</summary><pre id="program-text"></pre></details>
-</div>
-</main>
-<script type="application/json" id="offline-data">{_json(data)}</script>
-{scripts}{plain_ticks(clear_outside=False)}
-<script>{_read(SCRIPT)}</script>
-</body>
-</html>
-"""
+</div>"""
 
 
 def link_fragment(setup, integrator: str | None = None) -> str:

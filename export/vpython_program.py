@@ -60,7 +60,7 @@ from scenes import DECLARED
 from scenes._view import DEFAULT_VIEW, MAX_DRAWN_MASSES
 
 from . import program_arrows, program_page
-from .exact_curve import exact_lines, plot_line
+from .exact_curve import exact_lines, exact_value, plot_line
 from .lines import ProgramError, align_comments, commented, vector
 from .palette import EXACT_COLOUR, EXACT_WIDTH
 from .program_answer import HELPERS, answer_line
@@ -105,10 +105,10 @@ def program(setup, *, integrator: str | None = None, web: bool = False, arrows=N
     case = _Case(setup, model, integrator, arrows, end, page)
     constants, lists = case.constants_lines()
     # number() and vector_text() come before the loop, or before the lists where the masses' labels use them
-    early = any("number(" in line for line in lists)
+    early = page or any("number(" in line for line in lists)
     described = case if header_of is None else _Case(header_of, header_of.build(), integrator, arrows, end, page)
     lines = IMPORTS + (described.header() if header else []) + constants + (HELPERS if early else []) + lists
-    lines += program_page.controls_lines() if page else []
+    lines += program_page.controls_lines(case) if page else []
     lines += ["", "# ---- the objects ----"] + objects(model, case.view, case.constants, case.single)
     lines += case.exact_objects() + scene_setup_lines(case)
     lines += ([] if early else HELPERS) + case.loop() + case.answer()
@@ -136,7 +136,9 @@ def after_update_lines(case) -> list[str]:
     mass or "[i]" inside the loop over the masses."""
     written = program_arrows.WRITTEN if case.page else case.arrows
     lines = program_arrows.loop_lines(case.model, shown=written, single=case.single)
-    return lines + ([program_page.stepped_line(single=case.single, m=case.m)] if case.page else [])
+    if case.page:
+        lines += program_page.energy_lines(case) + [program_page.stepped_line(single=case.single, m=case.m)]
+    return lines
 
 
 def _check_size(setup, model) -> None:
@@ -157,6 +159,7 @@ class _Case:
         self.arrows = self.view["arrows"] if arrows is None else arrows
         self.single = model.state.count == 1
         self.index = "" if self.single else "[i]"
+        self.pos, self.p = f"pos{self.index}", f"p{self.index}"   # the program's names of a mass's r and p
         self.constants = ProgramConstants(setup, model.state.count)
         self.constants.add("m", model.state.m)
         self.forces = ProgramForces(model, self.constants)
@@ -187,6 +190,7 @@ class _Case:
     def constants_lines(self) -> tuple[list[str], list[str]]:
         """(the constants block, the lists of one value per mass where there are several masses)."""
         lists, used = masses(self.setup, self.model, self.constants, self.methods)
+        self.used = used
         ruled = [rule.name for rule in started(self.model, self.constants)]
         lines = ["", "# ---- constants (unit: meaning) ----"] + constants_block(self.setup, self.constants, used, ruled)
         if ruled:   # one mass: its start worked out from the constants, right after them
@@ -222,7 +226,7 @@ class _Case:
     def _page_loop(self) -> list[str]:
         """The loop of the offline page's program: the handout's, with the question time's step
         worked out as it runs (program_page.question_lines), since the page may change until or Δt."""
-        lines = program_page.question_lines()
+        lines = program_page.energy_start_lines(self) + program_page.question_lines()
         lines += [f"if {program_page.QUESTION_CONDITION}:", *("    " + line for line in self.printed())]
         lines += [_loop_condition(self.model, self.end), commented("    rate(1/dt)", "real time: 1/Δt steps a second")]
         lines += self._each_mass(self.update() + after_update_lines(self))
@@ -262,6 +266,8 @@ class _Case:
         if self.exact is not None:
             lines += self.exact[1] if self.single else self.exact[0] + self.exact[1]
             lines += [plot_line(self.constants, index=i, axis=axes[0])]
+            if self.page:
+                lines += [program_page.exact_line(self, exact_value(self.constants, axis=axes[0]))]
         return lines
 
     def answer(self) -> list[str]:

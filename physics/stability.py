@@ -352,20 +352,34 @@ def _limit_message(method, *, dt, omega, rate, bounded, limit: Limit, at_rest) -
             f"amount every step (linearly, not exponentially); a dt below {dt:g} s keeps it bounded")
 
 
-def _message(method, *, dt, dt_max, cause, growth, omega, damping, drag, speed) -> str:
-    spring = f"ω = {omega:.4g} rad/s, √(k/m) for one mass"
-    what = {"spring": f"the spring ({spring})",
-            "damping": f"the damping (b/m = {damping:.4g} s⁻¹)",
-            "drag": f"the drag (ρCA|v|/m = {drag:.4g} s⁻¹ at |v| = {speed:.4g} m/s)"}
-    if dt_max == 0:
-        return (f"dt = {dt:g} s: {method} is unstable on a spring at every dt ({spring}; the motion "
-                f"grows about {100 * (growth - 1):.3g} % each step): use euler-cromer, verlet or rk4")
-    named = " and ".join(what[part] for part in cause.split(" and "))
+# A verdict's sentences, with its numbers in braces: the command line fills them in here, and the
+# offline page fills the same ones in the browser (export/offline_judge.py hands them over).
+REFUSED = "the run would blow up, past the stability limit"
+CAUSES = {"spring": "the spring (ω = {omega} rad/s, √(k/m) for one mass)",
+          "damping": "the damping (b/m = {damping} s⁻¹)",
+          "drag": "the drag (ρCA|v|/m = {drag} s⁻¹ at |v| = {speed} m/s)"}
+EVERY_DT = ("dt = {dt} s: {method} is unstable on a spring at every dt ({spring}; the motion grows about "
+            "{growth} % each step): use euler-cromer, verlet or rk4")
+PAST_LIMIT = "dt = {dt} s, but {named} {verb} dt < {limit} s necessary for {method}{rule}"
+
+
+def limit_rule(method: str, cause: str) -> str:
+    """The method's own rule for the cause, after the limit: ", ω·dt < 2", or its rule with damping."""
     entry = INTEGRATORS[method]
-    rule = (f", {entry.damped_rule}" if "damping" in cause and entry.damped_rule else
-            f", ω·dt < {entry.omega_dt_limit:.3g}" if cause == "spring" and entry.omega_dt_limit else "")
+    if "damping" in cause and entry.damped_rule:
+        return f", {entry.damped_rule}"
+    return f", ω·dt < {entry.omega_dt_limit:.3g}" if cause == "spring" and entry.omega_dt_limit else ""
+
+
+def _message(method, *, dt, dt_max, cause, growth, omega, damping, drag, speed) -> str:
+    numbers = {"omega": f"{omega:.4g}", "damping": f"{damping:.4g}", "drag": f"{drag:.4g}", "speed": f"{speed:.4g}"}
+    what = {part: text.format(**numbers) for part, text in CAUSES.items()}
+    if dt_max == 0:
+        return EVERY_DT.format(dt=f"{dt:g}", method=method, spring=what["spring"], growth=f"{100 * (growth - 1):.3g}")
+    named = " and ".join(what[part] for part in cause.split(" and "))
     verb = "makes" if " and " not in cause else "make"
     limit, digits = f"{dt_max:.4g}", 6
     while float(f"{dt:.{digits}g}") != dt and float(f"{dt:.{digits}g}") <= float(limit) and digits < 17:
         digits += 1   # dt = 1.0000001 s against dt < 1 s, not dt = 1 s
-    return f"dt = {dt:.{digits}g} s, but {named} {verb} dt < {limit} s necessary for {method}{rule}"
+    return PAST_LIMIT.format(dt=f"{dt:.{digits}g}", named=named, verb=verb, limit=limit, method=method,
+                             rule=limit_rule(method, cause))
