@@ -27,7 +27,7 @@ from __future__ import annotations
 GRAPH_READING = """<script>(function () {
   var jq = window.jQuery; if (!jq || !jq.plot || jq.plot.smReading) return;
   function part(title, which) {  // 'y (m)' -> name 'y', unit 'm'
-    var m = /^(.*?)\\s*\\(([^()]*)\\)\\s*$/.exec(title || '');
+    var m = (title || '').match(/^(.*?)\\s*\\(([^()]*)\\)\\s*$/);
     return m ? (which === 'unit' ? m[2] : m[1]) : (which === 'unit' ? '' : (title || ''));
   }
   function number(v) {

@@ -20,9 +20,18 @@
 
   // ---- a value from the address, read as --set reads it ----
 
-  var DECIMAL = /^[+-]?(\d+\.?\d*|\.\d+)([eE][+-]?\d+)?$/;
+  // What Python's float() reads (--set reads a value with it): a decimal with an exponent, digits
+  // grouped by _, or inf, infinity and nan in any case, with a sign.
+  var DIGITS = "\\d+(?:_\\d+)*";
+  var DECIMAL = new RegExp("^[+-]?(?:(?:" + DIGITS + "(?:\\.(?:" + DIGITS + ")?)?|\\.(?:" + DIGITS + "))" +
+                           "(?:[eE][+-]?" + DIGITS + ")?|inf|infinity|nan)$", "i");
 
-  function describe(value, unit) { return pyG(value, 6) + (unit && unit !== "1" ? " " + unit : ""); }
+  function shownNumber(value) {                   // format_value's digits: inf and nan as Python writes them
+    if (isNaN(value)) return "nan";
+    if (!isFinite(value)) return value < 0 ? "-inf" : "inf";
+    return pyG(value, 6);
+  }
+  function describe(value, unit) { return shownNumber(value) + (unit && unit !== "1" ? " " + unit : ""); }
 
   function command(name, text) {
     return "python main.py " + DATA.scene + " --html " + DATA.scene + ".html --set " + name + "=" + text;
@@ -38,10 +47,13 @@
     var declared = DATA.constants[name];
     text = text.trim();
     if (!DECIMAL.test(text)) return {problem: name + " needs a number (got '" + text + "')"};
-    var value = Number(text);
+    var word = text.replace(/^[+-]/, "").toLowerCase();
+    var value = word === "nan" ? NaN : word.indexOf("inf") === 0 ? (text[0] === "-" ? -Infinity : Infinity) :
+      Number(text.replace(/_/g, ""));
     var mantissa = text.toLowerCase().split("e")[0];
     if (value === 0 && /[1-9]/.test(mantissa))
-      return {problem: name + " = " + text + " is too small for the computer to tell from 0; write 0 to switch it off"};
+      return {problem: name + " = " + text + " is too small for the computer to tell from 0; write 0 to switch it off, " +
+                       "or give at least " + DATA.smallest_text + " in size"};
     var unit = declared.unit;
     var inside = (declared.above_low ? value > declared.low : value >= declared.low) && value <= declared.high &&
                  (!declared.whole || value === Math.round(value));
@@ -126,8 +138,8 @@
     if (limit === 0) return "spring";
     var alone = {spring: largestStable(method, mass.omega, 0), damping: largestStable(method, 0, mass.damping),
                  drag: largestStable(method, 0, mass.drag)};
-    var close = ["spring", "damping", "drag"].filter(function (name) {
-      return Math.abs(alone[name] - limit) <= 0.01 * Math.max(Math.abs(alone[name]), Math.abs(limit));
+    var close = ["spring", "damping", "drag"].filter(function (name) {   // math.isclose(..., rel_tol=0.01)
+      return isFinite(alone[name]) && Math.abs(alone[name] - limit) <= 0.01 * Math.max(Math.abs(alone[name]), Math.abs(limit));
     });
     if (close.length) return close[0];
     return [["spring", mass.omega], ["damping", mass.damping], ["drag", mass.drag]]

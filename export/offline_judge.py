@@ -22,11 +22,11 @@ names agrees with the command line's to its 4 printed digits (tests/test_offline
 """
 from __future__ import annotations
 
+import functools
 import math
 
 import numpy as np
 
-from physics.integrators import INTEGRATORS
 from physics.stability import (BISECTIONS, CAUSES, EVERY_DT, PAST_LIMIT, REFUSED, amplification, _grows,
                                limit_rule)
 
@@ -74,6 +74,13 @@ def growth_table(method: str) -> list[float] | None:
 
 
 def stability_data(methods) -> dict:
+    """See _stability_data: worked out once a process for each set of methods (the local page's
+    Download offline page writes many pages)."""
+    return _stability_data(tuple(sorted(methods)))
+
+
+@functools.lru_cache(maxsize=8)
+def _stability_data(methods: tuple) -> dict:
     """The stability judgement of each method the page may use, for the page's script: the table
     L(θ) (inf where any Δt is stable), the growth table of a method that grows at every Δt, the
     method's own rules (limit_rule) and the verdict's sentences."""

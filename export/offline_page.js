@@ -125,6 +125,7 @@ window.offlineProgram = function (compiled, rate, GSprint, offline_page, canvas,
   // ---- one run of the program ----
 
   var current = null;              // the run now; a run replaced stops at its next rate()
+  var runs = 0;                    // how many runs have started (the tests wait for the next one)
   var paused = false, steps = 0, release = null, speed = 1;
   var compiled = {};               // program text -> GlowScript's JavaScript
   var REFUSED = {};                // what a refused run throws from its check, to end it there
@@ -215,6 +216,7 @@ window.offlineProgram = function (compiled, rate, GSprint, offline_page, canvas,
           page.judge.judgeRun(run.rates, methods, run.ran.dt === undefined ? run.dt : run.ran.dt);
         if (verdict && verdict.refused) { run.refused = verdict.refused; throw REFUSED; }
         run.warning = verdict && verdict.warning || "";
+        run.checked = true;
         showSetUp(run);
       },
       drawn: function (balls, pos, p, arrows, labels) {
@@ -254,8 +256,9 @@ window.offlineProgram = function (compiled, rate, GSprint, offline_page, canvas,
     var text = programFor(setup);
     if (!compiled[text]) compiled[text] = compile(text);
     var old = current;
+    runs += 1;
     var run = {setup: setup, printed: [], steps: [], n: 0, stepped: false, dt: setup.values.dt, rates: [],
-               refusals: [], ran: {}, warning: "", fallback: fallback};
+               refusals: [], ran: {}, warning: "", fallback: fallback, number: runs, checked: false};
     current = run;
     steps = 0;
     letGo();                        // a held run sees it was replaced, and stops
@@ -283,6 +286,10 @@ window.offlineProgram = function (compiled, rate, GSprint, offline_page, canvas,
   // The program's check refused its set-up: one line, and the fallback runs (the file's own set-up
   // for a link; the set-up that ran before for a slider or a preset).
   function refused(run) {
+    if (run.setup === ownSetUp || run.fallback === run.setup) {   // the file's own set-up: nothing to go back to
+      say(run.refused + "; this file's own set-up: write it again with other constants.");
+      return;
+    }
     var fallback = run.fallback || own();
     var back = fallback === ownSetUp ? "; running the file's own set-up instead." :
       "; the set-up before it runs again.";
@@ -405,6 +412,7 @@ window.offlineProgram = function (compiled, rate, GSprint, offline_page, canvas,
   function showLink(run) {
     var text = fragment(run.setup, run.ran);
     byId("link").value = text ? "#" + text : "(the file's own set-up: no fragment)";
+    shownLink = text ? "#" + text : "";
     try { history.replaceState(null, "", text ? "#" + text : location.pathname + location.search); }
     catch (e) { /* some browsers refuse it on file://: the address keeps what it had */ }
   }
@@ -512,9 +520,11 @@ window.offlineProgram = function (compiled, rate, GSprint, offline_page, canvas,
     Object.keys(run.arrows || {}).forEach(function (kind) {
       drawn[kind] = run.arrows[kind].length > 0 && run.arrows[kind].every(function (o) { return o.visible; });
     });
-    return {n: run.n, paused: paused, speed: speed, integrator: setup.integrator, values: setup.values,
-            ran: run.ran, preset: setup.preset, arrows: drawn,
-            opacity: (run.balls || []).map(function (ball) { return ball.opacity; })};
+    return Object.assign({n: run.n, paused: paused, speed: speed, integrator: setup.integrator, values: setup.values,
+            ran: run.ran, preset: setup.preset, arrows: drawn, run: run.number, checked: !!run.checked,
+            status: byId("status").textContent,
+            opacity: (run.balls || []).map(function (ball) { return ball.opacity; })},
+      page.toolsState ? page.toolsState() : {});
   };
   page.current = function () { return current; };
   page.isPaused = function () { return paused; };
@@ -528,16 +538,25 @@ window.offlineProgram = function (compiled, rate, GSprint, offline_page, canvas,
     return Object.assign(ownSetUp, {values: values, integrator: DATA.integrator, preset: null});
   }
 
-  page.begin = function () {
+  // The set-up in the address: at the start, and whenever the address's fragment is edited (a
+  // hosted page does not reload for that); a bad one is one line, and the file's own set-up runs.
+  var shownLink = null;
+  function fromAddress() {
     var asked = page.judge.fromAddress(location.hash);
-    if (asked.problem) setup = own();
-    else setup = {values: Object.assign(own().values, asked.values), integrator: asked.integrator, preset: null};
-    buildControls();
+    setup = asked.problem ? own() :
+      {values: Object.assign(own().values, asked.values), integrator: asked.integrator, preset: null};
     placeControls();
-    showRunButton();
-    page.layout.resized();
+    say("");
     start(setup, own());
     if (asked.problem) say(asked.problem + "; running the file's own set-up instead.");
+  }
+
+  page.begin = function () {
+    buildControls();
+    showRunButton();
+    page.layout.resized();
+    fromAddress();
+    window.addEventListener("hashchange", function () { if (location.hash !== shownLink) fromAddress(); });
     window.requestAnimationFrame(showTime);
   };
 })();

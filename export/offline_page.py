@@ -31,6 +31,8 @@ import json
 import os
 
 from physics.integrators import INTEGRATORS
+from physics.declared import SMALLEST
+from physics.declared import _short as short_bound
 from scenes._sliders import slider_names, symbol
 from scenes._view import DEFAULT_VIEW
 
@@ -39,7 +41,7 @@ from .arrows import ARROW_LABELS, ARROWS, SEE_THROUGH, choose_scales
 from .framing import frame
 from .lines import ProgramError
 from .plain_ticks import plain_ticks
-from .program_command import description
+from .program_command import command_options, description
 from .graph_reading import GRAPH_READING
 from .offline_judge import stability_data
 from .offline_setup import FRAMING, code, page_setup, preset_data, preset_values, settable, sliders  # noqa: F401
@@ -101,15 +103,17 @@ def page(setup, *, integrator: str | None = None, arrows=None, end: float | None
     first = model.methods(integrator)[0]
     names = [first] if fixed else [first] + [name for name in INTEGRATORS if name != first]
     written = page_setup(setup, view)     # with the forces its sliders switch on, on (offline_setup.py)
+    # the arrows' scales and the header's command are the file's, the same for every program
+    scales = choose_scales(model, view=view, integrator=first if not fixed else None, forces="forces" in shown)
+    options = command_options(setup)
     programs = {name: program(written, integrator=None if fixed else name, web=True, arrows=shown, page=True,
-                              end=end, header_of=setup)
+                              end=end, header_of=setup, options=options, scales=scales)
                 for name in names}
     offered = {found.name: found for found in settable(written, integrator=None if fixed else first, own=setup,
-                                                      also=preset_values(setup))}
+                                                      also=preset_values(setup), scales=scales)}
     command = f"python main.py {setup.name} --html {setup.name}.html"
     methods = sorted(set(fixed or INTEGRATORS))
     framed = frame(model, view)   # the local page's camera (export/framing.py), and room for the arrows
-    scales = choose_scales(model, view=view, integrator=first if not fixed else None, forces="forces" in shown)
     reach = max(framed.camera.range, scales.view_range) if shown else framed.camera.range
     shown_sliders = [name for name in slider_names(setup, view) if name in offered]
     data = {
@@ -120,7 +124,7 @@ def page(setup, *, integrator: str | None = None, arrows=None, end: float | None
         "fixed_methods": fixed,
         "constants": {name: found.as_data() for name, found in offered.items()},
         "all_constants": list(setup.constants),
-        "smallest": 1e-9,
+        "smallest": SMALLEST, "smallest_text": short_bound(SMALLEST),
         "sliders": sliders(setup, view, offered),
         "shown_sliders": shown_sliders,
         "presets": preset_data(setup, view, offered, command),

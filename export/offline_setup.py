@@ -29,6 +29,7 @@ from scenes._sliders import round_slider_values, slider_names, slider_range, sym
 from .lines import ProgramError
 from .program_constants import ROLES, critical_line
 from .vpython_program import program
+from physics.declared import SMALLEST
 from physics.exact import Role
 
 # What only frames the picture: the writer chooses it from the motion, and a constant moved on the
@@ -70,11 +71,11 @@ def code(text: str, skip: str) -> list[str]:
     return lines
 
 
-def _program(setup, integrator) -> str:
-    return program(setup, integrator=integrator, web=True, arrows=(), page=True, header=False)
+def _program(setup, integrator, scales=None) -> str:
+    return program(setup, integrator=integrator, web=True, arrows=(), page=True, header=False, scales=scales)
 
 
-def _same_program(setup, name: str, value: float, base: list[str], integrator) -> bool | None:
+def _same_program(setup, name: str, value: float, base: list[str], integrator, scales=None) -> bool | None:
     """Whether the program for setup with name = value is `base` but for that constant's line;
     None where the physics refuses the value here (a force's rule, μ_s below μ_k: the page judges
     that itself, in the command line's words)."""
@@ -84,7 +85,7 @@ def _same_program(setup, name: str, value: float, base: list[str], integrator) -
     except ValueError:
         return None
     try:
-        text = _program(changed, integrator)
+        text = _program(changed, integrator, scales)
     except (ValueError, ProgramError):
         return False
     return code(text, name) == base
@@ -96,16 +97,17 @@ def _probes(value: float, end: float) -> list[float]:
     return [end + (value - end) * fraction for fraction in (0.0, 0.5, 0.9, 0.99)]
 
 
-def settable(setup, *, integrator=None, own=None, also=None) -> list[Settable]:
+def settable(setup, *, integrator=None, own=None, also=None, scales=None) -> list[Settable]:
     """The constants the page may change and the span of each: every plain number (not a count)
     whose line in the constants block can take the ends of its slider's span (a tenth to three
     times the scene's value, or from 0: scenes/_sliders.py's slider_range) and give the program
     the writer writes for them. From 0, a force's constant switches the force off; its line then
     adds exactly nothing, so the file's program runs it unchanged (probed just above 0). `own`:
     the file's own set-up where `setup` has forces switched on for their sliders (page_setup);
-    `also`: more values of a constant to offer where the program takes them (its presets')."""
+    `also`: more values of a constant to offer where the program takes them (its presets');
+    `scales`: the arrows' scales, which only frame the picture (the probes need not choose them)."""
     own = own or setup
-    text = _program(setup, integrator)
+    text = _program(setup, integrator, scales)
     found = []
     for name, constant in setup.constants.items():
         value = setup.values[name]
@@ -118,12 +120,18 @@ def settable(setup, *, integrator=None, own=None, also=None) -> list[Settable]:
         values = round_slider_values(name, mine, default)
         low, high = (values[0], values[-1]) if values else slider_range(name, mine, default)[:2]
         base = code(text, name)
-        if not all(_takes(setup, name, value, _probe(name, end, high), base, integrator)
-                   for end in (low, high) if end != value):
+
+        def takes(end):
+            return _takes(setup, name, value, _probe(name, end, high), base, integrator, scales)
+        if not all(takes(end) is not None for end in (low, high) if end != value):
             continue
-        for extra in sorted({float(x) for x in (also or {}).get(name, ()) if not low <= x <= high}):
-            if _takes(setup, name, value, _probe(name, extra, high), base, integrator):
-                low, high = min(low, extra), max(high, extra)
+        declared = DECLARED[name]
+        widest = [declared.high, max(declared.low, SMALLEST) if declared.above_low else declared.low]
+        for extra in sorted({float(x) for x in (also or {}).get(name, ()) if not low <= x <= high}) + widest:
+            took = takes(extra)
+            if took is not None:   # the span this file runs reaches it (the declared range's end where it can)
+                reach = extra if took == _probe(name, extra, high) else took
+                low, high = min(low, reach), max(high, reach)
         found.append(Settable(name, float(value), mine, float(default), float(low), float(high)))
     return found
 
@@ -136,11 +144,14 @@ def _probe(name: str, x: float, high: float) -> float:
     return high * 1e-3 if x == 0 and (declared.switch or declared.slider_from_zero) else x
 
 
-def _takes(setup, name, value, end, base, integrator) -> bool:
-    """Whether the program takes `end` for the constant in its line alone (or the nearest value
-    towards `value` the physics allows, where it refuses `end` itself)."""
-    verdicts = (_same_program(setup, name, probe, base, integrator) for probe in _probes(value, end))
-    return next((verdict for verdict in verdicts if verdict is not None), False)
+def _takes(setup, name, value, end, base, integrator, scales=None) -> float | None:
+    """The value, `end` or the nearest towards `value` the physics allows where it refuses `end`
+    itself, for which the program is the file's but for the constant's line; None if none is."""
+    for probe in _probes(value, end):
+        verdict = _same_program(setup, name, probe, base, integrator, scales)
+        if verdict is not None:
+            return probe if verdict else None
+    return None
 
 
 def switched_off(setup, names) -> dict[str, float]:

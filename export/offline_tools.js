@@ -28,15 +28,18 @@
     var below = Math.max(360, height - top - 12);
     var viewHeight = Math.max(220, Math.round(below * (wide ? 0.62 : 0.5)));
     var graphHeight = Math.max(200, Math.round(wide ? (below - 2 * TOOLS.legend_px) / 2 - 24 : below * 0.42));
-    return {canvas: {width: left, height: viewHeight}, graph: {width: right, height: graphHeight}, wide: wide,
-            left: left, right: right};
+    // the graph leaves room at its right for half of its last tick label, which flot centres on the axis's end
+    return {canvas: {width: left, height: viewHeight}, graph: {width: right - TOOLS.tick_room, height: graphHeight},
+            wide: wide, left: left, right: right};
   };
   // The camera's range for a canvas of this size: what export/framing.py's camera_range gives for
   // the picture the local page frames (its width and height, m, with a tenth to spare), at this
   // canvas's own width and height, widened as much as the arrows' scales widened it there.
+  // (GlowScript's range is half the picture's smaller side: its height, unless it is taller than wide.)
   layout.range = function (width, height) {
-    var camera = DATA.camera;
-    return camera.grow * 0.55 * Math.max(camera.box[1], camera.box[0] * height / width, 1e-3);
+    var camera = DATA.camera, box = camera.box;
+    var half = width >= height ? Math.max(box[1], box[0] * height / width) : Math.max(box[0], box[1] * width / height);
+    return camera.grow * 0.55 * Math.max(half, 1e-3);
   };
   layout.resized = function () {
     var sizes = layout.sizes(), run = page.current();
@@ -354,6 +357,16 @@
     if (byId("stopwatch").textContent !== text) byId("stopwatch").textContent = text;
   };
   page.stopwatch = stopwatch;
+
+  // What the tools show now, for a look from outside (the tests): the Step's arrows and the lines drawn.
+  page.toolsState = function () {
+    var run = page.current() || {}, lines = {};
+    ["natural", "equilibrium", "marker"].forEach(function (kind) {
+      lines[kind] = (run.lines && run.lines[kind] || []).filter(function (o) { return o.visible; }).length;
+    });
+    return {stepArrows: (tools.stepArrows || []).filter(function (a) { return a.visible; }).length, lines: lines,
+            place: tools.place.kind};
+  };
 
   function ownSetUp(run) {
     return run.setup.integrator === DATA.integrator && Object.keys(DATA.constants).every(function (name) {

@@ -39,6 +39,7 @@ LINE_COLOURS = {"natural": SKY_BLUE, "equilibrium": BLUISH_GREEN, "marker": VERM
 LINE_HALF_LENGTH = 2.6         # × the masses' radius: each line reaches this far either side of its mass
 # the page's layout: two columns (the view and its controls, the graphs) from this window width, px
 TWO_COLUMNS_FROM, VIEW_SHARE, LEGEND_PX = 900, 0.55, 30
+TICK_ROOM = 36                 # px right of a graph: half its last tick label (22 px text in projector mode)
 
 
 def measured(model, *, view: dict, integrator: str | None) -> dict:
@@ -50,7 +51,7 @@ def measured(model, *, view: dict, integrator: str | None) -> dict:
     axis = "xyz".index(view["plot"][0])
     covered = False if model.exact is None else np.isfinite(model.exact_where_valid([0.0])[0][0]).all(axis=-1)
     formula, formula_why = formula_period(model.forces, model.state, closed_form=covered)
-    end = max(view["window"], model.until)
+    wanted = end = max(view["window"], model.until)
     every_s = record_spacing(model.forces, model.state.m, model.dt)   # s between samples
     traj, why = None, ""
     if centre is None or every_s is None:
@@ -66,6 +67,9 @@ def measured(model, *, view: dict, integrator: str | None) -> dict:
             why = f"not measured when the file was written: {problem.worded('until')}"
         except BlowUpError as problem:
             why = f"the run blew up ({problem})"
+    shortened = (f" (measured over {number(end)} s, not {number(wanted)} s: at dt = {number(model.dt)} s a longer "
+                 f"run would take more than {PERIOD_SECONDS:g} s of computing when the file was written)"
+                 if traj is not None and end < wanted else "")
     lines = []
     for i in range(min(model.state.count, STEP_MASSES)):
         head = f"{model.labels[i]}: " if model.state.count > 1 else ""
@@ -74,6 +78,7 @@ def measured(model, *, view: dict, integrator: str | None) -> dict:
             found = measured_period(traj.t, x, centre=float(centre[i, axis]))
             said = (f"T = {number(found.measured)} ± {number(found.spread, 2)} s over {found.cycles} cycles"
                     if found is not None else "no period: " + why_no_period(traj.t, x, centre=float(centre[i, axis])))
+            said += shortened
         else:
             said = "no period: " + why
         if formula is not None and np.isfinite(formula[i]):
@@ -123,4 +128,5 @@ def tools_data(model, *, view: dict, scales, written_model) -> dict:
         "lines": {"colours": {kind: list(c) for kind, c in LINE_COLOURS.items()}, "half_length": LINE_HALF_LENGTH,
                   "natural": natural},
         "two_columns_from": TWO_COLUMNS_FROM, "view_share": VIEW_SHARE, "legend_px": LEGEND_PX,
+        "tick_room": TICK_ROOM,
     }

@@ -79,7 +79,8 @@ IMPORTS = ["from vpython import *",
 
 
 def program(setup, *, integrator: str | None = None, web: bool = False, arrows=None,
-            end: float | None = None, page: bool = False, header: bool = True, header_of=None) -> str:
+            end: float | None = None, page: bool = False, header: bool = True, header_of=None,
+            options: list[str] | None = None, scales=None) -> str:
     """The VPython program for a configured scene (scenes._catalog.Setup), as text.
 
     integrator  the method (default: the scene's own, else euler-cromer, the page's update), as
@@ -97,16 +98,20 @@ def program(setup, *, integrator: str | None = None, web: bool = False, arrows=N
                 same case, which takes most of the time to write): to compare programs' code.
     header_of   the set-up the header describes, where it is not `setup` (the offline page's
                 programs have the forces its sliders switch on, on; their header is the file's)
+    options     the header command's options, program_command.command_options(setup), where they
+                were worked out already (the offline page writes a program per integrator)
+    scales      the arrows' scales (export/arrows.py choose_scales), where they were chosen already
 
     Raises ProgramError, or ValueError from the scene's build function, with a one-line message.
     """
     model = setup.build()
     _check_size(setup, model)
-    case = _Case(setup, model, integrator, arrows, end, page)
+    case = _Case(setup, model, integrator, arrows, end, page, scales=scales, options=options)
     constants, lists = case.constants_lines()
     # number() and vector_text() come before the loop, or before the lists where the masses' labels use them
     early = page or any("number(" in line for line in lists)
-    described = case if header_of is None else _Case(header_of, header_of.build(), integrator, arrows, end, page)
+    described = case if header_of is None else _Case(header_of, header_of.build(), integrator, arrows, end, page,
+                                                     options=options)
     lines = IMPORTS + (described.header() if header else []) + constants + (HELPERS if early else []) + lists
     lines += program_page.controls_lines(case) if page else []
     lines += ["", "# ---- the objects ----"] + objects(model, case.view, case.constants, case.single)
@@ -123,7 +128,7 @@ def scene_setup_lines(case) -> list[str]:
     own, from case.model and case.constants (the arrows, export/program_arrows.py)."""
     written = program_arrows.WRITTEN if case.page else case.arrows
     lines = program_arrows.setup_lines(case.model, shown=case.arrows, integrator=case.integrator,
-                                       single=case.single, view=case.view, written=written)
+                                       single=case.single, view=case.view, written=written, scales=case.scales)
     if case.page:
         lines += ["", program_page.drawn_line(single=case.single,
                                               arrows=program_page.arrow_objects(written, single=case.single))]
@@ -152,8 +157,9 @@ def _check_size(setup, model) -> None:
 class _Case:
     """One configured case being written: its model, methods, view, named values and forces."""
 
-    def __init__(self, setup, model, integrator, arrows=None, end=None, page=False):
+    def __init__(self, setup, model, integrator, arrows=None, end=None, page=False, *, scales=None, options=None):
         self.setup, self.model, self.integrator, self.page = setup, model, integrator, page
+        self.scales, self.options = scales, options
         self.methods = model.methods(integrator)
         self.view = {**DEFAULT_VIEW, **setup.hooks.view}
         self.arrows = self.view["arrows"] if arrows is None else arrows
@@ -185,7 +191,7 @@ class _Case:
         how = f"the {methods[0]} integrator" if len(set(methods)) == 1 else "each mass's own integrator (the list method)"
         return [*description(self.setup),
                 f"# Written by the spring-mass simulator with {how}. Edit the constants and run it again.",
-                f"# The same case on the simulator's page: {command(self.setup, self.model, self.integrator)}"]
+                f"# The same case on the simulator's page: {command(self.setup, self.model, self.integrator, self.options)}"]
 
     def constants_lines(self) -> tuple[list[str], list[str]]:
         """(the constants block, the lists of one value per mass where there are several masses)."""
