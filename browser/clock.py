@@ -34,6 +34,7 @@ import numpy as np
 
 from physics.accuracy import judge_dt
 from physics.energy import series
+from physics.recording import Samples
 from physics.simulate import BlowUpError, time_grid
 from physics.stability import judge, rates
 from physics.state import State
@@ -227,6 +228,7 @@ class LiveRun:
         self.engine.restart()
         self.problem: str | None = None
         self._grid = time_grid(self.sample_every, t0=self.model.state.t, dt=self.model.dt)
+        self.before = None   # the state at the start of the last step (the description's step)
         return [self.sample()]
 
     def sample(self) -> Sample:
@@ -242,7 +244,7 @@ class LiveRun:
         if self.problem or steps <= 0:
             return []
         try:
-            samples = self.engine.advance(steps, record=self._grid, final=False)
+            samples = self._advance_keeping_before(steps)
         except BlowUpError as error:
             self.problem = str(error)
             return []
@@ -253,6 +255,22 @@ class LiveRun:
                        energy={key: float(values[n]) for key, values in energy.items()})
                 for n, t in enumerate(samples.t)]
 
+
+    def _advance_keeping_before(self, steps: int) -> Samples:
+        """The engine's `steps` steps, the last one apart, so that :attr:`before` is the state at
+        its start: the page describes the last step in words (export/description.py) as Step
+        writes it out. The samples are those one call would record."""
+        engine = self.engine
+        head = engine.advance(steps - 1, record=self._grid, final=False) if steps > 1 else None
+        now = engine.state
+        self.before = State(t=now.t, r=np.array(now.r), p=np.array(now.p), m=now.m)   # a copy: the engine steps on
+        tail = engine.advance(1, record=self._grid, final=False)
+        if head is None or not len(head.t):
+            return tail
+        if not len(tail.t):
+            return head
+        return Samples(t=np.concatenate([head.t, tail.t]), r=np.concatenate([head.r, tail.r]),
+                       p=np.concatenate([head.p, tail.p]), work=np.concatenate([head.work, tail.work]), m=tail.m)
 
     def _freeze_runaways(self) -> None:
         """Have the engine freeze, at rest where they are, expected runaways that went too far."""

@@ -23,8 +23,9 @@ from .axes import PLAIN_TICKS
 from .graph_reading import GRAPH_READING
 from .measure_panel import MeasurePanel
 from .arrows3d import arrow_checkboxes
+from . import access
 from .messages import (ChooseIntegrator, ChoosePreset, ChooseScene, ChooseSpeed, DownloadCsv, DownloadOfflinePage,
-                       DownloadProgram, FitData, Reset, RunOrPause, SetConstant, Step)
+                       DownloadProgram, FitData, JumpTo, Reset, RunOrPause, SetConstant, Step)
 from .readout import units_kept
 
 SPEEDS = {"¼×": 0.25, "½×": 0.5, "1×": 1.0, "2×": 2.0, "4×": 4.0}
@@ -38,6 +39,21 @@ PRIME_SLIDERS = ("<script>$('.ui-slider').each(function () {"
                  " if (this.dataset.primed) return; this.dataset.primed = '1';"
                  " var change = $(this).slider('option', 'change');"
                  " if (change) change({originalEvent: {}}); });</script>")
+
+
+# The Jump box is vpython's winput, an <input> just before the Jump button: this names it (for the
+# tests and a screen reader) and makes Enter in it press Jump, after the box has sent its text.
+UNSEEN = ("position:absolute; width:1px; height:1px; overflow:hidden; clip:rect(0 0 0 0); "
+          "white-space:nowrap")   # read by a screen reader, not drawn
+JUMP_SCRIPT = ("<script>(function () { var mark = document.querySelector('.sm-jumped'); if (!mark) return;"
+               " var box = mark.parentNode; while (box && box.tagName !== 'INPUT') box = box.previousElementSibling;"
+               " if (!box || box.dataset.jump) return; box.dataset.jump = '1'; box.id = 'sm-jump-t';"
+               " box.setAttribute('aria-label', 'jump to t, in seconds');"
+               " box.style.fontSize = 'inherit'; box.style.height = 'auto'; box.style.width = '4.5em';"
+               " box.addEventListener('keyup', function (e) { if (e.key !== 'Enter') return;"
+               " var buttons = document.querySelectorAll('button');"
+               " for (var i = 0; i < buttons.length; i++) if (buttons[i].textContent.trim() === 'Jump') buttons[i].click(); });"
+               "})();</script>")
 
 
 class _OwnLine:
@@ -71,18 +87,24 @@ class Controls:
     preset       the label of the preset applied, shown in the preset menu
     arrows       the kinds of arrow switched on now, ticked in their check boxes
     load_button  the Load data button's HTML (browser/data_panel.py), '' where files cannot be sent
+    force_box    makes the Add a force box under the sliders, given vp and the queue's put
+                 (browser/force_box.py's ForceBox), or None for none
     """
 
     def __init__(self, vp, *, setup, view: dict, integrators, integrator: str, speed: str,
-                 preset: str | None = None, arrows=(), load_button: str = "", measure: dict | None = None):
+                 preset: str | None = None, arrows=(), load_button: str = "", measure: dict | None = None,
+                 force_box=None):
         self.vp = vp
         self.commands: queue.SimpleQueue = queue.SimpleQueue()
         self.downloads = 0  # links offered so far: each gets its own id
         caption = vp.scene.append_to_caption
         caption("\n")
-        self._run_row(integrators=integrators, integrator=integrator, speed=speed)
+        self._run_row(integrators=integrators, integrator=integrator, speed=speed,
+                      until=setup.values.get("until"))
         self._time_row()
         caption("\n")
+        access.describe_button(vp, self.commands.put)   # browser/access.py: the motion in words (key D)
+        caption(" ")
         # browser/measure_panel.py: its button here, its block (closed at first) under it, by the clock
         self.measure = MeasurePanel(vp, self.commands.put,
                                     **(measure or {"period": False, "lines": (), "graph": "energy"}))
@@ -96,6 +118,7 @@ class Controls:
         caption("\n")
         self.step_text = vp.wtext(text="")
         self._slider_rows(setup=setup, view=view)
+        self.force_box = force_box(vp, self.commands.put) if force_box else None
         vp.wtext(text="").text = PLAIN_TICKS  # every graph's tick labels in plain decimals (browser/axes.py)
         vp.wtext(text="").text = GRAPH_READING  # a click reads a graph (browser/graph_reading.py)
         caption("\n\n")
@@ -105,17 +128,20 @@ class Controls:
         caption("\n<i>Moving a slider, choosing another integrator or a preset, or loading data restarts "
                 "the run from t = 0; Reset returns to the start; "
                 "Step advances one Δt.</i>\n")
+        vp.wtext(text="").text = access.keys_line()   # the keys, and the box that turns the letter keys off
 
     # ---- building the caption, one row at a time ----
 
-    def _run_row(self, *, integrators, integrator: str, speed: str) -> None:
-        """Run/Pause, Step, Reset, the integrator (a menu, or the masses' own methods) and the speed."""
+    def _run_row(self, *, integrators, integrator: str, speed: str, until) -> None:
+        """Run/Pause, Step, Reset, Jump to t, the integrator (a menu, or the masses' own methods)
+        and the speed."""
         vp, put, caption = self.vp, self.commands.put, self.vp.scene.append_to_caption
         self.run_button = vp.button(text="Pause", bind=lambda _: put(RunOrPause()))
         caption("  ")
         vp.button(text="Step", bind=lambda _: put(Step()))
         caption("  ")
         vp.button(text="Reset", bind=lambda _: put(Reset()))
+        self._jump_box(until)
         caption("    integrator ")
         if integrators:
             vp.wtext(text="<i>" + ", ".join(integrators) + "</i> (one per mass)")
@@ -126,6 +152,34 @@ class Controls:
         vp.menu(choices=list(SPEEDS), selected=speed, bind=lambda menu: put(ChooseSpeed(menu.selected)))
         caption("\n")
 
+    def _jump_box(self, until) -> None:
+        """"Jump to t = [ ] s" and its button (browser/jump.py), the box starting at the question
+        time. vpython's box sends its text when Enter is pressed or the focus leaves it (a click on
+        Jump does that first), so the button reads the text last sent; Enter in the box presses
+        Jump too (JUMP_SCRIPT), and the key J presses it from anywhere (browser/page_layout.py)."""
+        vp, put, caption = self.vp, self.commands.put, self.vp.scene.append_to_caption
+        self.jump_text = f"{until:g}" if isinstance(until, (int, float)) else "1"
+        caption("    jump to t = ")
+        vp.winput(type="string", text=self.jump_text, width=64,
+                  bind=lambda box: setattr(self, "jump_text", box.text))
+        caption(" s ")
+        vp.button(text="Jump", bind=lambda _: put(JumpTo(self.jump_text)))
+        self.jumped_text = vp.wtext(text="")
+        self.jumps = 0
+        self.show_jumped(None)
+
+    def show_jumped(self, t: float | None, *, decimals: int = 2) -> None:
+        """After a jump (the view calls this once it has drawn): a note of where it went, carrying
+        the jump's count and t for a look from outside (tests/browser_support.py's jump_to waits
+        for it); None writes the empty note and the box's script."""
+        if t is not None:
+            self.jumps += 1
+        note = "" if t is None else f"jumped to t = {t:.{decimals}f} s, paused"
+        # heard, not seen: the page's big t and its Run button already show it
+        self.jumped_text.text = (f"<span class='sm-jumped' role='status' data-jumps='{self.jumps}' "
+                                 f"data-t='{'' if t is None else repr(float(t))}' style='{UNSEEN}'>{note}</span>"
+                                 f"{JUMP_SCRIPT}")
+
     def _time_row(self) -> None:
         """The time, the error read-out, and the status line under them."""
         vp, caption = self.vp, self.vp.scene.append_to_caption
@@ -135,6 +189,7 @@ class Controls:
         # the status (why the run stopped, a runaway, Δt stable but inaccurate, a file that cannot
         # open) under the time, where a class looks: at the page's foot it was below a 1280×800 screen
         self.status_text = _OwnLine(vp.wtext(text=""))
+        self.description = access.description_line(vp)   # the live region (browser/access.py)
         self.notice = ""   # a sentence said (say()) that stays until the next run starts
 
     def _menu_row(self, *, setup, preset: str | None) -> None:
@@ -193,6 +248,7 @@ class Controls:
             self.slider_texts[name] = vp.wtext(text="")
         if self.sliders:
             vp.wtext(text="").text = PRIME_SLIDERS  # set, not made with it: the setter runs scripts
+            vp.wtext(text="").text = access.slider_script(setup, list(self.sliders))   # names and values in words
 
     def clicks(self) -> list:
         """The messages queued by clicks since the last call (browser/messages.py), oldest first."""

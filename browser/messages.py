@@ -40,6 +40,19 @@ class Reset:
 
 
 @dataclass(frozen=True)
+class JumpTo:
+    """Take the run to the time typed in the "Jump to t" box, drawn once and paused there (the
+    Jump button, key J; browser/jump.py). `text` is the box's text, "2.5" or "2.5 s": the view
+    reads it, so a bad entry is one sentence on the page. A t before now starts again from 0."""
+    text: str
+
+
+@dataclass(frozen=True)
+class Describe:
+    """Say the motion in words in the live region (the Describe button, key D; export/description.py)."""
+
+
+@dataclass(frozen=True)
 class ChooseSpeed:
     """Simulated time runs at this speed × wall time: a label of browser/controls.py's SPEEDS, `2×`."""
     label: str
@@ -70,6 +83,25 @@ class ChoosePreset:
 class ChooseScene:
     """Another scene from the menu, by its name."""
     name: str
+
+
+@dataclass(frozen=True)
+class AddForce:
+    """The Add a force box (browser/force_box.py): add the force `name` written as `text`, an
+    expression of the program's names, read by physics/expression.py's grammar."""
+    name: str
+    text: str
+
+
+@dataclass(frozen=True)
+class RemoveForce:
+    """Remove the added force `name` (its Remove button in the Add a force box)."""
+    name: str
+
+
+@dataclass(frozen=True)
+class ResetForces:
+    """Back to the forces the scene was opened with (the box's Back to the file's program)."""
 
 
 # ---- what is drawn ----

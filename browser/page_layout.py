@@ -17,9 +17,8 @@ browser, where the window's size is known, and again whenever the window is resi
 * the 3-D view's labels grow with projector mode as the page's text does, their offsets from
   their masses follow the canvas's size, and each is drawn wholly inside the canvas (moved in from
   an edge it would cross: 18 px text in the 538 × 263 px canvas of a 1024 × 768 window);
-* keys: Space runs or pauses, → steps, R resets, + and − change the speed, P projector mode, and
-  with the Measure panel open S, L and C for the stopwatch; every control is reached with Tab and
-  shows a thick outline when it has the focus;
+* the keys are export/page_keys.py's, heard by export/page_access.js (browser/access.py puts it on
+  the page); every control is reached with Tab and shows a thick outline when it has the focus;
 * the energy bars (browser/energy_bars.py), when chosen, in the graph place under the graphs.
 
 The graphs keep the height browser/graphs.py gives them (flot's tick spacing depends on it, and
@@ -305,47 +304,7 @@ SCRIPT = """
     window.smInstalled = true;
     window.addEventListener('resize', layout);
     setInterval(layout, 700);
-    document.addEventListener('keydown', function (e) {
-      if (e.ctrlKey || e.altKey || e.metaKey) return;
-      var t = e.target, tag = t.tagName;
-      if (tag === 'INPUT' || tag === 'SELECT' || tag === 'TEXTAREA') return;
-      var onControl = tag === 'BUTTON' || (t.classList && t.classList.contains('ui-slider-handle'));
-      function press(names) {
-        var buttons = document.querySelectorAll('button');
-        for (var i = 0; i < buttons.length; i++)
-          if (names.indexOf(buttons[i].textContent.trim()) >= 0) { buttons[i].click(); return true; }
-        return false;
-      }
-      function measuring() {  // the stopwatch's keys work while the Measure panel is open
-        return Array.prototype.some.call(document.querySelectorAll('.sm-measure'),
-                                         function (box) { return box.style.display !== 'none'; });
-      }
-      function speed(step) {
-        var menus = document.querySelectorAll('select');
-        for (var i = 0; i < menus.length; i++) {
-          var texts = Array.prototype.map.call(menus[i].options, function (o) { return o.text; });
-          if (texts.indexOf('1×') < 0) continue;
-          var n = Math.min(menus[i].options.length - 1, Math.max(0, menus[i].selectedIndex + step));
-          if (n !== menus[i].selectedIndex) {
-            menus[i].selectedIndex = n;
-            menus[i].dispatchEvent(new Event('change', {bubbles: true}));
-          }
-          return true;
-        }
-        return false;
-      }
-      var done = false;
-      if (e.key === ' ' && tag !== 'BUTTON') done = press(['Run', 'Pause']);
-      else if (e.key === 'ArrowRight' && !onControl) done = press(['Step']);
-      else if (e.key === 'r' || e.key === 'R') done = press(['Reset']);
-      else if (e.key === '+' || e.key === '=') done = speed(1);
-      else if (e.key === '-' || e.key === '−' || e.key === '_') done = speed(-1);
-      else if (e.key === 'p' || e.key === 'P') { window.smProjector = !window.smProjector; layout(); done = true; }
-      else if (measuring() && (e.key === 's' || e.key === 'S')) done = press(['Start (S)', 'Stop (S)']);
-      else if (measuring() && (e.key === 'l' || e.key === 'L')) done = press(['Lap (L)']);
-      else if (measuring() && (e.key === 'c' || e.key === 'C')) done = press(['Clear (C)']);
-      if (done) e.preventDefault();
-    });
+    // the keys are export/page_access.js's (export/page_keys.py), which both pages share
   }
   layout();
 })();
@@ -354,7 +313,7 @@ SCRIPT = """
 PROJECTOR_BUTTON = ("<button id='sm-projector' type='button' onclick='window.smProjector = !window.smProjector;"
                     " window.smLayout && window.smLayout()'>Projector (P)</button>")
 
-KEYS_HINT = "Keys: Space run/pause, → step, R reset, + and − speed, P projector, Tab moves between controls."
+KEYS_HINT = "Keys: Space run/pause, → step, R reset, J jump to t, + and − speed, P projector, Tab moves between controls."
 
 
 def page_head(*, projector: bool = False) -> str:

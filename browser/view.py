@@ -24,7 +24,8 @@ import time
 
 import numpy as np
 
-from export import offline_page
+from export import files, offline_page
+from export.description import describe
 from export.offline_page import link_fragment
 from export.step_update import step_lines, update_force
 from physics.period import CrossingMeter, formula_period
@@ -32,16 +33,21 @@ from physics.period import CrossingMeter, formula_period
 from scenes import catalog
 from scenes._view import DEFAULT_VIEW
 
+from . import access
 from .clock import LiveRun, RealTimeClock, StepBudget
 from .controls import (PRESET_PROMPT, SPEEDS, Controls, constants_text, csv_href, page_href, program_href,
                        scene_menu_choices, slider_names, slider_range, symbol, time_decimals)
 from .arrows3d import MomentumArrows
 from .data_panel import MeasuredData, load_button_html
 from .graphs import SAMPLE_EVERY, Graphs, csv_text
+from .force_box import Comparison, ForceBox, change_forces
+from .jump import batches, jump_steps, jump_time
 from .measure_panel import period_text
-from .messages import (Batch, ChooseGraph, ChooseIntegrator, ChoosePreset, ChooseScene, ChooseSpeed, ClearStopwatch,
-                       DownloadCsv, DownloadOfflinePage, DownloadProgram, FitData, LapStopwatch, MoveMarker, Reset,
-                       RunOrPause, SetConstant, ShowArrows, ShowLine, ShowPeriod, StartStopwatch, Step)
+from .messages import (AddForce, Batch, ChooseGraph, ChooseIntegrator, ChoosePreset, ChooseScene, ChooseSpeed,
+                       ClearStopwatch, Describe, DownloadCsv, DownloadOfflinePage, DownloadProgram, FitData, JumpTo,
+                       LapStopwatch, MoveMarker, RemoveForce, Reset, ResetForces, RunOrPause, SetConstant, ShowArrows,
+                       ShowLine, ShowPeriod,
+                       StartStopwatch, Step)
 from .reference_lines import ReferenceLines
 from .stopwatch import Stopwatch
 from .page_layout import PROJECTOR_BUTTON, page_head
@@ -124,6 +130,9 @@ class SceneView:
         self.period_shown = False   # the period is hidden until its box is ticked
         self.lines_shown: set = set()
         self.graph_place = "energy"
+        self.jumped = False         # a jump was made this frame: the page says so once it has drawn
+        self.forces_start = setup.written   # the forces the scene opened with (--force): the box's way back
+        self.comparison = Comparison(vp)    # the run before a force was added, dimmed (browser/force_box.py)
         self.scene, self.controls, self.graphs = self._build_parts(preset=preset)
         self._start_run()
 
@@ -133,7 +142,7 @@ class SceneView:
         """The 3-D picture, the controls and the graphs of self.setup, in the order the page shows them."""
         setup, model = self.setup, self.live.model
         view = {**DEFAULT_VIEW, **setup.hooks.view}
-        title = (page_head(projector=self.projector) + f"<b style='font-size:130%'>{setup.name}</b>: "
+        title = (page_head(projector=self.projector) + access.head(setup) + f"<b style='font-size:130%'>{setup.name}</b>: "
                  f"{_summary(setup.module)}{PROJECTOR_BUTTON}\n")
         scene = Scene3D(self.vp, model=model, view=view, title=title)
         if self.arrows_scene != setup.name:  # a new scene starts with its own arrows, or --arrows
@@ -147,7 +156,8 @@ class SceneView:
                             arrows=self.arrows_shown,
                             load_button=load_button_html() if hasattr(self.server, "uploaded") else "",
                             measure={"period": self.period_shown, "lines": self.lines_shown,
-                                     "graph": self.graph_place})
+                                     "graph": self.graph_place},
+                            force_box=functools.partial(ForceBox, setup=setup, model=model, start=self.forces_start))
         self.view = view
         self.lines = self._lines(scene, model)
         self.lines.bind_mouse(controls.commands.put)
@@ -175,6 +185,9 @@ class SceneView:
     def _build_page(self, setup, model, *, preset: str | None = None, old_page_gone: bool = False) -> None:
         """Take down the parts shown so far (unless the page they were on is gone), build this
         scene's, and start its run at t = 0."""
+        if setup.name != self.setup.name:     # another scene: its own forces, and the way back to them
+            self.forces_start = setup.written
+        self.comparison.forget()
         if not old_page_gone:
             self.lines.take_down()
             self.arrows.take_down()
@@ -208,6 +221,7 @@ class SceneView:
         self.arrows.end_step()
         self.arrows.publish()
         self.controls.step_text.text = ""
+        self.controls.description.text = ""
         self.scene.clear()
         self.graphs.clear()
         self._plot(samples, redraw=True)
@@ -286,6 +300,9 @@ class SceneView:
             self._plot(samples)
         if steps or changed:
             self._draw()
+        if self.jumped:   # last, after everything it drew: the note a look from outside waits for
+            self.jumped = False
+            self.controls.show_jumped(self.live.state.t, decimals=self.decimals)
         return max(0.002, 1.0 / FRAME_RATE - (time.perf_counter() - start))
 
     def _apply_commands(self, *, now: float) -> bool:
@@ -324,6 +341,21 @@ class SceneView:
     def _step_once(self, message: Step, batch: Batch) -> None:
         self.running = False
         self._step()
+
+    @carry_out.register
+    def _jump_to(self, message: JumpTo, batch: Batch) -> None:
+        if batch.changes or batch.integrator:   # chosen before the jump: they restart the run first
+            self._rebuild(changes=batch.changes, integrator=batch.integrator or self.integrator)
+            batch.changes, batch.integrator = {}, None
+        self._jump(message.text)
+
+    @carry_out.register
+    def _describe(self, message: Describe, batch: Batch) -> None:
+        self._describe_motion()
+
+    @carry_out.register
+    def _change_forces(self, message: AddForce | RemoveForce | ResetForces, batch: Batch) -> None:
+        change_forces(self, message, batch)     # browser/force_box.py
 
     @carry_out.register
     def _show_arrows(self, message: ShowArrows, batch: Batch) -> None:
@@ -443,6 +475,11 @@ class SceneView:
         except ValueError as problem:
             self.controls.say(f"<b>Cannot use that value:</b> {problem}")
             return
+        self.comparison.forget()     # the run before a force was added is another case now
+        self.rebuild_with(setup, model, changes=changes, integrator=integrator)
+
+    def rebuild_with(self, setup, model, *, changes: dict, integrator: str) -> None:
+        """Run this setup's model from t = 0, keeping the page (new constants, integrator or forces)."""
         if changes:
             self.controls.preset_left()
             self.preset = None
@@ -457,6 +494,32 @@ class SceneView:
         self.graphs.new_reference(model, self.lines.at["equilibrium"])
         self._measure(model, self.graphs)
         self._start_run()
+
+    def _jump(self, text: str) -> None:
+        """Jump to t (browser/jump.py): the engine runs to the first step at or after t, from 0 if t
+        is before now, each graph sample handed to the graphs as the frames of a run at 1× would
+        have, and the page is drawn once, paused there. A t that cannot be reached is one sentence."""
+        live = self.live
+        try:
+            t = jump_time(text, t0=live.model.state.t)
+            target = jump_steps(live, t, sample_every=live.sample_every)
+        except ValueError as problem:
+            self.controls.say(str(problem))
+            return
+        self.running = False
+        self.arrows.end_step()
+        self.controls.step_text.text = ""
+        if target < live.engine.steps:
+            self._reset()
+        for steps in batches(target - live.engine.steps, dt=live.model.dt, frame=1.0 / FRAME_RATE,
+                             runaways_possible=bool(live.may_run_away)):
+            for sample in live.advance(steps):
+                self._plot([sample])
+            if live.problem:
+                break
+        self.graphs.live_now(live)   # moved at most every LIVE_EVERY s of wall time: maybe not since the last
+        self.clock.restart(now=time.perf_counter())
+        self.jumped = True
 
     def _step(self) -> None:
         """Step: one Δt, drawn as p_f = p_i + F_net Δt at each mass and written out with its
@@ -482,6 +545,15 @@ class SceneView:
         more = f"\n(and {after.count - len(shown)} more masses)" if after.count > len(shown) else ""
         self.controls.step_text.text = ("<span class='step-readout' style='font-family: monospace'>"
                                         + "\n".join(blocks) + more + "</span>")
+        self._describe_motion()
+
+    def _describe_motion(self) -> None:
+        """The motion in words (export/description.py) in the live region under the clock: where
+        each mass is, how it moves, and the last step's F_net and its parts, the engine's numbers."""
+        live = self.live
+        self.controls.description.text = describe(live.model, live.engine.methods, state=live.state,
+                                                  before=live.before, equilibrium=self.lines.at["equilibrium"],
+                                                  decimals=self.decimals)
 
     # ---- drawing ----
 
@@ -587,7 +659,7 @@ class SceneView:
         from export import program
 
         try:
-            text = program(self.setup, integrator=self.integrator, arrows=self.arrows.shown)
+            text = files.stamped(program(self.setup, integrator=self.integrator, arrows=self.arrows.shown))
         except ValueError as problem:
             self.controls.offer_nothing(f"no program: {problem}")
             return
@@ -608,7 +680,7 @@ class SceneView:
 
         def write():
             try:
-                writing["text"] = offline_page.page(setup, integrator=integrator, arrows=shown)
+                writing["text"] = files.stamped(offline_page.page(setup, integrator=integrator, arrows=shown))
             except ValueError as problem:
                 writing["problem"] = str(problem)
         writing["thread"] = threading.Thread(target=write, name="offline page", daemon=True)

@@ -94,8 +94,12 @@ window.offlineProgram = function (compiled, rate, GSprint, offline_page, canvas,
 
   // The program for a set-up: the file's program for its integrator, with each constant that
   // differs from the one written into its line of the constants block (`k = 60   # N/m: ...`).
-  function programFor(setup) {
-    var lines = DATA.programs[setup.integrator].split("\n");
+  function programFor(setup) {   // with the forces the Add a force box adds (export/force_box.js)
+    var own = window.offlineForces ? window.offlineForces.program(setup.integrator) : DATA.programs[setup.integrator];
+    return withConstants(own, setup);
+  }
+  function withConstants(text, setup) {
+    var lines = text.split("\n");
     Object.keys(setup.values).forEach(function (name) {
       if (setup.values[name] === DATA.constants[name].written) return;
       var at = lines.findIndex(function (line) { return line.indexOf(name + " = ") === 0; });
@@ -126,7 +130,9 @@ window.offlineProgram = function (compiled, rate, GSprint, offline_page, canvas,
 
   var current = null;              // the run now; a run replaced stops at its next rate()
   var runs = 0;                    // how many runs have started (the tests wait for the next one)
-  var paused = false, steps = 0, release = null, speed = 1;
+  // with prefers-reduced-motion the page opens paused, its first frame drawn (Run starts it)
+  var paused = !!(window.matchMedia && window.matchMedia("(prefers-reduced-motion: reduce)").matches), steps = 0, release = null, speed = 1;
+  var jump = null, jumps = 0, jumpsDrawn = 0;   // the jump under way ({run, n}), jumps done, and drawn
   var compiled = {};               // program text -> GlowScript's JavaScript
   var REFUSED = {};                // what a refused run throws from its check, to end it there
 
@@ -141,11 +147,23 @@ window.offlineProgram = function (compiled, rate, GSprint, offline_page, canvas,
   // instead of racing to catch up. Paused, it holds the program here until Run or Step; a replaced
   // run is held for good (its promise never settles, so that run ends here).
   var YIELD_MS = 30, LAG_S = 0.25;
+  // Jump to t: the run steps on to the jump's step without waiting and without drawing (rate()
+  // returns at once), letting the page breathe every JUMP_YIELD_MS on a long jump; there it is
+  // paused, and drawn once (browser/jump.py is the local page's).
+  var JUMP_YIELD_MS = 1000;
   function wait(ms) { return new Promise(function (resolve) { setTimeout(resolve, ms); }); }
 
   function rateFor(run) {
     return async function (perSecond) {
-      while (run === current && paused && steps === 0) {
+      for (;;) {                     // a jump asked while held goes on from the hold
+        if (jump && jump.run === run && run === current) {
+          if (run.n < jump.n) {
+            if (performance.now() - jump.breathed > JUMP_YIELD_MS) { await wait(0); jump.breathed = performance.now(); }
+            return;
+          }
+          jumped(run);
+        }
+        if (!(run === current && paused && steps === 0)) break;
         if (run.stepped) { showStep(run); tell("paused", run); run.stepped = false; }
         run.clock = null;
         await holdUntilAsked();
@@ -232,14 +250,17 @@ window.offlineProgram = function (compiled, rate, GSprint, offline_page, canvas,
         run.graph = window.graph.get_selected();
         showArrows(run);
         tell("drawn", run);
+        if (window.offlineForces) window.offlineForces.drawn(run);
       },
-      stepped: function (i, n, m, F, p, r) {
+      stepped: function (i, n, m, F, p, r, terms) {
         if (run !== current) return;
         var before = run.last[i];
-        run.steps[i] = {n: n, m: m, F: vec(F), p_i: before.p, r_i: before.r, p_f: vec(p), r_f: vec(r)};
+        run.steps[i] = {n: n, m: m, F: vec(F), p_i: before.p, r_i: before.r, p_f: vec(p), r_f: vec(r),
+                        terms: (terms || []).map(vec)};
         run.last[i] = {r: run.steps[i].r_f, p: run.steps[i].p_f};
         if (i === 0) run.n = n;
         tell("stepped", run, i, n);
+        if (window.offlineForces) window.offlineForces.stepped(run, run.steps[i]);
       },
       energy: function (i, n, K, U, W) {   // the program's K, each force's U and W_nc, after step n
         if (run === current) tell("energy", run, i, n, {K: K, U: plain(U), W: W});
@@ -276,7 +297,10 @@ window.offlineProgram = function (compiled, rate, GSprint, offline_page, canvas,
     var sizes = page.layout.sizes();
     var main = window.offlineProgram(compiled[text], rateFor(run), printFor(run), function () { return pageFor(run); },
                                      sized(window.canvas, sizes.canvas), sized(window.graph, sizes.graph));
-    main().catch(function (error) {
+    main().then(function () {
+      run.ended = true;
+      if (jump && jump.run === run) jumped(run);   // the program ended before the jump's t
+    }, function (error) {
       if (run !== current) return;
       if (error === REFUSED) refused(run);
       else say("The program stopped: " + String(error).split("\n")[0]);
@@ -344,6 +368,30 @@ window.offlineProgram = function (compiled, rate, GSprint, offline_page, canvas,
     }
     var more = run.last.length > count ? "\n(and " + (run.last.length - count) + " more masses)" : "";
     byId("step").textContent = blocks.join("\n") + more;
+    sayMotion(run);
+  }
+
+  // ---- the motion in words: export/description.py's template, filled with the program's numbers ----
+
+  function sayMotion(run) {
+    var D = DATA.describe, dt = run.setup.values.dt, n = run.n || 0;
+    var t = (n * dt).toFixed(Math.min(100, Math.max(2, timeDecimals(dt))));
+    var centres = page.ownSetUp && page.ownSetUp(run) ? DATA.measured.equilibrium : null;
+    var masses = (run.last || []).map(function (now, i) {
+      var s = run.steps[i] && run.steps[i].n === n ? run.steps[i] : null;
+      var m = s ? s.m : (run.setup.values.m !== undefined ? run.setup.values.m : D.m[i]);
+      var method = DATA.fixed_methods ? DATA.fixed_methods[i] : run.setup.integrator;
+      var step = null;
+      if (s) {
+        var once = DATA.step.kicks_once[method];
+        step = {average: !once, parts: once ? s.terms.map(function (F, k) { return [D.labels[k], F]; }) : [],
+                F_net: once ? s.F : s.p_f.map(function (pf, k) { return (pf - s.p_i[k]) / dt; })};
+      }
+      return {who: run.last.length > 1 ? D.template.many.replace("{label}", DATA.step.labels[i]) : D.template.one,
+              r: now.r, v: now.p.map(function (c) { return c / m; }), centre: centres ? centres[i] : null, step: step,
+              position: "< " + now.r.map(function (c) { return pyG(c, D.digits); }).join(", ") + " >"};
+    });
+    byId("description").textContent = window.smAccess.sentences(D, t, masses, masses.length, pyG);
   }
 
   // ---- the controls ----
@@ -370,6 +418,46 @@ window.offlineProgram = function (compiled, rate, GSprint, offline_page, canvas,
     letGo();
   }
   function reset() { say(""); start(setup, setup); }
+
+  // The time typed in the box, s ("2.5", "2.5 s"), or the one-line reason it cannot be one.
+  function jumpTime(text) {
+    var found = /^\s*([+-]?(\d+\.?\d*|\.\d+)([eE][+-]?\d+)?)\s*s?\s*$/.exec(text);
+    if (!found) return {problem: "jump to t: '" + text.trim().slice(0, 40) + "' is not a time in seconds; type a number such as 2.5"};
+    var t = Number(found[1]);
+    if (!isFinite(t)) return {problem: "jump to t: " + found[1] + " s is not a time the run can reach; type a number such as 2.5"};
+    if (t < 0) return {problem: "jump to t: the run starts at t = 0 s, so it cannot show t = " + pyG(t, 6) + " s"};
+    return {t: t};
+  }
+
+  // Jump to the box's t: the first step at or after it (as --headless and the program's n_until
+  // count), from t = 0 again if that is before now; paused there.
+  function jumpTo(text) {
+    var asked = jumpTime(text);
+    if (asked.problem) { say(asked.problem); return; }
+    var dt = setup.values.dt, n = Math.max(0, Math.ceil(asked.t / dt - 1e-9));
+    if (!current || n < current.n) start(setup, setup);
+    paused = true;
+    steps = 0;
+    showRunButton();
+    byId("step").textContent = "";
+    jump = {run: current, n: n, breathed: performance.now()};
+    if (current.ended) jumped(current);
+    else letGo();
+  }
+
+  function jumped(run) {           // the jump is over: paused where it ended, then drawn once
+    var asked = jump.n;
+    jump = null;
+    jumps += 1;
+    var done = jumps;
+    run.clock = null;
+    if (run.n < asked) say("jump to t: the program stops at t = " + (run.n * run.dt).toFixed(Math.max(2, timeDecimals(run.dt))) +
+                           " s (its t_end), so the page shows that");
+    else say("");
+    window.requestAnimationFrame(function () {           // this frame draws the run where it is,
+      window.requestAnimationFrame(function () { jumpsDrawn = Math.max(jumpsDrawn, done); });   // and it has
+    });
+  }
 
   function showArrows(run) {
     var any = false;
@@ -429,6 +517,7 @@ window.offlineProgram = function (compiled, rate, GSprint, offline_page, canvas,
     }
     byId("slider-" + name + "-value").textContent = DATA.constants[name].symbol + " = " +
       (typeof value === "number" ? describe(value, DATA.constants[name].unit) : "…");
+    input.setAttribute("aria-valuetext", byId("slider-" + name + "-value").textContent);   // said with its unit
   }
 
   // The sliders a preset (or the file) shows, as the local page shows them for its values.
@@ -458,6 +547,10 @@ window.offlineProgram = function (compiled, rate, GSprint, offline_page, canvas,
     byId("run").addEventListener("click", function (e) { toggle(); e.target.blur(); });
     byId("step-button").addEventListener("click", function (e) { step(); e.target.blur(); });
     byId("reset").addEventListener("click", function (e) { reset(); e.target.blur(); });
+    byId("jump").addEventListener("click", function (e) { jumpTo(byId("jump-t").value); e.target.blur(); });
+    byId("jump-t").addEventListener("keydown", function (e) {
+      if (e.key === "Enter") { e.preventDefault(); jumpTo(byId("jump-t").value); }
+    });
     DATA.arrows.kinds.forEach(function (kind) {
       byId("arrow-" + kind).addEventListener("change", function () { if (current) showArrows(current); });
     });
@@ -489,25 +582,8 @@ window.offlineProgram = function (compiled, rate, GSprint, offline_page, canvas,
       page.layout.resized();
     });
     window.addEventListener("resize", function () { page.layout.resized(); });
-    document.addEventListener("keydown", function (e) {   // as the local page: Space, → and R
-      if (e.ctrlKey || e.altKey || e.metaKey) return;
-      var tag = e.target.tagName;
-      if (tag === "INPUT" || tag === "SELECT" || tag === "TEXTAREA") return;
-      var done = true;
-      if (e.key === " " && tag !== "BUTTON") toggle();
-      else if (e.key === "ArrowRight" && tag !== "BUTTON") step();
-      else if (e.key === "r" || e.key === "R") reset();
-      else if (e.key === "+" || e.key === "=") changeSpeed(1);
-      else if (e.key === "-" || e.key === "−" || e.key === "_") changeSpeed(-1);
-      else done = page.keys && page.keys(e);
-      if (done) e.preventDefault();
-    });
-  }
-
-  function changeSpeed(by) {
-    var menu = byId("speed");
-    menu.selectedIndex = Math.min(menu.options.length - 1, Math.max(0, menu.selectedIndex + by));
-    setSpeed(DATA.speeds[menu.value]);
+    byId("describe").addEventListener("click", function () { if (current) sayMotion(current); });
+    // the keys are export/page_access.js's (export/page_keys.py), as on the local page
   }
 
   function setSpeed(value) { speed = value; if (current) current.clock = null; }
@@ -523,11 +599,16 @@ window.offlineProgram = function (compiled, rate, GSprint, offline_page, canvas,
     return Object.assign({n: run.n, paused: paused, speed: speed, integrator: setup.integrator, values: setup.values,
             ran: run.ran, preset: setup.preset, arrows: drawn, run: run.number, checked: !!run.checked,
             status: byId("status").textContent,
-            opacity: (run.balls || []).map(function (ball) { return ball.opacity; })},
+            opacity: (run.balls || []).map(function (ball) { return ball.opacity; }),
+            jumping: jump !== null, jumps: jumps, jumpsDrawn: jumpsDrawn, last: run.last},
       page.toolsState ? page.toolsState() : {});
   };
   page.current = function () { return current; };
   page.isPaused = function () { return paused; };
+
+  // what the Add a force box (export/force_box.js) asks of the page
+  window.offlinePage = {setup: function () { return setup; }, withConstants: withConstants,
+                        restart: function () { start(setup, setup); }};
 
   // ---- start ----
 

@@ -10,7 +10,8 @@ handout's, which are the engine's: it prints `--headless`'s answer at the questi
 The page around the program (export/offline_page.js) gives the local page's lesson controls:
 Run/Pause, Step (one Δt written out in export/step_update.py's layout and digits), Reset, a slider
 for each of the scene's main constants (scenes/_sliders.py, as the local page has them), the
-arrows' check boxes and the keys Space, → and R. It never steps the physics itself: it holds the
+arrows' check boxes, Jump to t (the program run on to a time without drawing, then paused there)
+and the keys Space, →, R and J. It never steps the physics itself: it holds the
 program at rate() while paused, and starts it again with new constants written into its
 constants block (export/program_page.py has the lines the program adds for the page).
 
@@ -36,10 +37,13 @@ from physics.declared import _short as short_bound
 from scenes._sliders import slider_names, symbol
 from scenes._view import DEFAULT_VIEW
 
-from . import files
+from . import files, offline_forces
+from . import page_access
 from .arrows import ARROW_LABELS, ARROWS, SEE_THROUGH, choose_scales
+from .description import template_data
 from .framing import frame
 from .lines import ProgramError
+from .page_keys import keys_html
 from .plain_ticks import plain_ticks
 from .program_command import command_options, description
 from .graph_reading import GRAPH_READING
@@ -69,6 +73,8 @@ STYLE = os.path.join(HERE, "offline_page.css")
 MAX_BYTES = 7_000_000          # the issue's bound on the file's size
 FOV = 0.2                      # rad: the local page's long lens (browser/scene3d.py), the support and springs flat
 SPEEDS = {"¼×": 0.25, "½×": 0.5, "1×": 1.0, "2×": 2.0, "4×": 4.0}   # as the local page's speed menu (browser/controls.py)
+VIEW_LABEL = ("The 3-D view of the scene. Press D, or the Describe button, to hear where each mass is and "
+              "how it moves.")
 BODY_PX, PROJECTOR_PX = 18, 22  # px: the smallest text, as on the local page (browser/page_layout.py)
 
 
@@ -112,12 +118,16 @@ def page(setup, *, integrator: str | None = None, arrows=None, end: float | None
     offered = {found.name: found for found in settable(written, integrator=None if fixed else first, own=setup,
                                                       also=preset_values(setup), scales=scales)}
     command = f"python main.py {setup.name} --html {setup.name}.html"
+    # the Add a force box: its programs for the integrator the page starts with (a few programs each)
+    forces = offline_forces.box_data(setup, integrators={first: None if fixed else first}, shown=shown, end=end,
+                                     pages=programs)
     methods = sorted(set(fixed or INTEGRATORS))
     framed = frame(model, view)   # the local page's camera (export/framing.py), and room for the arrows
     reach = max(framed.camera.range, scales.view_range) if shown else framed.camera.range
     shown_sliders = [name for name in slider_names(setup, view) if name in offered]
     data = {
         "scene": setup.name,
+        "until": float(model.until),   # the question time: where Jump to t starts
         "programs": programs,
         "integrator": first,
         "scene_integrator": model.methods()[0],
@@ -140,6 +150,8 @@ def page(setup, *, integrator: str | None = None, arrows=None, end: float | None
         "step": {"layouts": {name: dict(zip(("lines", "drift"), step_layout(name))) for name in methods},
                  "kicks_once": {name: INTEGRATORS[name].kicks_once for name in methods},
                  "labels": list(model.labels), "masses": STEP_MASSES},
+        "describe": {**template_data(model), "m": [float(m) for m in model.state.m]},   # export/description.py
+        "forces": forces,
     }
     text = _document(setup, data, shown=shown)
     if len(text.encode("utf-8")) > MAX_BYTES:
@@ -166,7 +178,7 @@ def _document(setup, data: dict, *, shown) -> str:
                       if name == COMPILER else f"<script>{library(name)}</script>\n" for name, _ in LIBRARIES)
     own = "".join(f"<script>{_read(path)}</script>\n" for path in SCRIPTS)
     return f"""<!DOCTYPE html>
-<!-- {files.HANDOUT_MARK} (python main.py {setup.name} --html): {html.escape(title)} -->
+<!-- The spring-mass simulator's offline page (python main.py {setup.name} --html): {html.escape(title)} -->
 <html lang="en">
 <head>
 <meta charset="utf-8">
@@ -177,7 +189,7 @@ This file holds GlowScript 3.2 and the libraries bundled in it, each under its o
 
 {notice}
 -->
-<style>{_read(STYLE) % {"body": BODY_PX, "projector": PROJECTOR_PX}}</style>
+<style>{_read(STYLE) % {"body": BODY_PX, "projector": PROJECTOR_PX}}{page_access.STYLE}{offline_forces.STYLE}</style>
 </head>
 <body>
 <h1>{html.escape(title)}</h1>
@@ -191,7 +203,10 @@ This file holds GlowScript 3.2 and the libraries bundled in it, each under its o
 <script type="application/json" id="offline-data">{_json(data)}</script>
 {scripts}{plain_ticks(clear_outside=False)}
 {GRAPH_READING}
-{own}<script>OfflinePage.begin();</script>
+<script>{page_access.script()}</script>
+{own}<script>{_read(offline_forces.SCRIPT)}</script>
+<script>OfflinePage.begin();</script>
+<script>{page_access.install_call(viewLabel=VIEW_LABEL)}</script>
 </body>
 </html>
 """
@@ -222,10 +237,14 @@ def _panel(data: dict, shown) -> str:
                                         ("marker", "marker (click in the picture)")))
     return f"""<div id="panel">
 <div class="buttons"><button id="run" type="button">Pause</button> <button id="step-button" type="button">Step</button>
-<button id="reset" type="button">Reset</button> <label>speed <select id="speed">{speeds}</select></label>
+<button id="reset" type="button">Reset</button>
+<label>jump to t = <input id="jump-t" type="text" inputmode="decimal" size="5" value="{_short_time(data["until"])}"></label> s
+<button id="jump" type="button">Jump</button> <label>speed <select id="speed">{speeds}</select></label>
 <label><input type="checkbox" id="projector"> projector</label></div>
 <div class="time-row"><span id="time" class="time">t = 0.00 s</span> <span id="error" class="error"></span></div>
 <p id="status" class="status" role="status"></p>
+<p class="describe"><button id="describe" type="button">Describe (D)</button>
+<span id="description" class="sm-description" role="status" aria-live="polite" aria-atomic="true"></span></p>
 <button id="measure-toggle" type="button" aria-expanded="false">Measure ▸</button>
 <div id="measure" class="measure" hidden>
 <div>stopwatch <button id="stopwatch-start" type="button">Start (S)</button> <button id="stopwatch-lap" type="button">Lap (L)</button>
@@ -239,14 +258,15 @@ def _panel(data: dict, shown) -> str:
 <div class="menus"><label>preset <select id="preset">{presets}</select></label> {methods}</div>
 <div class="arrows">arrows: {arrows}<br><span class="legend">{html.escape(data["arrows"]["legend"])}</span></div>
 {slider_rows}
-<p class="hint">Moving a slider, choosing a preset or an integrator restarts the run from t = 0. Keys: Space
-run/pause, → step, R reset, + and − speed.</p>
+<p class="hint">Moving a slider, choosing a preset or an integrator restarts the run from t = 0.</p>
+<p class="hint">{keys_html()}</p>
 <h2>Answer at the question time</h2>
 <pre id="answer" class="answer"></pre>
 <pre id="step" class="step"></pre>
-<p class="link">This set-up's link (add it to the file's address once the file is on a web site):
-<input id="link" readonly></p>
+<p class="link"><label for="link">This set-up's link (add it to the file's address once the file is on a web site):</label>
+<input id="link" readonly size="28"></p>
 <details><summary>The program this page runs (Web VPython 3.2)</summary><pre id="program-text"></pre></details>
+{offline_forces.box_html(data["forces"])}
 </div>"""
 
 
@@ -268,36 +288,25 @@ def link_fragment(setup, integrator: str | None = None) -> str:
     return "&".join(parts)
 
 
+def _short_time(t: float) -> str:
+    """The question time as the Jump box shows it: 0.2, 30."""
+    return f"{t:g}"
+
+
 def _short(x) -> str:
     """A number as the address writes it: as short as reads back exactly (60, 0.05, 1e-07)."""
     x = float(x)
     return str(int(x)) if x.is_integer() and abs(x) < 1e15 else repr(x)
 
 
-# The fingerprint's line under the mark (export/files.py with_fingerprint); an HTML comment may not hold "--".
-PAGE_FINGERPRINT = (f"<!-- {files.DIGEST_SLOT}: this file's fingerprint; once the file is edited, the simulator "
-                    f"replaces it only when told to overwrite -->")
-
-
 def check_page_path(path: str, *, overwrite: bool = False) -> None:
     """Raise OutputError (one line) if the page cannot be written to path: files.check_writable's
-    checks, and an existing file this program did not write (no HANDOUT_MARK near its top) is
-    not replaced unless `overwrite`."""
+    checks (an existing file is replaced only where it is ours, unchanged: export/marks.py)."""
     files.check_writable(path, what="the offline page", overwrite=overwrite)
-    if overwrite or not os.path.isfile(path):
-        return
-    try:
-        with open(path, "rb") as file:
-            ours = files.HANDOUT_MARK.encode() in file.read(2000)
-    except OSError:
-        ours = False
-    if not ours:
-        raise files.OutputError(f"cannot write the offline page {path!r}: it is a file this program did not write; "
-                                f"give another name, or add --overwrite to replace it")
 
 
 def write_page(path: str, text: str, *, overwrite: bool = False) -> None:
     """Write the page whole (a temporary file renamed over the target), after check_page_path,
-    with the fingerprint's line under its mark (PAGE_FINGERPRINT)."""
+    stamped with its mark line and fingerprint under <!DOCTYPE html> (export/marks.py stamped)."""
     check_page_path(path, overwrite=overwrite)
-    files.write_text(path, files.with_fingerprint(text, PAGE_FINGERPRINT), what="the offline page", overwrite=overwrite)
+    files.write_text(path, files.stamped(text), what="the offline page", overwrite=overwrite)

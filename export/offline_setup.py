@@ -27,7 +27,7 @@ from scenes import DECLARED, catalog
 from scenes._sliders import round_slider_values, slider_names, slider_range, symbol
 
 from .lines import ProgramError
-from .program_constants import ROLES, critical_line
+from .program_constants import ProgramConstants, critical_line
 from .vpython_program import program
 from physics.declared import SMALLEST
 from physics.exact import Role
@@ -35,7 +35,6 @@ from physics.exact import Role
 # What only frames the picture: the writer chooses it from the motion, and a constant moved on the
 # page keeps the file's (the local page also keeps its arrow scales through a run).
 FRAMING = ("radius = ", "box(", "pscale = ", "Fscale = ")
-DAMPING = ROLES[Role.DAMPING]      # the constant a preset of critical damping works out (b = None)
 
 
 @dataclass(frozen=True)
@@ -227,11 +226,14 @@ def preset_data(setup, view: dict, offered: dict[str, Settable], command: str) -
     sliders the local page shows for it, and, where this file cannot run it, why not (`why`), with
     the command that writes a file that can."""
     found = []
+    model = setup.build()
+    constants = ProgramConstants(setup, model.state.count, model.forces)
+    damping = constants.roles.get(Role.DAMPING)   # the constant a preset of critical damping works out (b = None)
     for label, changes in catalog.presets(setup, whole=False):
         values, why = {}, ""
         for name, value in changes.items():
-            if name == DAMPING and value is None and name in offered:
-                values[name] = {"expression": critical_line()}
+            if name == damping and value is None and name in offered:
+                values[name] = {"expression": critical_line(constants)}
             elif name in offered and isinstance(value, (int, float)) and \
                     offered[name].file_low <= value <= offered[name].file_high:
                 values[name] = float(value)

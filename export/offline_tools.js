@@ -448,14 +448,7 @@
     byId("line-" + kind).addEventListener("change", function () { var run = page.current(); if (run) showLines(run); });
   });
 
-  // S, L and C work the stopwatch while the Measure panel is open (as on the local page).
-  page.keys = function (e) {
-    if (byId("measure").hidden) return false;
-    if (e.key === "s" || e.key === "S") stopwatch.press();
-    else if (e.key === "l" || e.key === "L") stopwatch.lap();
-    else if (e.key === "c" || e.key === "C") stopwatch.clear();
-    else return false;
-    return true;
-  };
+  // S, L and C press the stopwatch's buttons (export/page_access.js, export/page_keys.py).
+  page.ownSetUp = ownSetUp;
 
 })();

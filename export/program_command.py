@@ -77,6 +77,7 @@ def command(setup, model, integrator, options: list[str] | None = None) -> str:
     best = list(command_options(setup) if options is None else options)
     if model.methods(integrator) != model.methods():
         best.append(f"--integrator {integrator}")
+    best += [force_option(name, text) for name, text in setup.written]
     return " ".join(["python main.py", setup.name, *best])
 
 
@@ -91,6 +92,12 @@ def command_options(setup) -> list[str]:
     if best is None:   # cannot happen for a scene configured from the command line or the page
         best = [f"--set {name}={_set_value(value)}" for name, value in setup.values.items()]
     return best
+
+
+def force_option(name: str, text: str) -> str:
+    """--force "push=vector(2, 0, 0)": a written force as the command line takes it (the grammar
+    has no quote, $ or \\, so double quotes keep it whole in any shell)."""
+    return f'--force "{name}={text}"'
 
 
 def _options(setup, preset: str | None) -> list[str] | None:

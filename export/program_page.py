@@ -94,12 +94,13 @@ def arrow_objects(kinds, *, single: bool) -> dict[str, str]:
     return {kind: objects[kind] for kind in kinds}
 
 
-def stepped_line(*, single: bool, m: str) -> str:
+def stepped_line(*, single: bool, m: str, terms=()) -> str:
     """After one mass's update: the numbers the Step read-out writes out (m: the program's name of
-    the mass's mass) and its energy (energy_lines)."""
+    the mass's mass), and each force's term (`Fspring`, ...), which the description in words
+    names (export/description.py; for a method that kicks once, each force at the step's start)."""
     i = "" if single else "[i]"
-    return commented(f"{PAGE}.stepped({'0' if single else 'i'}, n + 1, {m}, Fnet, p{i}, pos{i})",
-                     "for the page's Step read-out")
+    return commented(f"{PAGE}.stepped({'0' if single else 'i'}, n + 1, {m}, Fnet, p{i}, pos{i}, "
+                     f"[{', '.join(terms)}])", "for the page's Step read-out and description")
 
 
 def exact_line(case, value: str) -> str:

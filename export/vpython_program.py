@@ -17,7 +17,7 @@ teacher can set a case up and hand it to the class to read and edit:
         pos = pos + p/m*dt                     # r_f = r_i + v_f Δt, with v_f = p_f / m
         ...
 
-Its arithmetic is the engine's, line for line: every force is written the way physics/forces.py
+Its arithmetic is the engine's, line for line: every force is written the way physics/forces/
 works it out (Hooke's law as k (L0/|L| − 1) L, drag as −½ C A ρ |v| v), the forces are added in the
 scene's order, and the integrator's update is the one in physics/integrators.py, in the same
 order of operations (euler-cromer works out v_i only where a force needs it; verlet's extra half
@@ -58,6 +58,7 @@ from physics.integrators import INTEGRATORS
 from physics.simulate import steps_to_reach
 from scenes import DECLARED
 from scenes._view import DEFAULT_VIEW, MAX_DRAWN_MASSES
+from scenes._written import add_forces
 
 from . import program_arrows, program_page
 from .exact_curve import exact_lines, exact_value, plot_line
@@ -67,7 +68,7 @@ from .program_answer import HELPERS, answer_line
 from .program_command import command, description
 from .program_constants import ProgramConstants, constants_block
 from .program_forces import ProgramForces, update
-from .program_masses import ANCHOR, mass_count, masses, started, which_mass
+from .program_masses import anchor, mass_count, masses, started, which_mass
 from .program_objects import objects
 
 WEB_FIRST_LINE = "Web VPython 3.2"
@@ -80,7 +81,7 @@ IMPORTS = ["from vpython import *",
 
 def program(setup, *, integrator: str | None = None, web: bool = False, arrows=None,
             end: float | None = None, page: bool = False, header: bool = True, header_of=None,
-            options: list[str] | None = None, scales=None) -> str:
+            options: list[str] | None = None, scales=None, added=()) -> str:
     """The VPython program for a configured scene (scenes._catalog.Setup), as text.
 
     integrator  the method (default: the scene's own, else euler-cromer, the page's update), as
@@ -101,10 +102,14 @@ def program(setup, *, integrator: str | None = None, web: bool = False, arrows=N
     options     the header command's options, program_command.command_options(setup), where they
                 were worked out already (the offline page writes a program per integrator)
     scales      the arrows' scales (export/arrows.py choose_scales), where they were chosen already
+    added       forces added after the model's own (export/offline_forces.py's place for the forces
+                the offline page's box adds)
 
     Raises ProgramError, or ValueError from the scene's build function, with a one-line message.
     """
     model = setup.build()
+    if added:
+        model = add_forces(model, added)
     _check_size(setup, model)
     case = _Case(setup, model, integrator, arrows, end, page, scales=scales, options=options)
     constants, lists = case.constants_lines()
@@ -141,8 +146,9 @@ def after_update_lines(case) -> list[str]:
     mass or "[i]" inside the loop over the masses."""
     written = program_arrows.WRITTEN if case.page else case.arrows
     lines = program_arrows.loop_lines(case.model, shown=written, single=case.single)
+    terms = [force.TERM for force in case.model.forces]
     if case.page:
-        lines += program_page.energy_lines(case) + [program_page.stepped_line(single=case.single, m=case.m)]
+        lines += program_page.energy_lines(case) + [program_page.stepped_line(single=case.single, m=case.m, terms=terms)]
     return lines
 
 
@@ -166,7 +172,7 @@ class _Case:
         self.single = model.state.count == 1
         self.index = "" if self.single else "[i]"
         self.pos, self.p = f"pos{self.index}", f"p{self.index}"   # the program's names of a mass's r and p
-        self.constants = ProgramConstants(setup, model.state.count)
+        self.constants = ProgramConstants(setup, model.state.count, model.forces)
         self.constants.add("m", model.state.m)
         self.forces = ProgramForces(model, self.constants)
         self.constants.add("r0", model.state.r, is_vector=True)
@@ -190,7 +196,7 @@ class _Case:
         methods = self.methods
         how = f"the {methods[0]} integrator" if len(set(methods)) == 1 else "each mass's own integrator (the list method)"
         return [*description(self.setup),
-                f"# Written by the spring-mass simulator with {how}. Edit the constants and run it again.",
+                f"# It steps with {how}. Edit the constants and run it again.",
                 f"# The same case on the simulator's page: {command(self.setup, self.model, self.integrator, self.options)}"]
 
     def constants_lines(self) -> tuple[list[str], list[str]]:
@@ -266,7 +272,7 @@ class _Case:
     def draw(self) -> list[str]:
         i, n, axes = self.index, self.constants.name, self.axes
         lines = [f"{'ball' if self.single else 'balls[i]'}.pos = pos{i}",
-                 commented(f"spring{'' if self.single else 's[i]'}.axis = pos{i} - {n(ANCHOR)}",
+                 commented(f"spring{'' if self.single else 's[i]'}.axis = pos{i} - {n(anchor(self.constants))}",
                            "the helix follows the sphere")]
         lines += self.plot_position()
         if self.exact is not None:

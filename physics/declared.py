@@ -1,6 +1,6 @@
 """What a constant may be: its unit, symbol and range, declared once beside what uses it.
 
-A force declares the constants of its law (physics/forces.py: Spring's k and L0, LinearDamping's
+A force declares the constants of its law (physics/forces/: Spring's k and L0, LinearDamping's
 b); the scenes declare the rest (m, Δt, a row's spacing) in scenes/_constants.py's DECLARED, which
 reads the forces' declarations too. Plain data: numbers and words, no numpy.
 """
@@ -30,6 +30,9 @@ class Declared:
     note      added to the range in the message
     none      what None means, where a scene file may write it instead of a number ("" if it may not)
     meaning   what it is, in a few words, where a program or a list names it without a scene's comment
+    slider    a slider when on: wherever its force is on (in the scene's model), the page offers a
+              slider for it (scenes/_sliders.py slider_names): k, b, C, F0, ω, μ_k. A new force's
+              constant declared so gets its slider in every scene with no other edit
     slider_from_zero  a slider for it starts at 0, where 0 switches its force off (b, F0, ω, ...);
               otherwise at a tenth of its default (m, k, Δt must stay positive)
     slider_round  a slider for it gives only round values, 1, 2 or 5 × 10ⁿ, and the scene's
@@ -50,6 +53,7 @@ class Declared:
     nonzero: bool = False
     note: str = ""
     none: str = ""
+    slider: bool = False
     slider_from_zero: bool = False
     slider_round: bool = False
     numerical: bool = False

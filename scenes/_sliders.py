@@ -12,16 +12,27 @@ from physics.rounding import ROUND_STEPS
 
 from ._constants import DECLARED
 
-def slider_names(setup, view: dict) -> list[str]:
-    """The constants that get a slider, as the scene lists them: VIEW["sliders"] always, and
-    VIEW["sliders_when_on"] where the value is not 0 (b, F0, ω: their force is on, set by a preset
-    or --set). A scene that lists none gets none.
+def slider_names(setup, view: dict, forces=None) -> list[str]:
+    """The constants that get a slider, in the order of the scene's constants (its block).
 
-    Only plain numbers get one (a vector, or None meaning "derived", does not).
+    Each force declares the constants it offers a slider for (`slider=True` in its CONSTANTS:
+    "a slider when on"): k, b, C, F0, ω, μ_k get one wherever their force is on, that is in the
+    scene's model (`forces`; built from `setup` when not given). So damping's b gets one in
+    `vertical` once a preset or --set switches damping on, and a new force's constant gets one in
+    every scene with no other edit. A scene adds its own with VIEW["sliders"] (m, x0, Δt, or a
+    force's constant it offers while that force is off: the pendulum's b), and a teacher's older
+    scene may still name some in VIEW["sliders_when_on"] (a slider where the value is not 0).
+
+    Only plain numbers get one (a vector, or None meaning "derived", does not). Every front end
+    that offers sliders (the page, the offline page) calls this one function.
     """
-    names = list(view.get("sliders") or []) + [name for name in view.get("sliders_when_on") or []
-                                                 if setup.values.get(name)]
-    return [name for name in names if name in setup.constants
+    if forces is None:
+        forces = setup.build().forces
+    chosen = {name for force in forces for name, declared in getattr(type(force), "CONSTANTS", {}).items()
+              if declared.slider}
+    chosen |= set(view.get("sliders") or ())
+    chosen |= {name for name in view.get("sliders_when_on") or () if setup.values.get(name)}
+    return [name for name in setup.constants if name in chosen
             and isinstance(setup.values[name], (int, float)) and not isinstance(setup.values[name], bool)]
 
 

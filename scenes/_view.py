@@ -8,8 +8,9 @@ A scene file ends with VIEW, a few lines naming what to draw; both front ends th
     plot     the coordinate that moves: "x", "y", "z" or "xyz"
     trail    each mass's path over the last 15 s
     exact    False hides the exact curve
-    sliders  the constants that get a slider (none if the scene lists none)
-    sliders_when_on  those that get one where their value is not 0 (b, F0, ω: their force is on)
+    sliders  the scene's own constants that get a slider (m, x0, Δt), beside those each force
+             declares for itself while it is on (k, b, C, F0, ω, μ_k: scenes/_sliders.py); a
+             force's constant named here gets one even while its force is off (the pendulum's b)
     coils    turns per helix
     window   seconds the graphs show before they scroll
     hold     True: the graphs stop at `window` seconds instead of scrolling, so a motion that

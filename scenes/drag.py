@@ -79,7 +79,7 @@ def build(*, m, k, L0, g, b, C, A, rho, x0, spacing, dt, until):
         forces=tuple(forces),
         dt=float(dt),
         until=float(until),
-        **exact_row(forces=forces, anchors=anchors, r0=r0, m=m, k=k, L0=L0, g=g, b=[b, 0.0]),
+        **exact_row(forces=forces, r0=r0, m=m),
         anchors=anchors,
         labels=(f"linear, b = {label_number(b)} kg/s", f"quadratic, ½CAρ = {label_number(0.5 * C * A * rho)} kg/m"),
         per_mass=row_loop(count=2).then(row_anchors(row_loop(count=2), count=2), row_starts(k=k), LABELS),
@@ -88,4 +88,4 @@ def build(*, m, k, L0, g, b, C, A, rho, x0, spacing, dt, until):
 
 # The quadratic ball's exact entries are NaN (no closed form): headless and --plot skip them, but the
 # browser graphs would be sent NaN, so the browser shows no exact curves here.
-VIEW = {"support": "ceiling", "plot": "y", "trail": False, "exact": False, "sliders": ["m", "k", "b", "C", "x0"]}
+VIEW = {"support": "ceiling", "plot": "y", "trail": False, "exact": False, "sliders": ["m", "x0"]}

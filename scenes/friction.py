@@ -60,7 +60,7 @@ def build(*, m, k, L0, g, mu_k, mu_s, b, x0, spacing, dt, until):
         forces=forces,
         dt=float(dt),
         until=float(until),
-        **exact_row(forces=forces, anchors=anchors, r0=r0, m=m, k=k, L0=L0, g=0.0, b=[b, 0.0]),
+        **exact_row(forces=forces, r0=r0, m=m),
         anchors=anchors,
         labels=(f"damping, b = {label_number(b)} kg/s", f"friction, μ_k = {label_number(mu_k)}"),
         per_mass=_ROW.then(row_anchors(_ROW, count=2, along=ALONG_WALL), row_starts(direction=OUT_OF_WALL, k=k),
@@ -71,4 +71,4 @@ def build(*, m, k, L0, g, mu_k, mu_s, b, x0, spacing, dt, until):
 # The friction block's exact entries are NaN (no closed form): the browser shows no exact curves here.
 # hold: the graph keeps the whole 30 s from the release, so both envelopes show from their start.
 VIEW = {"support": "wall", "plot": "x", "trail": False, "exact": False, "hold": True,
-        "sliders": ["mu_k", "b", "k", "x0"], "arrows": ("p", "F_net")}
+        "sliders": ["x0"], "arrows": ("p", "F_net")}

@@ -82,7 +82,7 @@ def build(*, m, k, L0, g, b, under_fraction, over_multiple, x0, spacing, dt, unt
         forces=tuple(forces),
         dt=float(dt),
         until=float(until),
-        **exact_row(forces=forces, anchors=anchors, r0=r0, m=m, k=k, L0=L0, g=g, b=b_each),
+        **exact_row(forces=forces, r0=r0, m=m),
         anchors=anchors,
         labels=tuple(f"{damping_regime(m=m, k=k, b=b_i)} (b = {label_number(b_i)} kg/s)" for b_i in b_each),
         per_mass=per_mass,
@@ -90,5 +90,5 @@ def build(*, m, k, L0, g, b, under_fraction, over_multiple, x0, spacing, dt, unt
 
 
 # hold: all three settle within a few seconds; a scrolling graph would leave only flat lines.
-VIEW = {"support": "ceiling", "plot": "y", "trail": False, "exact": True, "sliders": ["m", "k", "b", "x0"],
+VIEW = {"support": "ceiling", "plot": "y", "trail": False, "exact": True, "sliders": ["m", "x0"],
         "hold": True}

@@ -170,8 +170,7 @@ def build(*, m, k, L0, g, F0, b, b_ratio, curves, omega_min, omega_max, count, s
         forces=tuple(forces),
         dt=float(dt),
         until=float(until),
-        **exact_row(forces=forces, anchors=anchors, r0=r0, m=m, k=k, L0=L0, g=g, b=b_all, F0=F0, omega=omega_all,
-                    drive_axis=DRIVE_AXIS),
+        **exact_row(forces=forces, r0=r0, m=m),
         anchors=anchors,
         labels=tuple(f"b = {b_j:.3g} kg/s, ω = {w:.3g} rad/s" for b_j, w in zip(b_all, omega_all)),
         default_integrator=DEFAULT_INTEGRATOR,
@@ -399,5 +398,5 @@ def energy_note(setup) -> str:
 
 # The resonance graph shows the amplitudes; each spring's exact curve would only crowd the position graph.
 # Each row of springs in the colour of its b's line (rows).
-VIEW = {"support": "ceiling", "plot": "y", "trail": False, "exact": False, "sliders": ["b", "F0", "m", "k"],
+VIEW = {"support": "ceiling", "plot": "y", "trail": False, "exact": False, "sliders": ["m"],
         "rows": rows, "graphed": graphed, "energy_note": energy_note}

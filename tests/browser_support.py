@@ -135,6 +135,41 @@ def wait_for(predicate, *, timeout: float = 30.0, what: str):
     pytest.fail(f"timed out waiting for {what}")
 
 
+# ---- Jump to t (browser/jump.py, export/offline_page.js): a test asks for the simulated time it needs ----
+
+# The local page's Jump box is vpython's text box, which sends its text when the focus leaves it:
+# the box is filled and left, then Jump pressed, in one go (in that order the page's events reach
+# the program); what the page says after the jump carries its count, so the wait is for this jump.
+_LOCAL_JUMP = """t => { const box = document.getElementById('sm-jump-t');
+  const mark = document.querySelector('.sm-jumped');
+  const before = Number(mark.dataset.jumps);
+  box.value = t; box.dispatchEvent(new Event('blur'));
+  for (const b of document.querySelectorAll('button')) if (b.textContent.trim() === 'Jump') { b.click(); break; }
+  return before; }"""
+
+
+def jump_to(page, t: float) -> float:
+    """Jump the local page to t, s, and wait until it shows it, paused (the page says so last,
+    after the state, graphs and caption it drew). Returns the t reached: the first step at or
+    after t, as --headless reaches a time."""
+    page.locator("#sm-jump-t").wait_for(state="attached")
+    before = page.evaluate(_LOCAL_JUMP, repr(float(t)))
+    mark = page.locator(f".sm-jumped[data-jumps='{before + 1}']")
+    mark.wait_for(state="attached")
+    return float(mark.get_attribute("data-t"))
+
+
+def jump_offline(page, t: float) -> dict:
+    """Jump the offline page to t, s, and wait until the program is there, paused, and the page
+    has drawn it; returns window.offlineState() (n: the step reached, the first at or after t)."""
+    page.wait_for_function("() => window.offlineState !== undefined")
+    before = page.evaluate("""t => { const done = window.offlineState().jumps;
+        document.getElementById('jump-t').value = t; document.getElementById('jump').click(); return done; }""",
+                           repr(float(t)))
+    page.wait_for_function("n => window.offlineState().jumpsDrawn > n", arg=before)
+    return page.evaluate("window.offlineState()")
+
+
 def colours(image) -> Counter:
     """How many pixels of each (r, g, b) colour the image has."""
     return Counter(dict((rgb, n) for n, rgb in image.getcolors(maxcolors=1 << 24)))

@@ -118,7 +118,7 @@ def test_no_file_it_did_not_write_is_replaced(tmp_path):
     assert done.returncode == 2 and "did not write" in done.stderr and "--overwrite" in done.stderr
     assert theirs.read_text() == "<html>my lesson</html>"
     assert main_py("vertical", "--html", str(theirs), "--overwrite").returncode == 0
-    assert "Written by the spring-mass simulator" in theirs.read_text(encoding="utf-8")[:2000]
+    assert theirs.read_text(encoding="utf-8").split("\n")[1].startswith("<!-- Written by the spring-mass simulator;")
     done = main_py("damped", "--html", str(theirs))   # its own page now: replaced without asking
     assert done.returncode == 0, done.stderr
     done = main_py("vertical", "--html", str(tmp_path / "no such folder" / "x.html"))
@@ -169,7 +169,7 @@ def test_the_offline_program_reports_to_the_page_and_finds_the_question_step_its
     assert lines.index("dt = 0.1                 # s: time step Δt of the momentum update") < controls
     assert controls < lines.index("# ---- the objects ----")
     assert "n_until = ceil(until/dt - 1e-9)" in text and "    if n == n_until:" in text
-    assert "page.stepped(0, n + 1, m, Fnet, p, pos)" in text
+    assert "page.stepped(0, n + 1, m, Fnet, p, pos, [Fspring, Fgravity, Fdamping])" in text   # each force for the description
     assert '"forces": forcearrows + forcelabels' in text and '"split": [pararrow, perparrow' in text
     handout = program(catalog.configure("damped"), web=True)
     assert "offline_page" not in handout and "n_until" not in handout

@@ -61,7 +61,7 @@ def test_the_integrators_scene_dt_slider_sends_only_round_values_or_the_default(
     vp = FakeVpython()
     controls = Controls(vp, setup=setup, view={"sliders": ["dt", "m", "k"]}, integrators=("euler", "x"),
                         integrator="euler-cromer", speed="1×")
-    dt_slider = vp.sliders[0]
+    dt_slider = controls.sliders["dt"]
     values = round_slider_values("dt", 0.06, 0.06)
     assert (dt_slider.min, dt_slider.max, dt_slider.step) == (0, len(values) - 1, 1)
     assert values[round(dt_slider.value)] == 0.06
@@ -70,5 +70,5 @@ def test_the_integrators_scene_dt_slider_sends_only_round_values_or_the_default(
     sent = [message.value for message in controls.clicks() if message.name == "dt"]
     assert len(sent) == 25 and set(sent) == set(values)
     assert all(is_round(value) or value == 0.06 for value in sent)
-    m_slider = vp.sliders[1]                                      # m keeps its continuous span
+    m_slider = controls.sliders["m"]                               # m keeps its continuous span
     assert (m_slider.min, m_slider.max) == slider_range("m", 1.0)[:2]

@@ -61,9 +61,10 @@ class Friction(Force):
     conservative = False
     uses_velocity = True
     responds = True
+    SINGLE_MASS = False        # it needs a table: switched_on refuses it in a single-mass scene, in one line
     LABEL = "friction"
     CONSTANTS = {
-        "mu_k": Declared("1", 0, 100, symbol="μ_k", slider_from_zero=True, default=0.0,
+        "mu_k": Declared("1", 0, 100, symbol="μ_k", slider=True, slider_from_zero=True, default=0.0,
                          meaning="kinetic friction coefficient in F = −μ_k N v̂, N = m g"),
         "mu_s": Declared("1", 0, 100, symbol="μ_s", slider_from_zero=True, default=0.0, switch=True,
                          meaning="static friction coefficient: a mass at rest stays while the other "

@@ -52,7 +52,7 @@ class Spring(Force):
     LABEL = "spring"
     TIED = ((("m", "k"), "the motion depends on k/m, not on k and m apart (gravity gives every mass the same g)"),)
     CONSTANTS = {
-        "k": Declared("N/m", 0, 1e6, meaning="spring constant", default=0.0),
+        "k": Declared("N/m", 0, 1e6, meaning="spring constant", default=0.0, slider=True),
         "L0": Declared("m", 0, 1e4, meaning="relaxed length of the spring", default=0.0),
         "anchor": Declared("m", -1e4, 1e4, vector=True, meaning="fixed end of the spring", default=(0.0, 0.0, 0.0)),
     }
@@ -220,7 +220,7 @@ class LinearDamping(Force):
     uses_velocity = True
     LABEL = "damping"
     TIED = ((("m", "b"), "the motion depends on b/m, not on b and m apart"),)
-    CONSTANTS = {"b": Declared("kg/s", 0, 1e6, none="critical damping, b = 2√(mk)", slider_from_zero=True,
+    CONSTANTS = {"b": Declared("kg/s", 0, 1e6, none="critical damping, b = 2√(mk)", slider=True, slider_from_zero=True,
                                meaning="linear damping constant in F = −b v", default=0.0, switch=True)}
     TERM = "Fdamping"
     VECTORS = {}
@@ -258,12 +258,14 @@ class QuadraticDrag(Force):
     LABEL = "drag"
     TIED = ((("C", "A", "rho"), "drag depends on the product C·A·ρ only"),)
     CONSTANTS = {
-        "C": Declared("1", 0, 100, slider_from_zero=True, meaning="drag coefficient", default=0.0, switch=True),
-        "A": Declared("m²", 0, 1e3, meaning="cross-section area, for drag", default=0.0, switch=True),
+        "C": Declared("1", 0, 100, slider=True, slider_from_zero=True, meaning="drag coefficient in F = −½ C A ρ |v| v",
+                      default=0.0, switch=True),
+        "A": Declared("m²", 0, 1e3, meaning="cross-section area of the mass, for drag", default=0.0, switch=True),
         "rho": Declared("kg/m³", 0, 1e5, symbol="ρ", meaning="air density, for drag", default=0.0, switch=True),
     }
     TERM = "Fdrag"
     VECTORS = {}
+    RATE_WORDS = {"drag": "ρCA|v|/m"}     # its rate at the present speed, for the stability message
     PROGRAM = (("Fdrag = -0.5*{C}*{A}*{rho}*mag({v})*{v}", "air drag: F = −½ C A ρ |v|² v̂ = −½ C A ρ |v| v"),)
     PROGRAM_RATES = {"drag": "{C}*{A}*{rho}*{speed}/{m}"}
 
@@ -299,12 +301,12 @@ class Driving(Force):
     LABEL = "driving"
     TIED = ((("m", "F0"), "the motion depends on F0/m, not on F0 and m apart"),)
     CONSTANTS = {
-        "F0": Declared("N", -1e6, 1e6, slider_from_zero=True, meaning="driving force amplitude in F = F0 cos(ω t)",
+        "F0": Declared("N", -1e6, 1e6, slider=True, slider_from_zero=True, meaning="driving force amplitude in F = F0 cos(ω t)",
                        default=0.0, switch=True),
-        "omega": Declared("rad/s", 0, 1e4, symbol="ω", slider_from_zero=True,
-                          meaning="driving angular frequency ω (rad/s, not Hz)", default=0.0),
+        "omega": Declared("rad/s", 0, 1e4, symbol="ω", slider=True, slider_from_zero=True,
+                          meaning="driving angular frequency ω (rad/s, not Hz; f = ω / 2π)", default=0.0),
         "drive_axis": Declared("1", -1e6, 1e6, vector=True, nonzero=True,
-                               meaning="direction of the driving force (a unit vector)", default=(1.0, 0.0, 0.0)),
+                               meaning="direction of the driving force", default=(1.0, 0.0, 0.0)),
     }
     TERM = "Fdrive"
     VECTORS = {"axis": "direction"}
