@@ -41,6 +41,8 @@ LABEL_PX = {"height": 18, "xoffset": 20, "yoffset": 16}   # px: an arrow's label
 SEE_THROUGH = 0.5    # the masses' opacity while an arrow is shown (page and program): the arrow inside the ball shows
 PART_DIGITS = "{:.2f}"  # N: how F∥'s and F⊥'s labels write their sizes, on the page and in the program
                        # (Web VPython's own '{:.3g}' writes 0.3135 as 0.314: 7 of a pendulum run's 401)
+STEP_ASIDE = 1.4      # × the masses' radius: a Step's p_i and F_net Δt start this far beside the mass, across its motion
+STEP_APART = 0.45     # × the radius: and p_f this much further, so on a line the two do not cover each other
 GROW = 1.2            # the picture may widen this much (its range) to hold the arrows at a round scale
 TIP_ROOM = 0.3        # × the masses' radius: how far inside the picture's edge an arrow's tip stays
 SCALE_RUN = 30.0      # s: how far the short run that chooses the scales looks ahead (the graphs show 30 s)

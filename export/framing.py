@@ -60,6 +60,7 @@ class Frame:
     support_pos: np.ndarray
     support_size: np.ndarray
     wall: bool
+    box: tuple = (0.0, 0.0)    # m: the width and height the picture must show (camera_range's), for another canvas size
 
     def face(self) -> tuple[int, float, int]:
         """The support's face the masses hang or push from, as (axis, where, towards): the
@@ -101,7 +102,9 @@ def frame(model, view: dict) -> Frame:
     pitch = ROWS_PITCH if rows else 0.0
     low, high = low - 0.3 * radius, high + 0.3 * radius
     camera = Camera(centre=0.5 * (low + high), range=camera_range(low, high, pitch), pitch=pitch)
-    return Frame(camera=camera, radius=radius, support_pos=pos, support_size=size, wall=wall)
+    extent = np.asarray(high) - np.asarray(low)
+    return Frame(camera=camera, radius=radius, support_pos=pos, support_size=size, wall=wall,
+                 box=(float(extent[0]), float(extent[1] + pitch * extent[2])))
 
 
 def camera_range(low, high, pitch: float = 0.0) -> float:

@@ -1,7 +1,7 @@
 /* The offline page's own script: it runs the handed-out Web VPython program in GlowScript 3.2 and
    puts the page's controls around it. export/offline_page.py writes it into the page, with the
    data it reads (#offline-data): the program for each integrator, the constants this file may
-   change and over what range, the sliders, the arrows and the Step read-out's layout.
+   change and over what range, the sliders, presets, arrows and the Step read-out's layout.
 
    The physics is the program's, and only the program's: this script never steps anything. It
    owns the timing (the program waits at rate() while paused; Step lets one step through), starts
@@ -9,10 +9,9 @@
    shows and hides the arrows the program drew, and writes out a Step with the numbers the
    program reports (export/program_page.py), in export/step_update.py's layout and digits.
 
-   A set-up can come from the address: vertical.html#k=60&dt=0.05&integrator=rk4, `--set`'s
-   grammar. Each value is read as a plain decimal number, checked against its constant's declared
-   range and the range this file can run; nothing in the address is ever run as code. Any problem
-   is one line on the page, and the file's own set-up runs. */
+   Beside it in the page: offline_judge.js (a set-up judged as the command line judges it) and
+   offline_tools.js (the energy graph, the error read-out, the Step's arrows, the Measure panel),
+   which hook into a run through OfflinePage.hooks. */
 // The compiled program, evaluated where its free names rate, GSprint (its print) and offline_page
 // are the run's own (a script of its own, not in strict mode, as GlowScript's own page runs it).
 window.offlineProgram = function (compiled, rate, GSprint, offline_page, canvas, graph) {
@@ -22,7 +21,10 @@ window.offlineProgram = function (compiled, rate, GSprint, offline_page, canvas,
 (function () {
   "use strict";
   var DATA = JSON.parse(document.getElementById("offline-data").textContent);
+  var page = window.OfflinePage = window.OfflinePage || {};
   var byId = function (id) { return document.getElementById(id); };
+  page.DATA = DATA;
+  page.byId = byId;
 
   // ---- numbers, written as the command line writes them (export/step_update.py) ----
 
@@ -74,91 +76,24 @@ window.offlineProgram = function (compiled, rate, GSprint, offline_page, canvas,
     return (text.split(".")[1] || "").length;
   }
   function cleanTime(t, dt) { return clean(Number(t.toFixed(Math.min(100, timeDecimals(dt))))); }
-  window.offlineNumbers = {pyG: pyG, number: number, vectorText: vectorText, shown: shown,
-                           timeDecimals: timeDecimals, cleanTime: cleanTime};   // for the tests
+  page.numbers = window.offlineNumbers = {pyG: pyG, number: number, vectorText: vectorText, shown: shown,
+                                          timeDecimals: timeDecimals, cleanTime: cleanTime};   // the tests read them too
 
-  // ---- the set-up: the file's own, the address's, the sliders' ----
-
-  var DECIMAL = /^[+-]?(\d+\.?\d*|\.\d+)([eE][+-]?\d+)?$/;
-
-  function describe(value, unit) { return pyG(value, 6) + (unit && unit !== "1" ? " " + unit : ""); }
-
-  // A constant's value from the address, or the one-line reason it cannot be used (as --set says it).
-  function checked(name, text) {
-    var declared = DATA.constants[name];
-    if (declared === undefined) {
-      if (DATA.all_constants.indexOf(name) >= 0)
-        return {problem: name + " cannot be set from the address in this file; write a file with it: " + command(name, text)};
-      return {problem: "unknown constant '" + name + "' in the address (known: " + DATA.all_constants.join(", ") + ")"};
-    }
-    text = text.trim();
-    if (!DECIMAL.test(text)) return {problem: name + " needs a number (got '" + text + "')"};
-    var value = Number(text);
-    var mantissa = text.toLowerCase().split("e")[0];
-    if (value === 0 && /[1-9]/.test(mantissa))
-      return {problem: name + " = " + text + " is too small for the computer to tell from 0; write 0 to switch it off"};
-    var unit = declared.unit;
-    var inside = (declared.above_low ? value > declared.low : value >= declared.low) && value <= declared.high &&
-                 (!declared.whole || value === Math.round(value));
-    if (!isFinite(value) || !inside)
-      return {problem: name + " must be " + declared.words + " (got " + describe(value, unit) + ")"};
-    if (value !== 0 && Math.abs(value) < DATA.smallest)
-      return {problem: name + " must be 0 or at least " + DATA.smallest + (unit && unit !== "1" ? " " + unit : "") +
-                       " in size (got " + describe(value, unit) + ")"};
-    if (value < declared.file_low || value > declared.file_high)
-      return {problem: name + " = " + describe(value, unit) + " is outside what this file can run (" +
-                       describe(declared.file_low, "") + " to " + describe(declared.file_high, unit) +
-                       "); write a file for it: " + command(name, text)};
-    return {value: value};
+  // What the other scripts do at each moment of a run (offline_tools.js): each a list of functions.
+  var hooks = page.hooks = {started: [], drawn: [], stepped: [], energy: [], frame: [], paused: [], resumed: []};
+  function tell(moment) {
+    var args = Array.prototype.slice.call(arguments, 1);
+    hooks[moment].forEach(function (hook) { hook.apply(null, args); });
   }
 
-  function command(name, text) {
-    return "python main.py " + DATA.scene + " --html " + DATA.scene + ".html --set " + name + "=" + text;
-  }
+  // ---- the program for a set-up ----
 
-  // The set-up in the address (`#k=60&dt=0.05&integrator=rk4`): {values, integrator} or {problem}.
-  function fromAddress(hash) {
-    var values = {}, integrator = DATA.integrator;
-    var text = hash.replace(/^#/, "");
-    if (!text) return {values: values, integrator: integrator};
-    var parts = text.split("&");
-    for (var i = 0; i < parts.length; i++) {
-      if (!parts[i]) continue;
-      var part;
-      try { part = decodeURIComponent(parts[i].replace(/\+/g, " ")); }
-      catch (e) { return {problem: "the address's set-up cannot be read (a bad % code in '" + parts[i] + "')"}; }
-      var at = part.indexOf("=");
-      if (at <= 0) return {problem: "the address's set-up needs NAME=VALUE, like #k=25 (got '" + part + "')"};
-      var name = part.slice(0, at).trim(), value = part.slice(at + 1);
-      if (name === "integrator") {
-        if (DATA.fixed_methods)
-          return {problem: "scene '" + DATA.scene + "' steps its masses with " + DATA.fixed_methods.join(", ") +
-                           ", one each, so integrator=" + value + " would do nothing; leave it out"};
-        if (!Object.prototype.hasOwnProperty.call(DATA.programs, value))
-          return {problem: "integrator must be one of " + Object.keys(DATA.programs).join(", ") + " (got '" + value + "')"};
-        integrator = value;
-        continue;
-      }
-      var read = checked(name, value);
-      if (read.problem) return {problem: read.problem};
-      values[name] = read.value;
-    }
-    return {values: values, integrator: integrator};
-  }
-
-  // The address's fragment for a set-up: what differs from the scene's defaults.
-  function fragment(setup) {
-    var parts = [];
-    Object.keys(DATA.constants).forEach(function (name) {
-      var value = setup.values[name];
-      if (value !== DATA.constants[name].scene_default) parts.push(name + "=" + String(value));
-    });
-    if (setup.integrator !== DATA.scene_integrator) parts.push("integrator=" + setup.integrator);
-    return parts.join("&");
-  }
+  // A set-up: {values, integrator, preset}. A value is a number, or {expression} where a preset
+  // gives a constant as the program works it out (critical damping: b = 2*sqrt(m*k)).
+  function literal(value) { return typeof value === "object" ? value.expression : String(value); }
 
   // The program for a set-up: the file's program for its integrator, with each constant that
-  // differs written into its line of the constants block (`k = 60   # N/m: ...`).
+  // differs from the one written into its line of the constants block (`k = 60   # N/m: ...`).
   function programFor(setup) {   // with the forces the Add a force box adds (export/force_box.js)
     var own = window.offlineForces ? window.offlineForces.program(setup.integrator) : DATA.programs[setup.integrator];
     return withConstants(own, setup);
@@ -170,22 +105,36 @@ window.offlineProgram = function (compiled, rate, GSprint, offline_page, canvas,
       var at = lines.findIndex(function (line) { return line.indexOf(name + " = ") === 0; });
       if (at < 0) throw new Error("the program has no line for " + name);
       var match = /^(\S+ = )(.*?)((\s+)# .*)?$/.exec(lines[at]);
-      var literal = String(setup.values[name]);
+      var text = literal(setup.values[name]);
       var room = match[2].length + (match[4] || " ").length - 1;
-      lines[at] = match[1] + literal + (match[3] ? " ".repeat(Math.max(1, room - literal.length + 1)) +
-                                        match[3].replace(/^\s+/, "") : "");
+      lines[at] = match[1] + text + (match[3] ? " ".repeat(Math.max(1, room - text.length + 1)) +
+                                     match[3].replace(/^\s+/, "") : "");
     });
     return lines.join("\n");
   }
   window.offlineProgramFor = programFor;   // for the tests
 
+  // The address's fragment for a set-up: what differs from the scene's defaults.
+  function fragment(setup, ran) {
+    var parts = [];
+    Object.keys(DATA.constants).forEach(function (name) {
+      var value = setup.values[name];
+      if (typeof value === "object" && ran && ran[name] !== undefined) value = ran[name];
+      if (typeof value === "number" && value !== DATA.constants[name].scene_default) parts.push(name + "=" + String(value));
+    });
+    if (setup.integrator !== DATA.scene_integrator) parts.push("integrator=" + setup.integrator);
+    return parts.join("&");
+  }
+
   // ---- one run of the program ----
 
   var current = null;              // the run now; a run replaced stops at its next rate()
+  var runs = 0;                    // how many runs have started (the tests wait for the next one)
   // with prefers-reduced-motion the page opens paused, its first frame drawn (Run starts it)
   var paused = !!(window.matchMedia && window.matchMedia("(prefers-reduced-motion: reduce)").matches), steps = 0, release = null, speed = 1;
   var jump = null, jumps = 0, jumpsDrawn = 0;   // the jump under way ({run, n}), jumps done, and drawn
   var compiled = {};               // program text -> GlowScript's JavaScript
+  var REFUSED = {};                // what a refused run throws from its check, to end it there
 
   function holdUntilAsked() { return new Promise(function (resolve) { release = resolve; }); }
   function letGo() { if (release) { var r = release; release = null; r(); } }
@@ -198,12 +147,11 @@ window.offlineProgram = function (compiled, rate, GSprint, offline_page, canvas,
   // instead of racing to catch up. Paused, it holds the program here until Run or Step; a replaced
   // run is held for good (its promise never settles, so that run ends here).
   var YIELD_MS = 30, LAG_S = 0.25;
-  function wait(ms) { return new Promise(function (resolve) { setTimeout(resolve, ms); }); }
-
   // Jump to t: the run steps on to the jump's step without waiting and without drawing (rate()
   // returns at once), letting the page breathe every JUMP_YIELD_MS on a long jump; there it is
   // paused, and drawn once (browser/jump.py is the local page's).
   var JUMP_YIELD_MS = 1000;
+  function wait(ms) { return new Promise(function (resolve) { setTimeout(resolve, ms); }); }
 
   function rateFor(run) {
     return async function (perSecond) {
@@ -216,7 +164,7 @@ window.offlineProgram = function (compiled, rate, GSprint, offline_page, canvas,
           jumped(run);
         }
         if (!(run === current && paused && steps === 0)) break;
-        if (run.stepped) { showStep(run); run.stepped = false; }
+        if (run.stepped) { showStep(run); tell("paused", run); run.stepped = false; }
         run.clock = null;
         await holdUntilAsked();
       }
@@ -256,6 +204,15 @@ window.offlineProgram = function (compiled, rate, GSprint, offline_page, canvas,
   function flat(list) {
     return Array.isArray(list) ? list.reduce(function (all, x) { return all.concat(flat(x)); }, []) : [list];
   }
+  // A Python dict of the program as a plain object: RapydScript's keeps its items in .jsmap.
+  function plain(dict) {
+    if (!dict || !dict.jsmap) return dict || {};
+    var out = {};
+    dict.jsmap.forEach(function (value, key) { out[key] = value; });
+    return out;
+  }
+  page.vec = vec;
+  page.plain = plain;
 
   function pageFor(run) {          // the object the program asks for: `page = offline_page()`
     var scene = run.scene = window.canvas.selected, camera = DATA.camera, centre = camera.centre;
@@ -263,21 +220,36 @@ window.offlineProgram = function (compiled, rate, GSprint, offline_page, canvas,
     scene.fov = camera.fov;
     scene.forward = window.vector(0, -camera.pitch, -1);
     scene.center = window.vector(centre[0], centre[1], centre[2]);
-    scene.range = camera.range;
+    scene.range = page.layout.range(scene.width, scene.height);
     return {
-      drawn: function (balls, pos, p, arrows) {
+      constants: function (values) { run.ran = plain(values); },
+      rates: function (i, m, stiffness, damping, drag, speed) {
+        run.rates[i] = {m: m, stiffness: stiffness, damping: damping, drag: drag, speed: speed};
+      },
+      refuse: function (text) { if (run.refusals.indexOf(text) < 0) run.refusals.push(text); },
+      check: function () {
+        if (run !== current) throw REFUSED;
+        var methods = DATA.fixed_methods || run.rates.map(function () { return run.setup.integrator; });
+        var verdict = run.refusals.length ? {refused: run.refusals[0]} :
+          page.judge.judgeRun(run.rates, methods, run.ran.dt === undefined ? run.dt : run.ran.dt);
+        if (verdict && verdict.refused) { run.refused = verdict.refused; throw REFUSED; }
+        run.warning = verdict && verdict.warning || "";
+        run.checked = true;
+        showSetUp(run);
+      },
+      drawn: function (balls, pos, p, arrows, labels) {
         if (run !== current) return;
         run.balls = flat(balls);
-        run.arrows = {};   // a Python dict in the program: RapydScript's, with its items in .jsmap
+        run.labels = flat(labels);
+        run.arrows = {};
+        arrows = plain(arrows);
         DATA.arrows.kinds.forEach(function (kind) {
-          var objects = arrows.jsmap ? arrows.jsmap.get(kind) : arrows[kind];
-          if (objects !== undefined) run.arrows[kind] = flat(objects);
+          if (arrows[kind] !== undefined) run.arrows[kind] = flat(arrows[kind]);
         });
         run.last = pos.map(function (r, i) { return {r: vec(r), p: vec(p[i])}; });
         run.graph = window.graph.get_selected();
         showArrows(run);
-        drawEquilibrium(run);
-        showMeasured(run);
+        tell("drawn", run);
         if (window.offlineForces) window.offlineForces.drawn(run);
       },
       stepped: function (i, n, m, F, p, r, terms) {
@@ -287,16 +259,27 @@ window.offlineProgram = function (compiled, rate, GSprint, offline_page, canvas,
                         terms: (terms || []).map(vec)};
         run.last[i] = {r: run.steps[i].r_f, p: run.steps[i].p_f};
         if (i === 0) run.n = n;
+        tell("stepped", run, i, n);
         if (window.offlineForces) window.offlineForces.stepped(run, run.steps[i]);
+      },
+      energy: function (i, n, K, U, W) {   // the program's K, each force's U and W_nc, after step n
+        if (run === current) tell("energy", run, i, n, {K: K, U: plain(U), W: W});
+      },
+      exact: function (i, value) {         // the exact curve's value for mass i now
+        if (run === current) { run.exact = run.exact || []; run.exact[i] = value; }
       }
     };
   }
 
-  function start(setup) {
+  // Start the program for a set-up; `fallback` is the set-up to run instead if the program's check
+  // refuses this one, and `why` how the line on the page ends then.
+  function start(setup, fallback) {
     var text = programFor(setup);
     if (!compiled[text]) compiled[text] = compile(text);
     var old = current;
-    var run = {setup: setup, printed: [], steps: [], n: 0, stepped: false, dt: setup.values.dt};
+    runs += 1;
+    var run = {setup: setup, printed: [], steps: [], n: 0, stepped: false, dt: setup.values.dt, rates: [],
+               refusals: [], ran: {}, warning: "", fallback: fallback, number: runs, checked: false};
     current = run;
     steps = 0;
     letGo();                        // a held run sees it was replaced, and stops
@@ -309,17 +292,35 @@ window.offlineProgram = function (compiled, rate, GSprint, offline_page, canvas,
     byId("view").appendChild(box);
     run.box = box;
     window.__context = {glowscript_container: $(box)};
+    tell("started", run);
     // the compiled program's free names rate, GSprint (its print) and offline_page are this run's
-    var sizes = viewSizes();
+    var sizes = page.layout.sizes();
     var main = window.offlineProgram(compiled[text], rateFor(run), printFor(run), function () { return pageFor(run); },
                                      sized(window.canvas, sizes.canvas), sized(window.graph, sizes.graph));
     main().then(function () {
       run.ended = true;
       if (jump && jump.run === run) jumped(run);   // the program ended before the jump's t
     }, function (error) {
-      if (run === current) say("The program stopped: " + String(error).split("\n")[0]);
+      if (run !== current) return;
+      if (error === REFUSED) refused(run);
+      else say("The program stopped: " + String(error).split("\n")[0]);
     });
-    showLink(setup);
+  }
+
+  // The program's check refused its set-up: one line, and the fallback runs (the file's own set-up
+  // for a link; the set-up that ran before for a slider or a preset).
+  function refused(run) {
+    if (run.setup === ownSetUp || run.fallback === run.setup) {   // the file's own set-up: nothing to go back to
+      say(run.refused + "; this file's own set-up: write it again with other constants.");
+      return;
+    }
+    var fallback = run.fallback || own();
+    var back = fallback === ownSetUp ? "; running the file's own set-up instead." :
+      "; the set-up before it runs again.";
+    setup = fallback === ownSetUp ? own() : fallback;
+    placeControls();
+    start(setup, own());
+    say(run.refused + back);
   }
 
   // GlowScript's compiler (RScompiler, kept as text in #compiler) compiles one program per run of
@@ -337,63 +338,33 @@ window.offlineProgram = function (compiled, rate, GSprint, offline_page, canvas,
     if (run.box) run.box.remove();
   }
 
-  // ---- the equilibrium and the period: the file's own set-up's, from the physics the local page
-  // uses (export/offline_page.py's measured), shown while that set-up runs ----
-
-  function ownSetUp(run) {
-    return run.setup.integrator === DATA.integrator && Object.keys(DATA.constants).every(function (name) {
-      return run.setup.values[name] === DATA.constants[name].written;
-    });
-  }
-
-  function drawEquilibrium(run) {   // a thin line across each mass's equilibrium, the first one named
-    var lesson = DATA.measured, centres = lesson.equilibrium;
-    run.equilibrium = [];
-    if (!centres || !ownSetUp(run)) return;
-    var r = lesson.radius, across = lesson.axis === 1 ? [1, 0, 0] : [0, 1, 0];
-    centres.slice(0, DATA.step.masses).forEach(function (c, i) {
-      var size = across.map(function (a) { return a ? 5 * r : 0.08 * r; });
-      var at = window.vector(c[0], c[1], c[2]);
-      run.equilibrium.push(window.box({pos: at, size: window.vector(size[0], size[1], 0.08 * r),
-                                       color: window.vector(0.8, 0.8, 0.8)}));
-      if (i === 0) run.equilibrium.push(window.label({pos: at.add(window.vector(2.5 * r * across[0], 2.5 * r * across[1], 0)),
-        text: "equilibrium", height: 18, color: window.vector(0.8, 0.8, 0.8), box: false, line: false,
-        xoffset: 12, yoffset: 0, align: "left"}));
-    });
-    showMeasured(run);
-  }
-
-  function showMeasured(run) {
-    var own = ownSetUp(run), lines = DATA.measured.period;
-    var equilibriumOn = byId("show-equilibrium").checked, periodOn = byId("show-period").checked;
-    (run.equilibrium || []).forEach(function (object) { object.visible = equilibriumOn && own; });
-    byId("period").hidden = !(periodOn && own);
-    byId("period").textContent = "measured over the first " + pyG(DATA.measured.window, 6) + " s:\n" + lines.join("\n") +
-      (DATA.measured.formula_note ? "\nno formula: " + DATA.measured.formula_note : "");
-    byId("measure-note").textContent = (equilibriumOn || periodOn) && !own ?
-      "shown for the file's own set-up only; write a file with these constants (Copy link, or --set) to see them" : "";
-  }
-
   // ---- the Step read-out: export/step_update.py's layout, filled with the program's numbers ----
+
+  function stepNumbers(run, i) {   // one mass's Step: F_net (as the update used it), p_i, F_net Δt, p_f, ...
+    var s = run.steps[i];
+    if (!s) return null;
+    var method = DATA.fixed_methods ? DATA.fixed_methods[i] : run.setup.integrator, dt = run.dt;
+    var F = DATA.step.kicks_once[method] ? s.F : s.p_f.map(function (pf, k) { return (pf - s.p_i[k]) / dt; });
+    return {step: s, method: method, F: F, impulse: F.map(function (c) { return c * dt; })};
+  }
+  page.stepNumbers = stepNumbers;
 
   function showStep(run) {
     var blocks = [];
     var count = Math.min(run.steps.length, DATA.step.masses);
     for (var i = 0; i < count; i++) {
-      var s = run.steps[i];
-      if (!s) continue;
-      var method = DATA.fixed_methods ? DATA.fixed_methods[i] : run.setup.integrator;
-      var layout = DATA.step.layouts[method], dt = run.setup.values.dt;
-      var F = DATA.step.kicks_once[method] ? s.F : s.p_f.map(function (pf, k) { return (pf - s.p_i[k]) / dt; });
+      var found = stepNumbers(run, i);
+      if (!found) continue;
+      var s = found.step, layout = DATA.step.layouts[found.method], dt = run.dt;
       var velocity = {v_f: s.p_f.map(function (c) { return c / s.m; }), v_i: s.p_i.map(function (c) { return c / s.m; })};
-      var values = {t: number(cleanTime(s.n * dt, dt)), F_net: shown(F), p_i: shown(s.p_i),
-                    impulse: shown(F.map(function (c) { return c * dt; })), p_f: shown(s.p_f),
+      var values = {t: number(cleanTime(s.n * dt, dt)), F_net: shown(found.F), p_i: shown(s.p_i),
+                    impulse: shown(found.impulse), p_f: shown(s.p_f),
                     v_f: shown(velocity.v_f), r_i: shown(s.r_i),
                     drift: shown(velocity[layout.drift].map(function (c) { return c * dt; })), r_f: shown(s.r_f)};
       var lines = layout.lines.map(function (line) {
         return line.replace(/\{(\w+)\}/g, function (all, slot) { return values[slot]; });
       });
-      blocks.push((run.last.length > 1 ? DATA.step.labels[i] + "\n" : "") + lines.join("\n"));
+      blocks.push((run.last.length > 1 ? (run.labels || DATA.step.labels)[i] + "\n" : "") + lines.join("\n"));
     }
     var more = run.last.length > count ? "\n(and " + (run.last.length - count) + " more masses)" : "";
     byId("step").textContent = blocks.join("\n") + more;
@@ -405,7 +376,7 @@ window.offlineProgram = function (compiled, rate, GSprint, offline_page, canvas,
   function sayMotion(run) {
     var D = DATA.describe, dt = run.setup.values.dt, n = run.n || 0;
     var t = (n * dt).toFixed(Math.min(100, Math.max(2, timeDecimals(dt))));
-    var centres = ownSetUp(run) ? DATA.measured.equilibrium : null;
+    var centres = page.ownSetUp && page.ownSetUp(run) ? DATA.measured.equilibrium : null;
     var masses = (run.last || []).map(function (now, i) {
       var s = run.steps[i] && run.steps[i].n === n ? run.steps[i] : null;
       var m = s ? s.m : (run.setup.values.m !== undefined ? run.setup.values.m : D.m[i]);
@@ -427,17 +398,26 @@ window.offlineProgram = function (compiled, rate, GSprint, offline_page, canvas,
 
   var setup = null;
 
-  function say(text) { byId("status").textContent = text; }
+  function say(text, warning) {
+    var status = byId("status");
+    status.textContent = text;
+    status.classList.toggle("warning", !!warning);
+  }
+  page.say = say;
 
   function showRunButton() { byId("run").textContent = paused ? "Run" : "Pause"; }
 
-  function toggle() { paused = !paused; showRunButton(); if (current) current.clock = null; if (!paused) letGo(); }
+  function toggle() {
+    paused = !paused; showRunButton();
+    if (current) current.clock = null;
+    if (!paused) { tell("resumed", current); letGo(); }
+  }
   function step() {
     if (!paused) { paused = true; showRunButton(); return; }
     steps += 1;
     letGo();
   }
-  function reset() { start(setup); }
+  function reset() { say(""); start(setup, setup); }
 
   // The time typed in the box, s ("2.5", "2.5 s"), or the one-line reason it cannot be one.
   function jumpTime(text) {
@@ -455,7 +435,7 @@ window.offlineProgram = function (compiled, rate, GSprint, offline_page, canvas,
     var asked = jumpTime(text);
     if (asked.problem) { say(asked.problem); return; }
     var dt = setup.values.dt, n = Math.max(0, Math.ceil(asked.t / dt - 1e-9));
-    if (!current || n < current.n) start(setup);
+    if (!current || n < current.n) start(setup, setup);
     paused = true;
     steps = 0;
     showRunButton();
@@ -489,15 +469,6 @@ window.offlineProgram = function (compiled, rate, GSprint, offline_page, canvas,
     (run.balls || []).forEach(function (ball) { ball.opacity = any ? DATA.arrows.see_through : 1; });
   }
 
-  // The 3-D view and the graph under it fill the left of the window: the view takes what the panel
-  // leaves of the width and half the height below the title, the graph the rest.
-  function viewSizes() {
-    var width = Math.max(320, Math.min(window.innerWidth - byId("panel").offsetWidth - 48, 1200));
-    var below = window.innerHeight - byId("view").getBoundingClientRect().top - 12;
-    var height = Math.max(200, Math.round(below * 0.52));
-    return {canvas: {width: width, height: height}, graph: {width: width, height: Math.max(200, below - height - 30)}};
-  }
-
   // GlowScript's canvas() or graph(), made at the page's size unless the program gives one.
   function sized(make, size) {
     var made = function (options) { return make(Object.assign({}, size, options || {})); };
@@ -505,31 +476,71 @@ window.offlineProgram = function (compiled, rate, GSprint, offline_page, canvas,
     return made;
   }
 
-  function sizeView(run) {         // after a resize: the 3-D view follows (the graph keeps its size)
-    var size = viewSizes().canvas;
-    if (run.scene) { run.scene.width = size.width; run.scene.height = size.height; }
-  }
-
   function showTime() {
     if (current) {
-      var dt = current.setup.values.dt;
+      var dt = current.dt;
       var t = current.n * dt;
       byId("time").textContent = "t = " + t.toFixed(Math.min(100, Math.max(2, timeDecimals(dt)))) + " s";
+      tell("frame", current);
     }
     window.requestAnimationFrame(showTime);
   }
 
-  function showLink(setup) {
-    var text = fragment(setup);
+  // What a run that passed its check shows: its warning (a motion that will grow, as the command
+  // line warns), the sliders at the values it runs with, and its link.
+  function showSetUp(run) {
+    if (run.warning) say(run.warning, true);
+    else if (byId("status").classList.contains("warning")) say("");
+    Object.keys(DATA.sliders).forEach(function (name) {
+      if (typeof run.setup.values[name] === "object" && run.ran[name] !== undefined) showSlider(name, run.ran[name]);
+    });
+    showLink(run);
+  }
+
+  function showLink(run) {
+    var text = fragment(run.setup, run.ran);
     byId("link").value = text ? "#" + text : "(the file's own set-up: no fragment)";
+    shownLink = text ? "#" + text : "";
     try { history.replaceState(null, "", text ? "#" + text : location.pathname + location.search); }
     catch (e) { /* some browsers refuse it on file://: the address keeps what it had */ }
   }
 
-  function showSlider(name) {
-    var spec = DATA.sliders[name], value = setup.values[name];
-    byId("slider-" + name + "-value").textContent = DATA.constants[name].symbol + " = " + describe(value, DATA.constants[name].unit);
-    byId("slider-" + name).setAttribute("aria-valuetext", byId("slider-" + name + "-value").textContent);
+  function describe(value, unit) { return pyG(value, 6) + (unit && unit !== "1" ? " " + unit : ""); }
+
+  function showSlider(name, value) {
+    var input = byId("slider-" + name), spec = DATA.sliders[name];
+    if (typeof value === "number") {
+      if (spec.values) {
+        var at = spec.values.indexOf(value);
+        input.value = String(at >= 0 ? at : spec.values.findIndex(function (x) { return x >= value; }));
+      } else input.value = String(value);
+    }
+    byId("slider-" + name + "-value").textContent = DATA.constants[name].symbol + " = " +
+      (typeof value === "number" ? describe(value, DATA.constants[name].unit) : "…");
+    input.setAttribute("aria-valuetext", byId("slider-" + name + "-value").textContent);   // said with its unit
+  }
+
+  // The sliders a preset (or the file) shows, as the local page shows them for its values.
+  function showSliders(names) {
+    Object.keys(DATA.sliders).forEach(function (name) {
+      byId("slider-" + name).parentNode.hidden = names.indexOf(name) < 0;
+    });
+  }
+
+  function placeControls() {
+    Object.keys(DATA.sliders).forEach(function (name) { showSlider(name, setup.values[name]); });
+    var preset = DATA.presets.findIndex(function (p) { return p.label === setup.preset; });
+    showSliders(preset >= 0 ? DATA.presets[preset].sliders : DATA.shown_sliders);
+    byId("preset").value = preset >= 0 ? String(preset) : "";
+    if (byId("integrator")) byId("integrator").value = setup.integrator;
+  }
+
+  function changed(values, extra) {   // a new set-up from the controls: judged by its run's check
+    var before = setup;
+    setup = Object.assign({values: Object.assign({}, setup.values, values), integrator: setup.integrator,
+                           preset: null}, extra || {});
+    say("");
+    start(setup, before);
   }
 
   function buildControls() {
@@ -546,74 +557,87 @@ window.offlineProgram = function (compiled, rate, GSprint, offline_page, canvas,
     Object.keys(DATA.sliders).forEach(function (name) {
       var spec = DATA.sliders[name], input = byId("slider-" + name);
       function valueAt() { return spec.values ? spec.values[Number(input.value)] : Number(input.value); }
-      input.addEventListener("input", function () {
-        var value = valueAt();
-        byId("slider-" + name + "-value").textContent = DATA.constants[name].symbol + " = " + describe(value, DATA.constants[name].unit);
-        input.setAttribute("aria-valuetext", byId("slider-" + name + "-value").textContent);   // said with its unit
-      });
+      input.addEventListener("input", function () { showSlider(name, valueAt()); });
       input.addEventListener("change", function () {   // released: the run starts again with the new value
-        var values = Object.assign({}, setup.values);
+        var values = {};
         values[name] = valueAt();
-        setup = {values: values, integrator: setup.integrator};
-        say("");
-        start(setup);
+        changed(values);
       });
+    });
+    byId("preset").addEventListener("change", function (e) {
+      var chosen = DATA.presets[Number(e.target.value)];
+      e.target.blur();
+      if (!chosen) return;
+      if (chosen.why) { say(chosen.why); placeControls(); return; }
+      changed(chosen.values, {preset: chosen.label});
+      placeControls();
+    });
+    if (byId("integrator")) byId("integrator").addEventListener("change", function (e) {
+      e.target.blur();
+      changed({}, {integrator: e.target.value, preset: setup.preset});
     });
     byId("speed").addEventListener("change", function (e) { setSpeed(DATA.speeds[e.target.value]); e.target.blur(); });
-    ["show-equilibrium", "show-period"].forEach(function (id) {
-      byId(id).addEventListener("change", function () { if (current) showMeasured(current); });
-    });
     byId("projector").addEventListener("change", function (e) {
       document.body.classList.toggle("projector", e.target.checked);
-      if (current) sizeView(current);
+      page.layout.resized();
     });
-    window.addEventListener("resize", function () { if (current) sizeView(current); });
+    window.addEventListener("resize", function () { page.layout.resized(); });
     byId("describe").addEventListener("click", function () { if (current) sayMotion(current); });
     // the keys are export/page_access.js's (export/page_keys.py), as on the local page
   }
 
   function setSpeed(value) { speed = value; if (current) current.clock = null; }
 
-  function placeSliders() {
-    Object.keys(DATA.sliders).forEach(function (name) {
-      var spec = DATA.sliders[name], input = byId("slider-" + name), value = setup.values[name];
-      input.value = spec.values ? String(Math.max(0, spec.values.indexOf(value))) : String(value);
-      showSlider(name);
-    });
-  }
-
   // What the page shows now, for a look from outside (the tests): the step reached, whether it is
-  // paused, the set-up, which kinds of arrow are drawn, the jumps made and drawn, and each mass's
-  // r and p as the program last reported them.
+  // paused, the set-up, and which kinds of arrow are drawn.
   window.offlineState = function () {
     var run = current || {};
     var drawn = {};
     Object.keys(run.arrows || {}).forEach(function (kind) {
       drawn[kind] = run.arrows[kind].length > 0 && run.arrows[kind].every(function (o) { return o.visible; });
     });
-    return {n: run.n, paused: paused, speed: speed, integrator: setup.integrator, values: setup.values,
-            arrows: drawn, opacity: (run.balls || []).map(function (ball) { return ball.opacity; }),
-            jumping: jump !== null, jumps: jumps, jumpsDrawn: jumpsDrawn, last: run.last};
+    return Object.assign({n: run.n, paused: paused, speed: speed, integrator: setup.integrator, values: setup.values,
+            ran: run.ran, preset: setup.preset, arrows: drawn, run: run.number, checked: !!run.checked,
+            status: byId("status").textContent,
+            opacity: (run.balls || []).map(function (ball) { return ball.opacity; }),
+            jumping: jump !== null, jumps: jumps, jumpsDrawn: jumpsDrawn, last: run.last},
+      page.toolsState ? page.toolsState() : {});
   };
+  page.current = function () { return current; };
+  page.isPaused = function () { return paused; };
 
   // what the Add a force box (export/force_box.js) asks of the page
   window.offlinePage = {setup: function () { return setup; }, withConstants: withConstants,
-                        restart: function () { start(setup); }};
+                        restart: function () { start(setup, setup); }};
 
   // ---- start ----
 
-  var asked = fromAddress(location.hash);
-  var own = {};
-  Object.keys(DATA.constants).forEach(function (name) { own[name] = DATA.constants[name].written; });
-  if (asked.problem) {
-    say(asked.problem + "; running the file's own set-up instead.");
-    setup = {values: own, integrator: DATA.integrator};
-  } else {
-    setup = {values: Object.assign(own, asked.values), integrator: asked.integrator};
+  var ownSetUp = {};
+  function own() {
+    var values = {};
+    Object.keys(DATA.constants).forEach(function (name) { values[name] = DATA.constants[name].own; });
+    return Object.assign(ownSetUp, {values: values, integrator: DATA.integrator, preset: null});
   }
-  buildControls();
-  placeSliders();
-  showRunButton();
-  start(setup);
-  window.requestAnimationFrame(showTime);
+
+  // The set-up in the address: at the start, and whenever the address's fragment is edited (a
+  // hosted page does not reload for that); a bad one is one line, and the file's own set-up runs.
+  var shownLink = null;
+  function fromAddress() {
+    var asked = page.judge.fromAddress(location.hash);
+    setup = asked.problem ? own() :
+      {values: Object.assign(own().values, asked.values), integrator: asked.integrator, preset: null};
+    placeControls();
+    say("");
+    start(setup, own());
+    if (asked.problem) say(asked.problem + "; running the file's own set-up instead.");
+  }
+
+  page.begin = function () {
+    buildControls();
+    showRunButton();
+    page.layout.resized();
+    fromAddress();
+    window.addEventListener("hashchange", function () { if (location.hash !== shownLink) fromAddress(); });
+    window.requestAnimationFrame(showTime);
+  };
 })();

@@ -76,14 +76,16 @@ def _made_per_force(model, *, single: bool) -> list[str]:
                     f"    {each}", f"        forcearrows[i].append({make})", f"        forcelabels[i].append({named})"]
 
 
-def setup_lines(model, *, shown, integrator: str | None, single: bool, view: dict, written=None) -> list[str]:
+def setup_lines(model, *, shown, integrator: str | None, single: bool, view: dict, written=None,
+                scales=None) -> list[str]:
     """The scales (the page's, for the scene's view and the arrows `shown`) and the arrows, made
     where each mass starts (after the program's objects): those shown, or all those `written`
     (the offline page, whose check boxes show and hide them)."""
     kinds = [kind for kind in WRITTEN if kind in (shown if written is None else written)]
     if not kinds:
         return []
-    scales = choose_scales(model, view=view, integrator=integrator, forces="forces" in shown)
+    if scales is None:   # else chosen already (the offline page's programs share the file's)
+        scales = choose_scales(model, view=view, integrator=integrator, forces="forces" in shown)
     lines = ["", f"# ---- the arrows: {', '.join(kinds)} at fixed scales, as on the page ----"]
     see_through = "see-through, as on the page: an arrow shorter than the radius shows inside"
     if single:

@@ -69,10 +69,20 @@ def _scalar(value) -> bool:
     return isinstance(value, (int, float)) and not isinstance(value, bool)
 
 
-def command(setup, model, integrator) -> str:
+def command(setup, model, integrator, options: list[str] | None = None) -> str:
     """The command line that shows this case on the page: `python main.py driven --preset "scenario 4"
     --integrator verlet`, with a preset where one gives some of the changed constants, and
-    --set NAME=VALUE for the others (checked: it configures exactly these values)."""
+    --set NAME=VALUE for the others (checked: it configures exactly these values). `options`:
+    command_options(setup), where it was worked out already (the same for every integrator)."""
+    best = list(command_options(setup) if options is None else options)
+    if model.methods(integrator) != model.methods():
+        best.append(f"--integrator {integrator}")
+    best += [force_option(name, text) for name, text in setup.written]
+    return " ".join(["python main.py", setup.name, *best])
+
+
+def command_options(setup) -> list[str]:
+    """The --preset and --set options of command(), which configure exactly setup's values."""
     best = _options(setup, None)
     for label, _ in catalog.presets(setup):   # a preset where it needs no more options than --set alone
         options = _options(setup, label)
@@ -81,10 +91,7 @@ def command(setup, model, integrator) -> str:
             best = options
     if best is None:   # cannot happen for a scene configured from the command line or the page
         best = [f"--set {name}={_set_value(value)}" for name, value in setup.values.items()]
-    if model.methods(integrator) != model.methods():
-        best.append(f"--integrator {integrator}")
-    best += [force_option(name, text) for name, text in setup.written]
-    return " ".join(["python main.py", setup.name, *best])
+    return best
 
 
 def force_option(name: str, text: str) -> str:

@@ -92,10 +92,11 @@ def _literal(value) -> str:
     return vector(value) if isinstance(value, (tuple, list, np.ndarray)) else number(value)
 
 
-def constants_block(setup, constants: ProgramConstants, used: set[str]) -> list[str]:
+def constants_block(setup, constants: ProgramConstants, used: set[str], ruled=()) -> list[str]:
     """One line per constant, `k = 40  # N/m: spring constant`, in the scene file's order (dt and
-    until last): the program's values, and the scene's constants the lists of masses are built from."""
-    values = {name: constants.single[name] for name in constants.single}
+    until last): the program's values, and the scene's constants the lists of masses are built from;
+    those `ruled` are worked out after the block from the others (program_masses.started)."""
+    values = {name: constants.single[name] for name in constants.single if name not in ruled}
     values.update({name: setup.values[name] for name in used if name not in values})
     scene = [name for name in setup.constants if name not in ("dt", "until")]
     order = [name for name in scene if name in values] + [name for name in values if name not in scene]

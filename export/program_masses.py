@@ -16,6 +16,7 @@ import numpy as np
 
 from physics.exact import Role
 from scenes import DECLARED
+from scenes._row import LABELS
 
 from .lines import COMMENT, CONSTANT_COLUMN, commented, listed, number, vector
 from .numbers import clean
@@ -25,9 +26,13 @@ LABELLED = 6               # more masses than this: no labels on their curves (a
 
 
 def masses(setup, model, constants, methods) -> tuple[list[str], set[str]]:
-    """The lines that make the lists of one value per mass, and the scene's constants they use."""
+    """The lines that make the lists of one value per mass, and the scene's constants they use;
+    for one mass, the values the scene works out from its constants by a declared rule (driven's
+    start from x0: started())."""
     if constants.count == 1:
-        return [], set()
+        lines = [commented(f"{rule.name} = {rule.whole}", rule.comment, width=CONSTANT_COLUMN)
+                 for rule in started(model, constants)]
+        return lines, _names(lines, setup.values)
     lines, written = _declared_lists(model.per_mass, constants)
     used = _names(lines, setup.values)
     for name, values in constants.per_mass.items():
@@ -37,8 +42,24 @@ def masses(setup, model, constants, methods) -> tuple[list[str], set[str]]:
     if len(set(methods)) > 1:
         lines += listed("method", [f'"{x}"' for x in methods], "the integrator of each mass")
     if constants.count <= LABELLED:
-        lines += listed("labels", [f'"{label}"' for label in model.labels], "what each mass shows")
+        rule = next((rule for rule in getattr(model.per_mass, "lists", ()) if rule.name == LABELS), None)
+        if rule is None:
+            lines += listed("labels", [f'"{label}"' for label in model.labels], "what each mass shows")
+        else:   # worked out from the constants, as the scene's build works the labels out
+            names = {name: constants.list_name(name) for name in constants.per_mass}
+            label_lines = ([commented(f"labels = {rule.whole.format(**names)}", rule.comment, width=CONSTANT_COLUMN)]
+                           if rule.whole else [commented(code.format(**names), comment) for code, comment in rule.before])
+            used |= _names(label_lines, setup.values)
+            lines += label_lines
     return lines, used
+
+
+def started(model, constants) -> list:
+    """For one mass, the declared rules (scenes/_model.py MassList with `whole`) of the values the
+    program has a line for: written from the constants, after them, instead of as numbers."""
+    if constants.count != 1 or model.per_mass is None:
+        return []
+    return [rule for rule in model.per_mass.lists if rule.whole and constants.has(rule.name)]
 
 
 def _declared_lists(per_mass, constants) -> tuple[list[str], set[str]]:

@@ -61,14 +61,14 @@ from scenes._view import DEFAULT_VIEW, MAX_DRAWN_MASSES
 from scenes._written import add_forces
 
 from . import program_arrows, program_page
-from .exact_curve import exact_lines, plot_line
+from .exact_curve import exact_lines, exact_value, plot_line
 from .lines import ProgramError, align_comments, commented, vector
 from .palette import EXACT_COLOUR, EXACT_WIDTH
 from .program_answer import HELPERS, answer_line
 from .program_command import command, description
 from .program_constants import ProgramConstants, constants_block
 from .program_forces import ProgramForces, update
-from .program_masses import anchor, mass_count, masses, which_mass
+from .program_masses import anchor, mass_count, masses, started, which_mass
 from .program_objects import objects
 
 WEB_FIRST_LINE = "Web VPython 3.2"
@@ -80,7 +80,8 @@ IMPORTS = ["from vpython import *",
 
 
 def program(setup, *, integrator: str | None = None, web: bool = False, arrows=None,
-            end: float | None = None, page: bool = False, header: bool = True, added=()) -> str:
+            end: float | None = None, page: bool = False, header: bool = True, header_of=None,
+            options: list[str] | None = None, scales=None, added=()) -> str:
     """The VPython program for a configured scene (scenes._catalog.Setup), as text.
 
     integrator  the method (default: the scene's own, else euler-cromer, the page's update), as
@@ -96,6 +97,11 @@ def program(setup, *, integrator: str | None = None, web: bool = False, arrows=N
                 step worked out from until and dt as the program runs.
     header      False leaves out the header's comments (its description and the command of the
                 same case, which takes most of the time to write): to compare programs' code.
+    header_of   the set-up the header describes, where it is not `setup` (the offline page's
+                programs have the forces its sliders switch on, on; their header is the file's)
+    options     the header command's options, program_command.command_options(setup), where they
+                were worked out already (the offline page writes a program per integrator)
+    scales      the arrows' scales (export/arrows.py choose_scales), where they were chosen already
     added       forces added after the model's own (export/offline_forces.py's place for the forces
                 the offline page's box adds)
 
@@ -105,12 +111,17 @@ def program(setup, *, integrator: str | None = None, web: bool = False, arrows=N
     if added:
         model = add_forces(model, added)
     _check_size(setup, model)
-    case = _Case(setup, model, integrator, arrows, end, page)
-    lines = IMPORTS + (case.header() if header else []) + case.constants_lines()
-    lines += program_page.controls_lines() if page else []
+    case = _Case(setup, model, integrator, arrows, end, page, scales=scales, options=options)
+    constants, lists = case.constants_lines()
+    # number() and vector_text() come before the loop, or before the lists where the masses' labels use them
+    early = page or any("number(" in line for line in lists)
+    described = case if header_of is None else _Case(header_of, header_of.build(), integrator, arrows, end, page,
+                                                     options=options)
+    lines = IMPORTS + (described.header() if header else []) + constants + (HELPERS if early else []) + lists
+    lines += program_page.controls_lines(case) if page else []
     lines += ["", "# ---- the objects ----"] + objects(model, case.view, case.constants, case.single)
     lines += case.exact_objects() + scene_setup_lines(case)
-    lines += HELPERS + case.loop() + case.answer()
+    lines += ([] if early else HELPERS) + case.loop() + case.answer()
     lines = align_comments(lines)
     if web:
         lines = [WEB_FIRST_LINE] + [line for line in lines if line not in IMPORTS]
@@ -122,7 +133,7 @@ def scene_setup_lines(case) -> list[str]:
     own, from case.model and case.constants (the arrows, export/program_arrows.py)."""
     written = program_arrows.WRITTEN if case.page else case.arrows
     lines = program_arrows.setup_lines(case.model, shown=case.arrows, integrator=case.integrator,
-                                       single=case.single, view=case.view, written=written)
+                                       single=case.single, view=case.view, written=written, scales=case.scales)
     if case.page:
         lines += ["", program_page.drawn_line(single=case.single,
                                               arrows=program_page.arrow_objects(written, single=case.single))]
@@ -136,7 +147,9 @@ def after_update_lines(case) -> list[str]:
     written = program_arrows.WRITTEN if case.page else case.arrows
     lines = program_arrows.loop_lines(case.model, shown=written, single=case.single)
     terms = [force.TERM for force in case.model.forces]
-    return lines + ([program_page.stepped_line(single=case.single, m=case.m, terms=terms)] if case.page else [])
+    if case.page:
+        lines += program_page.energy_lines(case) + [program_page.stepped_line(single=case.single, m=case.m, terms=terms)]
+    return lines
 
 
 def _check_size(setup, model) -> None:
@@ -150,13 +163,15 @@ def _check_size(setup, model) -> None:
 class _Case:
     """One configured case being written: its model, methods, view, named values and forces."""
 
-    def __init__(self, setup, model, integrator, arrows=None, end=None, page=False):
+    def __init__(self, setup, model, integrator, arrows=None, end=None, page=False, *, scales=None, options=None):
         self.setup, self.model, self.integrator, self.page = setup, model, integrator, page
+        self.scales, self.options = scales, options
         self.methods = model.methods(integrator)
         self.view = {**DEFAULT_VIEW, **setup.hooks.view}
         self.arrows = self.view["arrows"] if arrows is None else arrows
         self.single = model.state.count == 1
         self.index = "" if self.single else "[i]"
+        self.pos, self.p = f"pos{self.index}", f"p{self.index}"   # the program's names of a mass's r and p
         self.constants = ProgramConstants(setup, model.state.count, model.forces)
         self.constants.add("m", model.state.m)
         self.forces = ProgramForces(model, self.constants)
@@ -182,12 +197,17 @@ class _Case:
         how = f"the {methods[0]} integrator" if len(set(methods)) == 1 else "each mass's own integrator (the list method)"
         return [*description(self.setup),
                 f"# It steps with {how}. Edit the constants and run it again.",
-                f"# The same case on the simulator's page: {command(self.setup, self.model, self.integrator)}"]
+                f"# The same case on the simulator's page: {command(self.setup, self.model, self.integrator, self.options)}"]
 
-    def constants_lines(self) -> list[str]:
+    def constants_lines(self) -> tuple[list[str], list[str]]:
+        """(the constants block, the lists of one value per mass where there are several masses)."""
         lists, used = masses(self.setup, self.model, self.constants, self.methods)
-        lines = ["", "# ---- constants (unit: meaning) ----"] + constants_block(self.setup, self.constants, used)
-        return lines + (["", "# ---- the masses: one spring each ----"] + lists if lists else [])
+        self.used = used
+        ruled = [rule.name for rule in started(self.model, self.constants)]
+        lines = ["", "# ---- constants (unit: meaning) ----"] + constants_block(self.setup, self.constants, used, ruled)
+        if ruled:   # one mass: its start worked out from the constants, right after them
+            return lines + lists, []
+        return lines, (["", "# ---- the masses: one spring each ----"] + lists if lists else [])
 
     def exact_objects(self) -> list[str]:
         if self.exact is None:
@@ -218,7 +238,7 @@ class _Case:
     def _page_loop(self) -> list[str]:
         """The loop of the offline page's program: the handout's, with the question time's step
         worked out as it runs (program_page.question_lines), since the page may change until or Δt."""
-        lines = program_page.question_lines()
+        lines = program_page.energy_start_lines(self) + program_page.question_lines()
         lines += [f"if {program_page.QUESTION_CONDITION}:", *("    " + line for line in self.printed())]
         lines += [_loop_condition(self.model, self.end), commented("    rate(1/dt)", "real time: 1/Δt steps a second")]
         lines += self._each_mass(self.update() + after_update_lines(self))
@@ -258,6 +278,8 @@ class _Case:
         if self.exact is not None:
             lines += self.exact[1] if self.single else self.exact[0] + self.exact[1]
             lines += [plot_line(self.constants, index=i, axis=axes[0])]
+            if self.page:
+                lines += [program_page.exact_line(self, exact_value(self.constants, axis=axes[0]))]
         return lines
 
     def answer(self) -> list[str]:

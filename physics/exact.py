@@ -49,20 +49,40 @@ class Role:
 
 ROLES = tuple(value for name, value in vars(Role).items() if name.isupper())
 
+CRITICAL_RTOL = 1e-9        # b² within this fraction of 4mk is critical damping (damping_regime)
+RESONANCE_RTOL = 1e-12      # ω within this fraction of ω0, with b = 0, is undamped resonance
 
-def damping_regime(*, m: float, k: float, b: float, rtol: float = 1e-9) -> str:
+
+def damping_regime(*, m: float, k: float, b: float, rtol: float = CRITICAL_RTOL) -> str:
     """'under-damped' if b² < 4mk, 'critically damped' if b² = 4mk (within rtol), else 'over-damped'."""
     critical, under = _regimes(m=m, k=k, b=b, rtol=rtol)
     return "critically damped" if critical else "under-damped" if under else "over-damped"
 
 
-def _regimes(*, m, k, b, rtol: float = 1e-9):
+def _regimes(*, m, k, b, rtol: float = CRITICAL_RTOL):
     """Elementwise masks (critical, under) of b² = 4mk (within rtol) and b² < 4mk: damping_regime's
     test for every element of arrays of m, k and b at once. Neither: over-damped."""
     b = np.asarray(b, dtype=float)
     critical = 4.0 * np.asarray(m, dtype=float) * k
     at_critical = np.abs(b * b - critical) <= rtol * np.maximum(critical, 1e-300)
     return at_critical, ~at_critical & (b * b < critical)
+
+
+# _regimes' test as a program writes it (export/exact_curve.py's branches, a row's labels): each
+# regime with its condition in {b}, {m} and {k}, in the order tried; the last holds otherwise.
+REGIME_TESTS = (("critically damped", "abs({b}**2 - 4*{m}*{k}) <= " + repr(CRITICAL_RTOL) + "*4*{m}*{k}"),
+                ("under-damped", "{b}**2 < 4*{m}*{k}"),
+                ("over-damped", ""))
+
+
+def regime_lines(*, b: str, m: str, k: str) -> list[str]:
+    """damping_regime as lines of a program (Python and Web VPython alike) that set `regime`, for
+    the program's names of b, m and k: `if abs(b**2 - 4*m*k) <= ...:` / `regime = "critically damped"` ..."""
+    lines = []
+    for n, (regime, test) in enumerate(REGIME_TESTS):
+        lines.append(f"{'if' if n == 0 else 'elif'} {test.format(b=b, m=m, k=k)}:" if test else "else:")
+        lines.append(f'    regime = "{regime}"')
+    return lines
 
 
 def critical_damping(*, m: float, k: float) -> float:
@@ -73,7 +93,7 @@ def critical_damping(*, m: float, k: float) -> float:
 def undamped_resonance(*, m, k, b, omega):
     """Whether b = 0 and ω = ω0 = √(k/m) (to round-off), elementwise: undamped resonance."""
     omega0 = np.sqrt(k / m)
-    return (np.asarray(b) == 0) & (np.abs(np.asarray(omega) - omega0) <= 1e-12 * omega0)
+    return (np.asarray(b) == 0) & (np.abs(np.asarray(omega) - omega0) <= RESONANCE_RTOL * omega0)
 
 
 def steady_state_amplitude(*, m, k, b, F0, omega):

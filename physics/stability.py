@@ -408,6 +408,26 @@ def _limit_message(method, *, dt, omega, rate, bounded, limit: Limit, at_rest, n
             f"amount every step (linearly, not exponentially); a dt below {dt:g} s keeps it bounded")
 
 
+# A verdict's sentences, with its numbers in braces: the command line fills them in here, and the
+# offline page fills the same ones in the browser (export/offline_judge.py hands them over).
+REFUSED = "the run would blow up, past the stability limit"
+CAUSES = {"spring": "the spring (ω = {omega} rad/s, √(k/m) for one mass)",
+          "damping": "the damping (b/m = {damping} s⁻¹)",
+          "drag": "the drag (ρCA|v|/m = {drag} s⁻¹ at |v| = {speed} m/s)"}
+EVERY_DT = ("dt = {dt} s: {method} is unstable on a spring at every dt ({spring}; the motion grows about "
+            "{growth} % each step): use euler-cromer, verlet or rk4")
+PAST_LIMIT = "dt = {dt} s, but {named} {verb} dt < {limit} s necessary for {method}{rule}"
+
+
+def limit_rule(method: str, cause: str, rate: str = "γ") -> str:
+    """The method's own rule for the cause, after the limit: ", ω·dt < 2", or its rule with damping,
+    its γ written as the damping's rate (`rate`: "b/m"; the page fills in its own)."""
+    entry = INTEGRATORS[method]
+    if "damping" in cause and entry.damped_rule:
+        return f", {entry.damped_rule.replace('γ', f'({rate})')}" if rate != "γ" else f", {entry.damped_rule}"
+    return f", ω·dt < {entry.omega_dt_limit:.3g}" if cause == "spring" and entry.omega_dt_limit else ""
+
+
 def _message(method, *, dt, dt_max, cause, growth, named: dict) -> str:
     """The sentence for a Δt past the limit: the forces that limit it, each by its label and its own
     constant (named, from _named), the Δt they make necessary, and the method's rule."""
@@ -417,10 +437,7 @@ def _message(method, *, dt, dt_max, cause, growth, named: dict) -> str:
                 f"grows about {100 * (growth - 1):.3g} % each step): use euler-cromer, verlet or rk4")
     parts = [named[part] for part in cause.split(" and ")]
     what = " and ".join(parts)
-    entry = INTEGRATORS[method]
-    rate = named["damping words"]
-    rule = (f", {entry.damped_rule.replace('γ', f'({rate})')}" if "damping" in cause and entry.damped_rule
-            else f", ω·dt < {entry.omega_dt_limit:.3g}" if cause == "spring" and entry.omega_dt_limit else "")
+    rule = limit_rule(method, cause, named["damping words"])
     verb = "makes" if len(parts) == 1 and " and " not in what else "make"
     limit, digits = f"{dt_max:.4g}", 6
     while float(f"{dt:.{digits}g}") != dt and float(f"{dt:.{digits}g}") <= float(limit) and digits < 17:

@@ -24,7 +24,7 @@ from physics.period import record_window
 from physics.recording import CoordinateWatch, Trajectory, WindowLargest, every, steps_to_reach, time_grid, trajectory
 from physics.run_cost import RunTooLong, check_cost
 from physics.simulate import BlowUpError, Simulation
-from physics.stability import judge
+from physics.stability import REFUSED, judge
 from export.step_update import number
 from scenes import ConstantError, Model, Setup
 
@@ -259,7 +259,7 @@ def stability_warning(model: Model, methods) -> Optional[str]:
         verdicts.append(judge(model.forces, model.state.m, methods, model.dt, v=model.state.v, ignore=others))
     for verdict in verdicts:
         if verdict.past_limit:
-            raise BlowUpError(f"the run would blow up, past the stability limit: {verdict.message}")
+            raise BlowUpError(f"{REFUSED}: {verdict.message}")
         if verdict.at_limit:   # exactly at the limit: it runs, and the sentence says what it does
             return f"warning: {verdict.message}"
         if not verdict.stable:

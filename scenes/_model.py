@@ -107,3 +107,44 @@ class Model:
         may_run_away = set(self.may_run_away) | set(options.pop("may_run_away", ()))
         return Simulation(self.state, self.forces, dt=self.dt, integrator=self.methods(integrator),
                           may_run_away=sorted(may_run_away), **options)
+
+
+@dataclass(frozen=True)
+class MassList:
+    """One list of the program with a value per mass, as the scene's build works it out.
+
+    name     the model's quantity it holds: "anchor", "r0", or a force's constant ("b", "omega")
+    comment  the program's comment on the line that makes each value
+    each     one mass's value, inside the loop over the masses (MassLoop.index names it), or
+    whole    the whole list at once, before the loop
+    before   (code, comment) lines it needs before the loop: `s_eq = L0 + m*g/k`
+    keep     a name the value is kept in first, for the lists after it (`a`, the anchor)
+    All text names the scene's constants, as its constants block does.
+    """
+
+    name: str
+    comment: str = ""
+    each: str = ""
+    whole: str = ""
+    before: tuple = ()
+    keep: str = ""
+
+
+@dataclass(frozen=True)
+class MassLoop:
+    """The scene's lists of one value per mass: the loop over the masses and the lists it fills.
+
+    loop     the for line(s), `for i in range(3):` or a row per b and a column per ω
+    index    the loop's index inside, for a mass's place in its row (`i`, `col`)
+    lists    the MassList of each quantity, in the order they are made
+    per_row  where there are rows: the constant that gives a row's length (`count`)
+    """
+
+    loop: tuple
+    index: str
+    lists: tuple
+    per_row: str = ""
+
+    def then(self, *lists: MassList) -> "MassLoop":
+        """The same loop with more lists (a scene's own, after the row's)."""
+        return MassLoop(self.loop, self.index, self.lists + tuple(lists), self.per_row)

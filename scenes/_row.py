@@ -23,13 +23,13 @@ hands them to its Model (Model.per_mass); export/ writes them without knowing an
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 
 import numpy as np
 
 from physics.exact import Role, displacement_bound, row_motion, single_mass_motion
 from physics.forces import closed_form_terms
 
+from ._model import MassList, MassLoop
 from ._single_mass import ANCHOR_LIMIT, AnchorCrossing
 
 DOWN = (0.0, -1.0, 0.0)
@@ -43,45 +43,24 @@ def anchors_in_a_row(*, count: int, spacing: float, along=(1.0, 0.0, 0.0)) -> np
     return offsets[:, None] * along[None, :]
 
 
-@dataclass(frozen=True)
-class MassList:
-    """One list of the program with a value per mass, as the scene's build works it out.
-
-    name     the model's quantity it holds: "anchor", "r0", or a force's constant ("b", "omega")
-    comment  the program's comment on the line that makes each value
-    each     one mass's value, inside the loop over the masses (MassLoop.index names it), or
-    whole    the whole list at once, before the loop
-    before   (code, comment) lines it needs before the loop: `s_eq = L0 + m*g/k`
-    keep     a name the value is kept in first, for the lists after it (`a`, the anchor)
-    All text names the scene's constants, as its constants block does.
-    """
-
-    name: str
-    comment: str = ""
-    each: str = ""
-    whole: str = ""
-    before: tuple = ()
-    keep: str = ""
+LABELS = "labels"           # the MassList of each mass's label (its curve's name, the answer's)
 
 
-@dataclass(frozen=True)
-class MassLoop:
-    """The scene's lists of one value per mass: the loop over the masses and the lists it fills.
+def label_number(x) -> str:
+    """A number in a mass's label: 6 significant digits, '{:.6g}' and no '-0', as the program's
+    number() writes it (export/program_answer.py), so the label a program works out from its
+    constants is the scene's, digit for digit."""
+    text = f"{float(x):.6g}"
+    return "0" if text == "-0" else text
 
-    loop     the for line(s), `for i in range(3):` or a row per b and a column per ω
-    index    the loop's index inside, for a mass's place in its row (`i`, `col`)
-    lists    the MassList of each quantity, in the order they are made
-    per_row  where there are rows: the constant that gives a row's length (`count`)
-    """
 
-    loop: tuple
-    index: str
-    lists: tuple
-    per_row: str = ""
-
-    def then(self, *lists: MassList) -> "MassLoop":
-        """The same loop with more lists (a scene's own, after the row's)."""
-        return MassLoop(self.loop, self.index, self.lists + tuple(lists), self.per_row)
+def labels_list(expressions: str = "", *, lines: tuple = ()) -> MassList:
+    """Each mass's label as the program works it out from the constants, where it names them (the
+    scene's build writes the same text with label_number): `expressions`, a list of the program
+    (`["damping, b = " + number(b) + " kg/s", ...]`, the program's number() for each number), or
+    `lines` of the program, (code, comment) pairs, that fill the list `labels`. In either, {name}
+    stands for the program's list of a constant with one value per mass (`b_each`)."""
+    return MassList(LABELS, "what each mass shows", whole=expressions, before=tuple(lines))
 
 
 def row_loop(*, count: int, count_name: str = "", rows_name: str = "") -> MassLoop:

@@ -22,7 +22,7 @@ from physics.exact import single_mass_motion
 from physics.forces import closed_form_terms, switched_on
 from physics.state import make_state
 
-from ._model import Model
+from ._model import MassLoop, Model
 
 
 def forces_for(**constants) -> tuple:
@@ -90,9 +90,11 @@ ANCHOR_LIMIT = ("when the mass reaches its spring's anchor; past the anchor a sp
                 "flips over, which the closed form does not follow")
 
 
-def build_single_mass(*, m, r0, v0, dt, until, anchor, label="mass", **constants) -> Model:
+def build_single_mass(*, m, r0, v0, dt, until, anchor, label="mass", start=None, **constants) -> Model:
     """A Model of one mass from its constants (units as in the scene files): m, r0, v0, dt, until
-    and the anchor the view draws the spring from, and every force's constants by name."""
+    and the anchor the view draws the spring from, and every force's constants by name. `start`:
+    how the scene worked r0 out from its constants, as data for the handed-out program (a
+    scenes/_row.py MassList for "r0" whose `whole` is the program's expression), or None."""
     forces = forces_for(anchor=anchor, **constants)
     terms, no_closed_form = closed_form_terms(forces)
     motion = None if terms is None else single_mass_motion(m=m, r0=r0, v0=v0, **terms)
@@ -117,4 +119,5 @@ def build_single_mass(*, m, r0, v0, dt, until, anchor, label="mass", **constants
         exact_valid_until=crossing,
         exact_limit=ANCHOR_LIMIT if crossing else "",
         no_closed_form=no_closed_form,
+        per_mass=None if start is None else MassLoop((), "", (start,)),
     )

@@ -24,7 +24,8 @@ from physics.forces import Gravity, LinearDamping, QuadraticDrag, Spring
 from physics.state import make_state
 
 from ._model import Model
-from ._row import anchors_in_a_row, exact_row, row_anchors, row_loop, row_starts, start_positions
+from ._row import (anchors_in_a_row, exact_row, label_number, labels_list, row_anchors, row_loop, row_starts,
+                   start_positions)
 
 # ---- constants: edit these (unit: meaning); 0 switches a force off ----
 m = 0.27                   # kg: mass of each ball (a volleyball)
@@ -58,6 +59,10 @@ def matched_b(*, m, k, C, A, rho, x0) -> float:
     return 8.0 / (3.0 * np.pi) * 0.5 * C * A * rho * np.sqrt(k / m) * x0
 
 
+# Each ball's label as the program works it out (build writes the same with label_number).
+LABELS = labels_list('["linear, b = " + number(b) + " kg/s", "quadratic, ½CAρ = " + number(0.5*C*A*rho) + " kg/m"]')
+
+
 def build(*, m, k, L0, g, b, C, A, rho, x0, spacing, dt, until):
     """Two hanging balls: linear damping on the left, quadratic drag on the right."""
     anchors = anchors_in_a_row(count=2, spacing=spacing)
@@ -76,8 +81,8 @@ def build(*, m, k, L0, g, b, C, A, rho, x0, spacing, dt, until):
         until=float(until),
         **exact_row(forces=forces, r0=r0, m=m),
         anchors=anchors,
-        labels=(f"linear, b = {b:.3g} kg/s", f"quadratic, ½CAρ = {0.5 * C * A * rho:.3g} kg/m"),
-        per_mass=row_loop(count=2).then(row_anchors(row_loop(count=2), count=2), row_starts(k=k)),
+        labels=(f"linear, b = {label_number(b)} kg/s", f"quadratic, ½CAρ = {label_number(0.5 * C * A * rho)} kg/m"),
+        per_mass=row_loop(count=2).then(row_anchors(row_loop(count=2), count=2), row_starts(k=k), LABELS),
     )
 
 

@@ -7,6 +7,7 @@ five scenarios with --scenario N.
 """
 import numpy as np
 
+from ._model import MassList
 from ._single_mass import build_single_mass
 
 # ---- constants: edit these (unit: meaning); 0 switches a force off ----
@@ -40,11 +41,18 @@ SCENARIOS = [
 ]
 
 
+# The start worked out from x0 as the program writes it, with the same arithmetic as build.
+START = MassList("r0", "m: start position, x0 beyond the relaxed length along x",
+                 whole="anchor + (L0 + x0)*vector(1, 0, 0)")
+
+
 def build(*, x0, r0, anchor, L0, **constants):
     """The horizontal driven oscillator; the mass starts x0 from equilibrium unless r0 is given."""
+    start = None
     if r0 is None:
         r0 = tuple(np.asarray(anchor, dtype=float) + (L0 + x0) * np.array([1.0, 0.0, 0.0]))
-    return build_single_mass(r0=r0, anchor=anchor, L0=L0, **constants)
+        start = START
+    return build_single_mass(r0=r0, anchor=anchor, L0=L0, start=start, **constants)
 
 
 VIEW = {"support": "wall", "plot": "x", "arrows": ("p", "F_net"),

@@ -24,7 +24,8 @@ from physics.forces.friction import Friction
 from physics.state import make_state
 
 from ._model import Model
-from ._row import anchors_in_a_row, exact_row, row_anchors, row_loop, row_starts, start_positions
+from ._row import (anchors_in_a_row, exact_row, label_number, labels_list, row_anchors, row_loop, row_starts,
+                   start_positions)
 
 # ---- constants: edit these (unit: meaning); 0 switches a force off ----
 m = 0.5                    # kg: mass of each block (a lab cart)
@@ -61,8 +62,9 @@ def build(*, m, k, L0, g, mu_k, mu_s, b, x0, spacing, dt, until):
         until=float(until),
         **exact_row(forces=forces, r0=r0, m=m),
         anchors=anchors,
-        labels=(f"damping, b = {b:.3g} kg/s", f"friction, μ_k = {mu_k:.3g}"),
-        per_mass=_ROW.then(row_anchors(_ROW, count=2, along=ALONG_WALL), row_starts(direction=OUT_OF_WALL, k=k)),
+        labels=(f"damping, b = {label_number(b)} kg/s", f"friction, μ_k = {label_number(mu_k)}"),
+        per_mass=_ROW.then(row_anchors(_ROW, count=2, along=ALONG_WALL), row_starts(direction=OUT_OF_WALL, k=k),
+                           labels_list('["damping, b = " + number(b) + " kg/s", "friction, μ_k = " + number(mu_k)]')),
     )
 
 

@@ -15,13 +15,14 @@ fractions and multiples of b_c. Each curve has its exact solution from physics.e
 """
 import numpy as np
 
-from physics.exact import critical_damping, damping_regime
+from physics.exact import critical_damping, damping_regime, regime_lines
 from physics.forces import Gravity, LinearDamping, Spring
 from physics.state import make_state
 
 from ._constants import ConstantError
 from ._model import Model
-from ._row import MassList, anchors_in_a_row, exact_row, row_anchors, row_loop, row_starts, start_positions
+from ._row import (MassList, anchors_in_a_row, exact_row, label_number, labels_list, row_anchors, row_loop, row_starts,
+                   start_positions)
 
 # ---- constants: edit these (unit: meaning); 0 switches a force off ----
 m = 1.0                    # kg: mass of each block
@@ -57,6 +58,14 @@ def damping_list(*, b) -> MassList:
                     before=(("b_c = 2*sqrt(m*k)", "kg/s: critical damping, 2√(mk)"),))
 
 
+# Each oscillator's label, its regime and b, as the program works it out from its list of b ({b}):
+# physics/exact.py's damping_regime as an expression; build writes the same with label_number.
+LABELS = labels_list(lines=(("labels = []", "what each mass shows: its damping regime and b"),
+                             ("for b_i in {b}:", ""),
+                             *(("    " + line, "") for line in regime_lines(b="b_i", m="m", k="k")),
+                             ('    labels.append(regime + " (b = " + number(b_i) + " kg/s)")', "")))
+
+
 def build(*, m, k, L0, g, b, under_fraction, over_multiple, x0, spacing, dt, until):
     """Three hanging oscillators, identical but for their damping constants."""
     b_each = damping_constants(m=m, k=k, b=b, under_fraction=under_fraction, over_multiple=over_multiple)
@@ -64,7 +73,7 @@ def build(*, m, k, L0, g, b, under_fraction, over_multiple, x0, spacing, dt, unt
     # x0 is a stretch below equilibrium: along û = −y that is +x0.
     r0 = start_positions(anchors=anchors, L0=L0, m=m, k=k, g=g, x0=x0)
     loop = row_loop(count=3)
-    per_mass = loop.then(row_anchors(loop, count=3), row_starts(k=k), damping_list(b=b))
+    per_mass = loop.then(row_anchors(loop, count=3), row_starts(k=k), damping_list(b=b), LABELS)
     forces = [Spring(k=k, L0=L0, anchor=anchors), LinearDamping(b=b_each)]
     if g:
         forces.append(Gravity(g=g))
@@ -75,7 +84,7 @@ def build(*, m, k, L0, g, b, under_fraction, over_multiple, x0, spacing, dt, unt
         until=float(until),
         **exact_row(forces=forces, r0=r0, m=m),
         anchors=anchors,
-        labels=tuple(f"{damping_regime(m=m, k=k, b=b_i)} (b = {b_i:.3g} kg/s)" for b_i in b_each),
+        labels=tuple(f"{damping_regime(m=m, k=k, b=b_i)} (b = {label_number(b_i)} kg/s)" for b_i in b_each),
         per_mass=per_mass,
     )
 

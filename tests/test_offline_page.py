@@ -15,7 +15,8 @@ from pathlib import Path
 import pytest
 
 from export import offline_page
-from export.offline_page import LIBRARIES, MAX_BYTES, _code, page, settable
+from export.offline_page import LIBRARIES, MAX_BYTES, page
+from export.offline_setup import code as _code, page_setup, settable
 from export.vpython_program import program
 from scenes import catalog
 from scenes._view import DEFAULT_VIEW
@@ -131,18 +132,27 @@ def _changed_program(scene: str, name: str, value: float) -> list[str]:
 
 def test_a_page_offers_a_constant_only_where_its_line_alone_changes():
     """vertical's m, k, L0, g, dt and until can change over their sliders' spans; damped's b down to
-    0 (the damping line then adds nothing); a force switched off in the file (pendulum's b), a
-    start worked out from a constant (driven's x0) and a label naming a value (regimes' b) cannot."""
-    def offered(scene):
-        setup = catalog.configure(scene)
-        view = {**DEFAULT_VIEW, **setup.hooks.view}
-        return {found.name: (found.file_low, found.file_high) for found in settable(setup, view=view)}
+    0 (the damping line then adds nothing); driven's m, k and ω (the exact curve's resonance is a
+    branch), its x0 (its start a rule of x0), friction's μ_k and b and regimes' b (labels worked out
+    from the constants); a force switched off in the file (pendulum's b) cannot, until the page's
+    set-up switches it on for its slider (offline_setup.page_setup)."""
+    def offered(scene, setup=None):
+        setup = setup or catalog.configure(scene)
+        return {found.name: (found.file_low, found.file_high) for found in settable(setup)}
 
     vertical = offered("vertical")
     assert {"m", "k", "L0", "g", "dt", "until"} <= set(vertical)
-    assert vertical["k"] == (4.0, 120.0) and vertical["m"] == (1.0, 30.0)
-    assert offered("damped")["b"] == (0.0, 3.0)
-    assert "b" not in offered("pendulum") and "x0" not in offered("driven") and "b" not in offered("regimes")
+    # from the slider's span out to the declared range wherever the program takes it: k = 0 is no
+    # spring (no closed form, other lines), so k stops at its slider's low end
+    assert vertical["k"] == (4.0, 1e6) and vertical["m"] == (1e-6, 1e6)
+    assert offered("damped")["b"] == (0.0, 1e6)
+    assert {"m", "k", "omega", "F0", "x0"} <= set(offered("driven"))
+    assert {"mu_k", "mu_s", "b"} <= set(offered("friction")) and "b" in offered("regimes")
+    assert "b" not in offered("pendulum")
+    pendulum = catalog.configure("pendulum")
+    view = {**DEFAULT_VIEW, **pendulum.hooks.view}
+    switched = page_setup(pendulum, view)
+    assert switched.values["b"] > 0 and "b" in offered("pendulum", switched)
     # what "offered" means: the program for a new value is the file's but for the constant's own line
     base = _code(program(catalog.configure("vertical"), web=True, arrows=(), page=True, header=False), "k")
     assert _changed_program("vertical", "k", 100.0) == base

@@ -11,6 +11,7 @@ force or names its constants.
 from __future__ import annotations
 
 import operator
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -73,6 +74,20 @@ def compare(a, relation: str, b):
     return _RELATIONS[relation](a, b)
 
 
+@dataclass(frozen=True)
+class Rule:
+    """What a force's constants must satisfy beyond each one's range (friction's μ_s ≥ μ_k): `breaks`,
+    the condition that breaks it as a program writes it ("{mu_s} < {mu_k}"), and `says`, the one
+    line that refuses it, with the constants in braces, written with 6 digits (said)."""
+
+    breaks: str
+    says: str
+
+    def said(self, **values) -> str:
+        """The refusal, with each constant's value as '{:.6g}' writes it (as the program's number())."""
+        return self.says.format(**{name: f"{float(value):.6g}" for name, value in values.items()})
+
+
 FORCES: list[type] = []     # every force class, in the order defined (ours, then any a scene brings)
 
 
@@ -112,6 +127,13 @@ class Force:
                finds the constants it writes (closed_form_constants)
     stop()     its stop rule, where it has one (static friction): applied by the engine after
                every step, and written in the program after the update (STOP lines)
+    PROGRAM_RATES   rates() as the program writes them, {"stiffness": "{k}"} ({m}: the mass,
+               {speed}: |v|), which the offline page's program reports for the stability judgement
+    PROGRAM_ENERGY  potential_energy() as the program writes it ({r}, {m}), for the offline page's
+               energy graph and bars (a conservative force's)
+    RULES      what its constants must satisfy, beyond each one's range, as Rule(breaks, says):
+               the condition that breaks it as the program writes it, and the sentence, with the
+               constants in braces; the force's own check (__post_init__) raises says.format(...)
     SINGLE_MASS  whether a single-mass scene takes it, switched on by its constants (True); False
                for a force that needs a scene of its own (friction needs a table): --constants and
                --forces then leave it out of those scenes, and its switched_on says why in one line
@@ -126,6 +148,9 @@ class Force:
     PROGRAM: tuple[tuple[str, str], ...] = ()
     STOP: tuple[tuple[str, str], ...] = ()
     CLOSED_FORM: dict[str, str] = {}
+    PROGRAM_RATES: dict[str, str] = {}
+    PROGRAM_ENERGY = ""
+    RULES: tuple = ()
     RATE_WORDS: dict[str, str] = {}
     SINGLE_MASS = True
     conservative = False
@@ -339,6 +364,6 @@ def settle(forces, *, t, r, p, m, dt, r_f, p_f):
     return r_f, p_f
 
 
-__all__ = ["Force", "FORCES", "Declared", "DeclarationError", "closed_form_constants", "closed_form_terms", "compare",
-           "declared_constants", "forces_each", "net_force", "settle", "switched_on", "uses_velocity", "where",
-           "row_dot"]
+__all__ = ["Force", "FORCES", "Declared", "DeclarationError", "Rule", "closed_form_constants", "closed_form_terms",
+           "compare", "declared_constants", "forces_each", "net_force", "settle", "switched_on", "uses_velocity",
+           "where", "row_dot"]

@@ -12,7 +12,7 @@ import numpy as np
 
 from ..declared import Declared
 from ..rows import magnitude, row_dot
-from .base import Force, _column, _per_mass, compare, where
+from .base import Force, Rule, _column, _per_mass, compare, where
 from .page import Gravity
 
 
@@ -73,6 +73,10 @@ class Friction(Force):
     }
     TERM = "Ffriction"
     VECTORS = {"surface": "surface"}
+    RULES = (Rule("{mu_s} < {mu_k}", "mu_s must be at least mu_k (got mu_s = {mu_s}, mu_k = {mu_k}): a mass at rest "
+                                     "is held at least as firmly as a sliding one is slowed"),
+             Rule("not {g} > 0", "friction needs a load N = m g, but g = {g} here: set g > 0 (a scene on a "
+                                 "table keeps gravity out of its forces; the table holds the mass up)"))
     PROGRAM = (("vs = vector({v}.x, 0, {v}.z)", "friction: the velocity and the other forces along the table"),
                ("Fs = vector({F_rest}.x, 0, {F_rest}.z)", ""),
                ("if mag(vs) > 0:", ""),
@@ -92,13 +96,11 @@ class Friction(Force):
     def __post_init__(self):
         for name in ("mu_k", "mu_s"):
             object.__setattr__(self, name, _per_mass(getattr(self, name)))
-        if np.any(np.asarray(self.mu_s) < np.asarray(self.mu_k)):
-            raise ValueError(f"mu_s must be at least mu_k (got mu_s = {np.max(self.mu_s):g}, mu_k = "
-                             f"{np.max(self.mu_k):g}): a mass at rest is held at least as firmly as a "
-                             f"sliding one is slowed")
-        if not self.g > 0:
-            raise ValueError("friction needs a load N = m g, but g = 0 here: set g > 0 (a scene on a "
-                             "table keeps gravity out of its forces; the table holds the mass up)")
+        held, loaded = self.RULES
+        if np.any(np.asarray(self.mu_s) < np.asarray(self.mu_k)):   # held.breaks
+            raise ValueError(held.said(mu_s=np.max(self.mu_s), mu_k=np.max(self.mu_k)))
+        if not self.g > 0:                                           # loaded.breaks
+            raise ValueError(loaded.said(g=self.g))
         object.__setattr__(self, "surface", np.asarray(self.surface, dtype=float))
 
     @classmethod

@@ -63,6 +63,9 @@ class Spring(Force):
                ("Fspring = {k}*({L0}/mag(L) - 1)*L", "Hooke's law: F = −k (|L| − L0) L̂, written k (L0/|L| − 1) L"))
     LINEAR = (("L = {r} - {anchor}", "the spring, from its fixed end to the mass"),
               ("Fspring = -{k}*L", "Hooke's law with L0 = 0: F = −k L"))
+    PROGRAM_RATES = {"stiffness": "{k}"}
+    PROGRAM_ENERGY = "0.5*{k}*(mag({r} - {anchor}) - {L0})**2"
+    LINEAR_ENERGY = "0.5*{k}*mag({r} - {anchor})**2"
 
     def __post_init__(self):
         object.__setattr__(self, "k", _per_mass(self.k))
@@ -115,6 +118,9 @@ class Spring(Force):
 
     def program(self):
         return self.LINEAR if self._zero_length else self.PROGRAM
+
+    def program_energy(self):
+        return self.LINEAR_ENERGY if self._zero_length else self.PROGRAM_ENERGY
 
 
 @dataclass(frozen=True, eq=False)
@@ -179,6 +185,7 @@ class Gravity(Force):
     VECTORS = {"direction": "direction", "g_vector": "direction"}
     CLOSED_FORM = {Role.GRAVITY: "g"}
     PROGRAM = (("Fgravity = {m}*vector(0, -{g}, 0)", "gravity: F = m g, down (−y)"),)
+    PROGRAM_ENERGY = "{m}*{g}*{r}.y"
 
     def __post_init__(self):
         object.__setattr__(self, "direction", _unit(self.direction))
@@ -219,6 +226,7 @@ class LinearDamping(Force):
     VECTORS = {}
     CLOSED_FORM = {Role.DAMPING: "b"}
     PROGRAM = (("Fdamping = -{b}*{v}", "linear damping: F = −b v"),)
+    PROGRAM_RATES = {"damping": "{b}/{m}"}
 
     def __post_init__(self):
         object.__setattr__(self, "b", _per_mass(self.b))
@@ -259,6 +267,7 @@ class QuadraticDrag(Force):
     VECTORS = {}
     RATE_WORDS = {"drag": "ρCA|v|/m"}     # its rate at the present speed, for the stability message
     PROGRAM = (("Fdrag = -0.5*{C}*{A}*{rho}*mag({v})*{v}", "air drag: F = −½ C A ρ |v|² v̂ = −½ C A ρ |v| v"),)
+    PROGRAM_RATES = {"drag": "{C}*{A}*{rho}*{speed}/{m}"}
 
     def __post_init__(self):
         for name in ("C", "A", "rho"):
