@@ -78,7 +78,7 @@ def test_the_local_page_has_no_wcag_violation(scene, browser):
     page = local.page
     try:
         local.step(2)
-        page.get_by_role("button", name="Describe (D)").click()
+        page.get_by_role("button", name="Describe (D)", exact=True).click()
         page.locator(".sm-description").filter(has_text="t = ").wait_for(timeout=WAIT * 1000)
         page.locator(".sm-measure-toggle").click()
         page.locator(".sm-measure").wait_for(state="visible")
@@ -94,7 +94,7 @@ def test_the_local_page_has_no_wcag_violation(scene, browser):
                 page.locator(".sm-bars").first.wait_for(timeout=WAIT * 1000)
             local.graphs_described()
             no_violations(page, f"{scene}, graph place: {choice}")
-        page.get_by_role("button", name="Projector: off (P)").click()
+        page.get_by_role("button", name="Projector: off (P)", exact=True).click()
         page.wait_for_function("() => document.body.classList.contains('sm-projector')")
         no_violations(page, f"{scene}, projector mode")
         page.screenshot(path=str(SCREENSHOTS / f"access-local-{scene}.png"))

@@ -126,7 +126,7 @@ def test_step_read_out_and_arrows_are_the_engines(browser, capsys, args):
         page.click("Run")
         wait_for(lambda: shown_time(page.page) > 3 * model.dt, what="the run to go on")
         jump_to(page.page, 2.0)
-        page.page.get_by_role("button", name="Run").wait_for()
+        page.page.get_by_role("button", name="Run", exact=True).wait_for()
         objects = page.objects()
         assert (objects["p_unit"], objects["F_unit"]) == (first["p_unit"], first["F_unit"])
         t = shown_time(page.page)

@@ -209,7 +209,7 @@ def keys_work(page, scene: str) -> None:
     dt = catalog.configure(scene).build().dt
     page.evaluate("() => document.activeElement && document.activeElement.blur()")      # the focus on the page itself
     page.keyboard.press("Space")
-    page.get_by_role("button", name="Run").wait_for()
+    page.get_by_role("button", name="Run", exact=True).wait_for()
     paused = shown_time(page)
     page.keyboard.press("ArrowRight")
     stepped = wait_for(lambda: (t := shown_time(page)) != paused and t,
@@ -222,7 +222,7 @@ def keys_work(page, scene: str) -> None:
     page.keyboard.press("-")
     wait_for(lambda: speed_shown(page) == "1×", what="− to slow down")
     page.keyboard.press("Space")
-    page.get_by_role("button", name="Pause").wait_for()
+    page.get_by_role("button", name="Pause", exact=True).wait_for()
 
 
 def projector_mode(page) -> None:
@@ -258,7 +258,7 @@ def test_scene_in_the_browser(browser, scene):
 
         # Jump to 2 s: the page shows it, paused (its clock's pace: tests/test_jump_browser.py)
         assert jump_to(page, 2.0) == pytest.approx(2.0)
-        page.get_by_role("button", name="Run").wait_for()
+        page.get_by_role("button", name="Run", exact=True).wait_for()
         assert shown_time(page) == pytest.approx(2.0)
 
         # the layout: nothing scrolls sideways, the view and the position graph inside the window,
@@ -292,20 +292,20 @@ def test_scene_in_the_browser(browser, scene):
         assert shown_time(page) == paused     # still paused, through a screenshot's frames
 
         # Step advances one Δt, and the page stays paused
-        page.get_by_role("button", name="Step").click()
+        page.get_by_role("button", name="Step", exact=True).click()
         stepped = wait_for(lambda: (t := shown_time(page)) != paused and t, what="Step to show")
         assert stepped - paused == pytest.approx(dt, abs=0.6 * 10 ** -decimals)
-        assert page.get_by_role("button", name="Run").count() == 1 and shown_time(page) == stepped
+        assert page.get_by_role("button", name="Run", exact=True).count() == 1 and shown_time(page) == stepped
 
         # Reset returns to 0
-        page.get_by_role("button", name="Reset").click()
+        page.get_by_role("button", name="Reset", exact=True).click()
         wait_for(lambda: shown_time(page) == 0.0, what="Reset to show t = 0")
         assert page.locator("b").filter(has_text=f"t = {0:.{decimals}f} s").count() == 1
 
         # Run: t advances (the next frame); then the keys do the same with real key presses;
         # projector mode (key P)
-        page.get_by_role("button", name="Run").click()
-        page.get_by_role("button", name="Pause").wait_for()
+        page.get_by_role("button", name="Run", exact=True).click()
+        page.get_by_role("button", name="Pause", exact=True).wait_for()
         wait_for(lambda: shown_time(page) > 0.0, what="t to advance after Run")
         keys_work(page, scene)
         projector_mode(page)
@@ -353,7 +353,7 @@ def test_preset_menu_scene_menu_and_csv_download(browser):
         page = browser.new_page(viewport={"width": 1024, "height": 768}, accept_downloads=True)
         page.goto(url)
         assert jump_to(page, 1.0) == pytest.approx(1.0)      # paused there
-        page.get_by_role("button", name="Run").wait_for()
+        page.get_by_role("button", name="Run", exact=True).wait_for()
         assert shown_time(page) >= 1.0
         assert "g = 9.8 m/s²" in caption_lines(page)
 
@@ -380,10 +380,10 @@ def test_preset_menu_scene_menu_and_csv_download(browser):
             label for label, _ in catalog.presets(catalog.load("driven")) if label.startswith("scenario 3")))
         wait_for(lambda: "b = 2 kg/s" in caption_lines(page), what="a b slider showing 2 kg/s")
         assert shown_time(page) == 0.0
-        page.get_by_role("button", name="Run").click()
+        page.get_by_role("button", name="Run", exact=True).click()
         wait_for(lambda: shown_time(page) > 0.0, what="the driven run to go")
         paused = jump_to(page, 2.0)                              # and paused there
-        page.get_by_role("button", name="Run").wait_for()
+        page.get_by_role("button", name="Run", exact=True).wait_for()
         assert shown_time(page) == pytest.approx(paused)
 
         picture = SCREENSHOTS / "menus.png"
@@ -394,7 +394,7 @@ def test_preset_menu_scene_menu_and_csv_download(browser):
 
         # Download CSV: the graphed samples, with the command line's columns.
         with page.expect_download() as download:
-            page.get_by_role("button", name="Download CSV").click()
+            page.get_by_role("button", name="Download CSV", exact=True).click()
         assert download.value.suggested_filename == "driven.csv"
         with open(download.value.path(), newline="") as handle:
             rows = list(csv.reader(handle))

@@ -216,7 +216,7 @@ def test_in_integrators_euler_runs_away_alone_and_the_good_masses_stay_large(bro
             assert a > 200 and b > 0.8 * a, f"mass {i} shrank from {a} to {b} pixels"
         # and the comparison is still going on: a Step takes the three on by one Δt (a stopped run would not)
         later = shown_time(page)
-        page.get_by_role("button", name="Step").click()
+        page.get_by_role("button", name="Step", exact=True).click()
         wait_for(lambda: shown_time(page) > later, what="t to advance after the runaway")
         assert shown_time(page) == pytest.approx(later + 0.06) and "Stopped" not in status_text(page)
     finally:

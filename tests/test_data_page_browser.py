@@ -186,7 +186,7 @@ def test_data_on_the_command_line_shows_on_the_page_and_fitting_does_not_stop_th
                  what="the measured dots on the position graph")
         page.screenshot(path=str(screenshot_folder() / "data-loaded-1920x1080.png"))
 
-        page.get_by_role("button", name="Run").click()
+        page.get_by_role("button", name="Run", exact=True).click()
         page.get_by_role("button", name="Fit", exact=True).click()
         wait_for(lambda: "fitting k, b…" in data_lines(page), what="the page to say it is fitting")
         during = shown_time(page)

@@ -124,7 +124,7 @@ def test_download_program_button_hands_over_the_chosen_case(browser, tmp_path):
         page.locator("select").filter(has_text="choose a preset").select_option(preset)
         wait_for(lambda: page.get_by_text("1.62 m/s²").count() > 0, what="the preset's g in the caption")
         with page.expect_download() as download:
-            page.get_by_role("button", name="Download program").click()
+            page.get_by_role("button", name="Download program", exact=True).click()
         assert download.value.suggested_filename == f"{scene}.py"
         text = Path(download.value.path()).read_text(encoding="utf-8")
         assert text == expected.stdout

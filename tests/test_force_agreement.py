@@ -48,7 +48,7 @@ def test_the_push_answers_alike_everywhere(browser, stand_in, tmp_path):  # noqa
         row = next(row for row in rows if float(row["t"]) == T)
         answers["local page"] = answer(T, [float(row[c]) for c in "xyz"], [float(row[c]) for c in ("px", "py", "pz")])
         with local.page.expect_download() as caught:
-            local.page.get_by_role("button", name="Download my program").click()
+            local.page.get_by_role("button", name="Download my program", exact=True).click()
         python_program = tmp_path / "vertical.py"
         caught.value.save_as(python_program)
     finally:

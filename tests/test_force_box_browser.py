@@ -135,12 +135,12 @@ def test_forces_are_removed_and_the_files_forces_are_one_click_away(browser):
         assert p.is_disabled("#force-reset")
         page.add("push", "vector(0, 50, 0)", said="push added")
         assert page.text("force-line") == "Fnet = Fspring + Fgravity + F_wind + F_push"
-        p.get_by_role("button", name="Remove wind").click()
+        p.get_by_role("button", name="Remove wind", exact=True).click()
         p.wait_for_function("() => document.getElementById('force-said').textContent.includes('wind removed')")
         assert page.text("force-line") == "Fnet = Fspring + Fgravity + F_push"
         jump_to(p, 0.2)
         assert download_csv(p) == engine_csv("vertical", 0.2, "push=vector(0, 50, 0)")
-        p.get_by_role("button", name="Back to the file's program").click()
+        p.get_by_role("button", name="Back to the file's program", exact=True).click()
         p.wait_for_function("() => document.getElementById('force-said').textContent.includes(\"back to the file's\")")
         assert page.text("force-line") == "Fnet = Fspring + Fgravity + F_wind"
         jump_to(p, 0.2)
@@ -155,7 +155,7 @@ def test_download_my_program_is_the_program_with_the_force(browser):
         p = page.page
         page.add("wind", "-0.5*mag(v)*v", said="wind added")
         with p.expect_download() as caught:
-            p.get_by_role("button", name="Download my program").click()
+            p.get_by_role("button", name="Download my program", exact=True).click()
         with open(caught.value.path(), encoding="utf-8") as handle:
             written = handle.read()
         expected = main_py("vertical", "--vpython", "-", "--force", "wind=-0.5*mag(v)*v", "--arrows", "p,F_net,forces")

@@ -210,11 +210,11 @@ def test_forces_are_removed_and_the_files_program_is_one_click_away(chromium, pa
             p.fill("#force-text", text)
             p.press("#force-text", "Enter")
         assert page.text("force-line") == "Fnet = Fspring + Fgravity + F_push + F_wind"
-        p.get_by_role("button", name="Remove push").click()
+        p.get_by_role("button", name="Remove push", exact=True).click()
         assert page.text("force-line") == "Fnet = Fspring + Fgravity + F_wind"
         jump_offline(p, 0.2)
         assert page.text("answer").splitlines() == json_answers("vertical", "--force", "wind=-0.5*mag(v)*v")
-        p.get_by_role("button", name="Back to the file's program").click()
+        p.get_by_role("button", name="Back to the file's program", exact=True).click()
         assert page.text("force-line") == "Fnet = Fspring + Fgravity"
         jump_offline(p, 0.2)
         assert page.text("answer").splitlines() == json_answers("vertical")

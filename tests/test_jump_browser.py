@@ -38,7 +38,7 @@ def engine_csv(scene: str, t: float) -> str:
 
 def download_csv(page) -> str:
     with page.expect_download() as download:
-        page.get_by_role("button", name="Download CSV").click()
+        page.get_by_role("button", name="Download CSV", exact=True).click()
     with open(download.value.path(), newline="", encoding="utf-8") as handle:
         return handle.read()
 
@@ -56,9 +56,9 @@ def test_the_local_pages_jump_lands_where_the_engine_does_and_goes_on_from_there
         box.wait_for()
         assert box.input_value() == "20" and box.get_attribute("aria-label") == "jump to t, in seconds"
 
-        page.get_by_role("button", name="Jump").click()                       # the button, at 20 s
+        page.get_by_role("button", name="Jump", exact=True).click()                       # the button, at 20 s
         page.locator(".sm-jumped[data-jumps='1']").wait_for(state="attached")
-        page.get_by_role("button", name="Run").wait_for()                     # paused there
+        page.get_by_role("button", name="Run", exact=True).wait_for()                     # paused there
         assert shown_time(page) == 20.0
         assert download_csv(page) == engine_csv("driven", 20.0)
         page.screenshot(path=str(screenshot_folder() / "jump-driven.png"))
@@ -75,13 +75,13 @@ def test_the_local_pages_jump_lands_where_the_engine_does_and_goes_on_from_there
         page.locator(".sm-jumped[data-jumps='3']").wait_for(state="attached")
         assert shown_time(page) == 0.5
 
-        page.get_by_role("button", name="Step").click()                       # Step goes on from there
+        page.get_by_role("button", name="Step", exact=True).click()                       # Step goes on from there
         page.wait_for_function("() => document.body.innerText.includes('t = 0.51 s')")
         assert download_csv(page) == engine_csv("driven", 0.51)
         assert jump_to(page, 0.25) == pytest.approx(0.25)                      # the tests' helper
 
         box.fill("soon")
-        page.get_by_role("button", name="Jump").click()
+        page.get_by_role("button", name="Jump", exact=True).click()
         page.get_by_text("jump to t: 'soon' is not a time in seconds").wait_for()
         assert shown_time(page) == 0.25
         assert "Traceback" not in "".join(program.errors)
@@ -92,7 +92,7 @@ def test_the_local_pages_jump_lands_where_the_engine_does_and_goes_on_from_there
 
 
 GRAPH_POINTS = """() => { const out = [];
-  jQuery('#view *').each(function () { const plot = jQuery(this).data('plot');
+  jQuery('#view *, #graphs *').each(function () { const plot = jQuery(this).data('plot');
     if (plot) out.push(plot.getData().map(s => s.data.map(d => [d[0], d[1]]))); });
   return out; }"""
 

@@ -69,8 +69,8 @@ def tab_walk(page) -> None:
 def focus_kind(page, kind: str) -> None:
     """Put the focus on a control of this kind (or on none): a button is Lap where it is shown
     (the issue's case: Space pressed it again)."""
-    if kind == "button" and page.get_by_role("button", name="Lap (L)").count():
-        page.get_by_role("button", name="Lap (L)").focus()
+    if kind == "button" and page.get_by_role("button", name="Lap (L)", exact=True).count():
+        page.get_by_role("button", name="Lap (L)", exact=True).focus()
         return
     selector = {"button": "button", "checkbox": "input[type=checkbox]", "menu": "select",
                 "slider": ".ui-slider-handle, input[type=range]", "table": "details.sm-alt summary"}.get(kind)
@@ -137,11 +137,11 @@ def test_the_local_page_by_keyboard(browser):
             wait_for(lambda: state(page)["said"].startswith("t = " + f"{shown_time(page):.2f}"), timeout=WAIT,
                      what=f"D to describe, {where}")
             page.keyboard.press("s")
-            wait_for(lambda: page.get_by_role("button", name="Stop (S)").count() == 1, timeout=WAIT, what=f"S, {where}")
+            wait_for(lambda: page.get_by_role("button", name="Stop (S)", exact=True).count() == 1, timeout=WAIT, what=f"S, {where}")
             page.keyboard.press("l")
             wait_for(lambda: "laps:" in state(page)["laps"], timeout=WAIT, what=f"L, {where}")
             page.keyboard.press("s")
-            wait_for(lambda: page.get_by_role("button", name="Start (S)").count() == 1, timeout=WAIT, what=f"S again, {where}")
+            wait_for(lambda: page.get_by_role("button", name="Start (S)", exact=True).count() == 1, timeout=WAIT, what=f"S again, {where}")
             page.keyboard.press("c")
             wait_for(lambda: "laps:" not in state(page)["laps"], timeout=WAIT, what=f"C, {where}")
             page.keyboard.press("p")

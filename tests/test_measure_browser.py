@@ -58,16 +58,16 @@ def opened(browser, *args, size=(1280, 800), t: float = 0.5):
 
 def pause(page) -> float:
     """Paused (pressing Pause if it runs); the t it shows."""
-    if page.get_by_role("button", name="Pause").count():
-        page.get_by_role("button", name="Pause").click()
-    page.get_by_role("button", name="Run").wait_for()
+    if page.get_by_role("button", name="Pause", exact=True).count():
+        page.get_by_role("button", name="Pause", exact=True).click()
+    page.get_by_role("button", name="Run", exact=True).wait_for()
     return shown_time(page)
 
 
 def run_to(page, t: float) -> None:
     """Run (t goes on), then jump to t: paused there."""
     now = shown_time(page)
-    page.get_by_role("button", name="Run").click()
+    page.get_by_role("button", name="Run", exact=True).click()
     wait_for(lambda: shown_time(page) > now, what="the run to go on")
     jump_to(page, t)
 
@@ -141,10 +141,10 @@ def test_stopwatch_lines_marker_and_reading_the_graph(browser):
 
         # the stopwatch: started while paused, three Steps, then 2× speed, then stopped
         t0 = pause(page)
-        page.get_by_role("button", name="Start (S)").click()
-        page.get_by_role("button", name="Stop (S)").wait_for()
+        page.get_by_role("button", name="Start (S)", exact=True).click()
+        page.get_by_role("button", name="Stop (S)", exact=True).wait_for()
         for n in range(1, 4):
-            page.get_by_role("button", name="Step").click()
+            page.get_by_role("button", name="Step", exact=True).click()
             wait_for(lambda: shown_time(page) == pytest.approx(t0 + n * dt, abs=1e-9), what="a Step")
         wait_for(lambda: stopwatch(page) == pytest.approx(3 * dt, abs=0.006), what="the stopwatch")
         page.evaluate("() => document.activeElement && document.activeElement.blur()")   # keys to the page
@@ -154,7 +154,7 @@ def test_stopwatch_lines_marker_and_reading_the_graph(browser):
         page.evaluate("() => document.activeElement && document.activeElement.blur()")   # keys to the page
         page.keyboard.press("l")                       # a lap, by its key
         page.keyboard.press("s")                       # stop, by its key
-        page.get_by_role("button", name="Start (S)").wait_for()
+        page.get_by_role("button", name="Start (S)", exact=True).wait_for()
         wait_for(lambda: stopwatch(page) == pytest.approx(t1 - t0, abs=0.006), what="the reading")
         assert f"1: {t1 - t0:.2f}" in page.locator(".sm-measure").inner_text()
         page.keyboard.press("c")

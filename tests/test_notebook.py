@@ -289,8 +289,8 @@ def test_a_scene_runs_under_its_cell_and_pause_reaches_the_kernel(page):
     wait_until_running(cell)
     assert "k = 40 N/m" in cell.inner_text()  # the scene's own constants, with units
 
-    cell.get_by_role("button", name="Pause").click()
-    cell.get_by_role("button", name="Run").wait_for()
+    cell.get_by_role("button", name="Pause", exact=True).click()
+    cell.get_by_role("button", name="Run", exact=True).wait_for()
     paused = jump_to(cell, 4.0)  # a little over one period, for the screenshot's graphs; still paused
     assert shown_time(cell) == paused == 4.0
     seen = look(cell, cell=cell, canvas=canvas(cell), position=graph(cell, 0))
@@ -300,7 +300,7 @@ def test_a_scene_runs_under_its_cell_and_pause_reaches_the_kernel(page):
     seen["cell"].save(SCREENSHOT)
     assert shown_time(cell) == paused, "t moved while paused"     # through a screenshot's frames
 
-    cell.get_by_role("button", name="Run").click()
+    cell.get_by_role("button", name="Run", exact=True).click()
     wait_for(lambda: shown_time(cell) > paused, what="t to advance after Run")
 
 
@@ -465,8 +465,8 @@ def test_the_measure_panel_works_in_the_notebook(page):
     assert panel.evaluate("e => getComputedStyle(e).display") == "none"
     cell.locator(".sm-measure-toggle").click()
     panel.wait_for(state="visible")
-    cell.get_by_role("button", name="Start (S)").click()
-    cell.get_by_role("button", name="Stop (S)").wait_for()
+    cell.get_by_role("button", name="Start (S)", exact=True).click()
+    cell.get_by_role("button", name="Stop (S)", exact=True).wait_for()
     panel.locator("span").filter(has_text=re.compile(r"^ ?period")).first.locator(
         "xpath=preceding-sibling::input[1]").check()
     wait_for(lambda: cell.locator(".sm-period").count() and "formula 2π/ω" in cell.locator(".sm-period").inner_text(),

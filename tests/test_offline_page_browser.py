@@ -386,7 +386,7 @@ def test_the_local_page_downloads_its_set_up_as_an_offline_page_and_shows_its_li
         page.wait_for_function("document.getElementById('sm-link').value.startsWith('#k=')")
         link = page.input_value("#sm-link")
         with page.expect_download() as download:
-            page.get_by_role("button", name="Download offline page").click()
+            page.get_by_role("button", name="Download offline page", exact=True).click()
         downloaded = tmp_path / "downloaded.html"
         download.value.save_as(downloaded)
     finally:

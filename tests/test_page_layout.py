@@ -44,10 +44,10 @@ def test_keys_tab_and_projector_mode(browser):
         page.evaluate("() => document.activeElement && document.activeElement.blur()")      # the focus on the page itself
 
         page.keyboard.press("Space")        # runs: t goes on from 1 s
-        page.get_by_role("button", name="Pause").wait_for()
+        page.get_by_role("button", name="Pause", exact=True).wait_for()
         wait_for(lambda: shown_time(page) > 1.0, what="Space to run")
         page.keyboard.press("Space")        # pauses
-        page.get_by_role("button", name="Run").wait_for()
+        page.get_by_role("button", name="Run", exact=True).wait_for()
         paused = shown_time(page)
         page.keyboard.press("ArrowRight")
         stepped = wait_for(lambda: (t := shown_time(page)) != paused and t, what="→ to step")
@@ -61,7 +61,7 @@ def test_keys_tab_and_projector_mode(browser):
         page.keyboard.press("-")
         wait_for(lambda: speed_shown(page) == "½×", what="− to slow down")
         page.keyboard.press("Space")
-        page.get_by_role("button", name="Pause").wait_for()
+        page.get_by_role("button", name="Pause", exact=True).wait_for()
 
         page.keyboard.press("Tab")
         focused = page.evaluate("() => [document.activeElement.tagName, getComputedStyle(document.activeElement)"

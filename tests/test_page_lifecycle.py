@@ -122,7 +122,7 @@ def test_a_reload_shows_the_scene_again_and_the_program_keeps_running(browser, p
     page = browser.new_page(viewport={"width": 1024, "height": 768})
     page.goto(program.url)
     jump_to(page, 5.0)                          # paused there; then Run
-    page.get_by_role("button", name="Run").click()
+    page.get_by_role("button", name="Run", exact=True).click()
     running_past(page, 5.0)
     canvas_not_blank(page, "before-reload")
     page.reload()

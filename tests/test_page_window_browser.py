@@ -153,7 +153,7 @@ def test_nothing_is_drawn_outside_a_graphs_frame(browser):
         for width, height, projector in each_window(page):
             laid_out(page, width)
             now = shown_time(page)
-            page.get_by_role("button", name="Step").click()      # a new point: the graphs redrawn since
+            page.get_by_role("button", name="Step", exact=True).click()      # a new point: the graphs redrawn since
             wait_for(lambda: shown_time(page) > now, what="a Step")
             for graph in page.evaluate(GRAPH_PICTURES):
                 assert outside_the_frame(graph) == 0, \
@@ -210,7 +210,7 @@ def curve_drawn(graph) -> bool:
 def test_resizing_the_window_keeps_the_curves_of_a_paused_page(browser):
     program, page = opened(browser, "damped", until=3.0)        # paused there
     try:
-        page.get_by_role("button", name="Run").wait_for()
+        page.get_by_role("button", name="Run", exact=True).wait_for()
         paused = shown_time(page)
         for width, height, projector in each_window(page):
             laid_out(page, width)
