@@ -4,6 +4,7 @@
     python main.py SCENE                  a scene in the browser (--no-browser prints its URL, --port P)
     python main.py --list                 the scenes, with their scenarios
     python main.py SCENE --constants      each constant with its value, unit and meaning
+    python main.py SCENE --forces         every force the scene takes, on or off, with its constants
     python main.py SCENE --headless       run to the question time and print the final state
         [--set NAME=VALUE ...] [--scenario N] [--preset NAME] [--integrator NAME] [--until T]
         [--json] [--csv FILE]
@@ -53,6 +54,7 @@ if __name__ == "__main__":  # run() takes over once everything is loaded
 from cli.options import UsageError, build_parser, check_options, headless_run, lab_command, one_line  # noqa: E402
 from export import files  # noqa: E402
 from reports import csv_file, headless, json_report, step_table, terminal, text  # noqa: E402
+from physics.forces import DeclarationError  # noqa: E402
 from physics.simulate import BlowUpError  # noqa: E402
 from scenes import catalog  # noqa: E402
 from scenes import ConstantError  # noqa: E402
@@ -163,8 +165,8 @@ def write_programs(args, setup, model, *, warn: bool) -> None:
                              f"`from vpython import *` would import the program itself instead of the vpython "
                              f"library; give it another name, like spring.py")
         for path, program_text in texts:
-            if path == "-":
-                print(program_text, end="")
+            if path == "-":   # printed as a file would be written: with its mark and fingerprint
+                print(files.stamped(program_text), end="")
             elif path == args.html:
                 offline_page.write_page(path, program_text, overwrite=args.overwrite)
                 print(f"wrote {path}", file=sys.stderr)
@@ -187,10 +189,15 @@ def main(argv=None) -> int:
             return 2 if problems else 0
         setup = catalog.configure(catalog.DEFAULT_SCENE if args.scene is None else args.scene,
                                   assignments=args.assignments,
-                                  scenario=args.scenario, preset=args.preset)
-        if args.constants:
-            print(text.constants_report(setup))
-            print(text.presets_report(setup))
+                                  scenario=args.scenario, preset=args.preset, forces=args.added_forces)
+        if args.constants or args.forces:
+            if args.constants:
+                print(text.constants_report(setup))
+                print(text.presets_report(setup))
+            if args.forces:
+                from reports.forces_report import forces_report
+
+                print(forces_report(setup, build_model(args, setup)))
             return 0
         model = build_model(args, setup)
         if args.page:
@@ -208,7 +215,7 @@ def main(argv=None) -> int:
                 return 0
         if runs_headless:
             return run_headless(args, setup, model)
-    except (ConstantError, UsageError, files.OutputError, LabError) as problem:
+    except (ConstantError, DeclarationError, UsageError, files.OutputError, LabError) as problem:
         print(f"error: {one_line(str(problem))}", file=sys.stderr)
         return 2
     except BlowUpError as problem:

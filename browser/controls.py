@@ -90,10 +90,13 @@ class Controls:
     preset       the label of the preset applied, shown in the preset menu
     arrows       the kinds of arrow switched on now, ticked in their check boxes
     load_button  the Load data button's HTML (browser/data_panel.py), '' where files cannot be sent
+    force_box    makes the Add a force box under the sliders, given vp and the queue's put
+                 (browser/force_box.py's ForceBox), or None for none
     """
 
     def __init__(self, vp, *, setup, view: dict, integrators, integrator: str, speed: str,
-                 preset: str | None = None, arrows=(), load_button: str = "", measure: dict | None = None):
+                 preset: str | None = None, arrows=(), load_button: str = "", measure: dict | None = None,
+                 force_box=None):
         self.vp = vp
         self.commands: queue.SimpleQueue = queue.SimpleQueue()
         self.downloads = 0  # links offered so far: each gets its own id
@@ -118,6 +121,7 @@ class Controls:
         caption("\n")
         self.step_text = vp.wtext(text="")
         self._slider_rows(setup=setup, view=view)
+        self.force_box = force_box(vp, self.commands.put) if force_box else None
         vp.wtext(text="").text = PLAIN_TICKS  # every graph's tick labels in plain decimals (browser/axes.py)
         vp.wtext(text="").text = GRAPH_READING  # a click reads a graph (browser/graph_reading.py)
         caption("\n\n")

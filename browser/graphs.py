@@ -109,6 +109,8 @@ class Graphs:
             self._build_scene_graph(setup.hooks.view_graph(setup))
         self.position_graph = self._build_position_graph(model)
         self.data_dots, self.data_values = None, []   # measured points (show_data), on top of the curves
+        self.beside_values = []     # y values of a curve drawn beside ours (keep_on_axis): the run before a force
+        self.exact_labels: dict = {}   # the exact curves' legend entries, while a run has no closed form
         self.held = None    # (start, end), s: the position graph's time axis held over the measured points
         self.exact_curves = bool(view["exact"]) and model.exact is not None
         self.show_exact = self.exact_curves
@@ -276,6 +278,12 @@ class Graphs:
                 self.energy_graph.title != self._energy_title(setup):
             self.energy_graph.title = self._energy_title(setup)
         self.show_exact = self.exact_curves and model.exact is not None
+        for curve in self.curves:    # no legend entry for a closed form the run has not (a force added)
+            if curve.series.kind == "exact":
+                own = self.exact_labels.setdefault(id(curve), curve.line.label)   # kept before the first change
+                shown = own if self.show_exact else ""
+                if curve.line.label != shown:
+                    curve.line.label = shown
         self.spacing = max(model.dt, SAMPLE_EVERY)   # s between graph points
         self.error_windows = [PeriodMax(period) for period in periods(model)]   # a new m or k: a new period
 
@@ -336,8 +344,8 @@ class Graphs:
         self.error_fit.clear()
         for envelope in self.error_windows:
             envelope.clear()
-        if self.data_values:
-            _fit(self.position_graph, self.position_fit, self.data_values)
+        if self.data_values or self.beside_values:
+            _fit(self.position_graph, self.position_fit, self.data_values + self.beside_values)
         for curve in self.curves:
             curve.trace.clear()
         self.recorded.clear()
@@ -380,6 +388,13 @@ class Graphs:
                 curve.trace.span = max(self.span, self.held[1] - self.held[0]) if self.held else self.span
         if points:
             _fit(self.position_graph, self.position_fit, self.data_values)
+
+    def keep_on_axis(self, values) -> None:
+        """The y values of a curve another part draws on the position graph (browser/force_box.py:
+        the run before a force was added): the axis keeps them in view, through Reset; [] lets go."""
+        self.beside_values = [float(v) for v in values if math.isfinite(v)]
+        if self.beside_values:
+            _fit(self.position_graph, self.position_fit, self.beside_values)
 
     # ---- plotting ----
 

@@ -85,6 +85,25 @@ class ChooseScene:
     name: str
 
 
+@dataclass(frozen=True)
+class AddForce:
+    """The Add a force box (browser/force_box.py): add the force `name` written as `text`, an
+    expression of the program's names, read by physics/expression.py's grammar."""
+    name: str
+    text: str
+
+
+@dataclass(frozen=True)
+class RemoveForce:
+    """Remove the added force `name` (its Remove button in the Add a force box)."""
+    name: str
+
+
+@dataclass(frozen=True)
+class ResetForces:
+    """Back to the forces the scene was opened with (the box's Back to the file's program)."""
+
+
 # ---- what is drawn ----
 
 @dataclass(frozen=True)

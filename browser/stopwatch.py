@@ -11,7 +11,7 @@ Lap notes the reading at that moment (its time since the last lap, as a lab stop
 Clear sets it back to 0. When the run itself restarts from t = 0 (Reset, a new constant), a
 running stopwatch keeps what it has and goes on from the new t = 0.
 
-Nothing here imports vpython: tests/test_stopwatch.py drives it with plain numbers.
+Nothing here imports vpython: tests/test_measure_parts.py drives it with plain numbers.
 """
 from __future__ import annotations
 

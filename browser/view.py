@@ -24,7 +24,7 @@ import time
 
 import numpy as np
 
-from export import offline_page
+from export import files, offline_page
 from export.description import describe
 from export.offline_page import link_fragment
 from export.step_update import step_lines, update_force
@@ -40,11 +40,13 @@ from .controls import (PRESET_PROMPT, SPEEDS, Controls, constants_text, csv_href
 from .arrows3d import MomentumArrows
 from .data_panel import MeasuredData, load_button_html
 from .graphs import SAMPLE_EVERY, Graphs, csv_text
+from .force_box import Comparison, ForceBox, change_forces
 from .jump import batches, jump_steps, jump_time
 from .measure_panel import period_text
-from .messages import (Batch, ChooseGraph, ChooseIntegrator, ChoosePreset, ChooseScene, ChooseSpeed, ClearStopwatch,
-                       Describe, DownloadCsv, DownloadOfflinePage, DownloadProgram, FitData, JumpTo, LapStopwatch,
-                       MoveMarker, Reset, RunOrPause, SetConstant, ShowArrows, ShowLine, ShowPeriod,
+from .messages import (AddForce, Batch, ChooseGraph, ChooseIntegrator, ChoosePreset, ChooseScene, ChooseSpeed,
+                       ClearStopwatch, Describe, DownloadCsv, DownloadOfflinePage, DownloadProgram, FitData, JumpTo,
+                       LapStopwatch, MoveMarker, RemoveForce, Reset, ResetForces, RunOrPause, SetConstant, ShowArrows,
+                       ShowLine, ShowPeriod,
                        StartStopwatch, Step)
 from .reference_lines import ReferenceLines
 from .stopwatch import Stopwatch
@@ -129,6 +131,8 @@ class SceneView:
         self.lines_shown: set = set()
         self.graph_place = "energy"
         self.jumped = False         # a jump was made this frame: the page says so once it has drawn
+        self.forces_start = setup.written   # the forces the scene opened with (--force): the box's way back
+        self.comparison = Comparison(vp)    # the run before a force was added, dimmed (browser/force_box.py)
         self.scene, self.controls, self.graphs = self._build_parts(preset=preset)
         self._start_run()
 
@@ -152,7 +156,8 @@ class SceneView:
                             arrows=self.arrows_shown,
                             load_button=load_button_html() if hasattr(self.server, "uploaded") else "",
                             measure={"period": self.period_shown, "lines": self.lines_shown,
-                                     "graph": self.graph_place})
+                                     "graph": self.graph_place},
+                            force_box=functools.partial(ForceBox, setup=setup, model=model, start=self.forces_start))
         self.view = view
         self.lines = self._lines(scene, model)
         self.lines.bind_mouse(controls.commands.put)
@@ -180,6 +185,9 @@ class SceneView:
     def _build_page(self, setup, model, *, preset: str | None = None, old_page_gone: bool = False) -> None:
         """Take down the parts shown so far (unless the page they were on is gone), build this
         scene's, and start its run at t = 0."""
+        if setup.name != self.setup.name:     # another scene: its own forces, and the way back to them
+            self.forces_start = setup.written
+        self.comparison.forget()
         if not old_page_gone:
             self.lines.take_down()
             self.arrows.take_down()
@@ -346,6 +354,10 @@ class SceneView:
         self._describe_motion()
 
     @carry_out.register
+    def _change_forces(self, message: AddForce | RemoveForce | ResetForces, batch: Batch) -> None:
+        change_forces(self, message, batch)     # browser/force_box.py
+
+    @carry_out.register
     def _show_arrows(self, message: ShowArrows, batch: Batch) -> None:
         self.arrows.set_shown(message.kind, bool(message.shown))
 
@@ -463,6 +475,11 @@ class SceneView:
         except ValueError as problem:
             self.controls.say(f"<b>Cannot use that value:</b> {problem}")
             return
+        self.comparison.forget()     # the run before a force was added is another case now
+        self.rebuild_with(setup, model, changes=changes, integrator=integrator)
+
+    def rebuild_with(self, setup, model, *, changes: dict, integrator: str) -> None:
+        """Run this setup's model from t = 0, keeping the page (new constants, integrator or forces)."""
         if changes:
             self.controls.preset_left()
             self.preset = None
@@ -642,7 +659,7 @@ class SceneView:
         from export import program
 
         try:
-            text = program(self.setup, integrator=self.integrator, arrows=self.arrows.shown)
+            text = files.stamped(program(self.setup, integrator=self.integrator, arrows=self.arrows.shown))
         except ValueError as problem:
             self.controls.offer_nothing(f"no program: {problem}")
             return
@@ -663,7 +680,7 @@ class SceneView:
 
         def write():
             try:
-                writing["text"] = offline_page.page(setup, integrator=integrator, arrows=shown)
+                writing["text"] = files.stamped(offline_page.page(setup, integrator=integrator, arrows=shown))
             except ValueError as problem:
                 writing["problem"] = str(problem)
         writing["thread"] = threading.Thread(target=write, name="offline page", daemon=True)

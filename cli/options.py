@@ -19,16 +19,18 @@ from scenes import ConstantError, catalog, check_value
 EXAMPLES = """examples:
   python main.py --list
   python main.py vertical --constants
+  python main.py vertical --forces                    the forces it takes, on or off, with their constants
   python main.py vertical --headless                  the Simple Example: y = -1.73088 m at t = 0.2 s
   python main.py damped --headless --set dt=0.001     the Middling Example with a smaller step
   python main.py driven --headless --scenario 3 --json
   python main.py vertical --headless --preset "Moon gravity"
   python main.py damped --preset "critical damping"    no overshoot, in the browser
   python main.py vertical --steps 2                   the first two updates, to check by hand
-  python main.py regimes --plot regimes.png           the page's damping figure
+  python main.py vertical --headless --force "push=vector(0, 50, 0)"   a 50 N push up: as g = 4.8
+  python main.py regimes --plot out/regimes.png       the page's damping figure
   python main.py damped --data examples/data/vernier.csv --fit k,b --set m=0.5
                                                       fit k and b to a motion detector's run
-  python main.py damped --mystery spring.csv --seed 12   a mystery spring for class
+  python main.py damped --mystery out/spring.csv --seed 12   a mystery spring for class
 
 exit status: 0 done; 2 bad input (one line says what); 1 a run that blew up, or a bug of ours;
 3 a fit whose numbers cannot be trusted (--data --fit): its first line says why, the figures follow
@@ -57,9 +59,16 @@ def build_parser() -> argparse.ArgumentParser:
     parser.add_argument("--list", action="store_true", help="list the scenes and their scenarios")
     parser.add_argument("--constants", action="store_true",
                         help="print each constant with its value, unit and meaning")
+    parser.add_argument("--forces", action="store_true",
+                        help="list every force the scene accepts, on or off: its law, its constants "
+                             "(the names --set takes) and which a slider moves")
     parser.add_argument("--headless", action="store_true", help="run without a browser and print the result")
     parser.add_argument("--set", action="append", default=[], metavar="NAME=VALUE", dest="assignments",
                         help="change a constant, e.g. --set k=25 or --set r0=0,-1.2,0 (may repeat)")
+    parser.add_argument("--force", action="append", default=[], metavar="NAME=EXPRESSION", dest="added_forces",
+                        help="add a force written in the program's names, e.g. --force \"push=vector(2, 0, 0)\" or "
+                             "--force \"wind=-0.5*mag(v)*v\" (r, v, p, t, m, k, b, g, dt; vector, mag, hat, dot, "
+                             "cross, cos, sin, exp, sqrt, pi; may repeat): its arrow, the run, the program")
     parser.add_argument("--scenario", type=int, metavar="N", help="one of the scene's numbered scenarios")
     parser.add_argument("--preset", metavar="NAME",
                         help="one of the scene's presets, e.g. \"Moon gravity\" or \"critical damping\" "
@@ -171,9 +180,12 @@ def check_lab_options(args) -> None:
     if len(commands) > 1:
         raise UsageError(f"{commands[0]} and {commands[1]} are separate jobs; give one of them")
     command = commands[0] if commands else None
-    for flag, attribute in (("--list", "list"), ("--constants", "constants")):
+    for flag, attribute in (("--list", "list"), ("--constants", "constants"), ("--forces", "forces")):
         if command and _given(args, attribute):
             raise UsageError(f"{flag} only lists, so {command} would do nothing; leave out one of them")
+    if command and _given(args, "added_forces"):
+        raise UsageError(f"--force adds a force to a run, the page or a program, and {command} uses the scene's "
+                         f"own forces; leave out one of them")
     allowed = {"--data": {"fit", "data_column", "run", "coordinate", "data_sign", "page"},
                "--mystery": {"seed", "coordinate"}, "--show-answer": {"seed", "coordinate"}}.get(command, set())
     for flag, attribute in LAB_OPTIONS:
@@ -188,6 +200,9 @@ def check_lab_options(args) -> None:
         raise UsageError(f"--seed needs a whole number of 0 or more (got {args.seed})")
     if args.run is not None and args.run < 1:
         raise UsageError(f"--run needs a whole number of 1 or more (got {args.run})")
+    if args.data_column is not None and not args.data_column.strip():
+        raise UsageError("--data-column needs a column: a unique part of its header, or its number from 1 "
+                         "(got nothing); leave it out to read the file's position column")
     if args.fit is not None and not args.fit.strip():
         raise UsageError("--fit needs the names of the constants to fit, like --fit k,b (got nothing); "
                          "leave it out to fit only the offsets")
@@ -235,11 +250,12 @@ def check_options(args) -> None:
     if args.list:
         _check_list(args)
         return
-    if args.constants:
+    listing = "--constants" if args.constants else "--forces" if args.forces else None
+    if listing:
         for flag, attribute in (*RUN_OPTIONS, *PROGRAM_OPTIONS, *BROWSER_ONLY, (_arrows_flag(args), "arrows"),
-                                ("--overwrite", "overwrite")):
+                                ("--overwrite", "overwrite"), ("--force", "added_forces")):
             if _given(args, attribute):
-                raise UsageError(f"--constants only prints the constants, so {flag} would do nothing; "
+                raise UsageError(f"{listing} only prints the {listing[2:]}, so {flag} would do nothing; "
                                  f"leave out one of them")
     if lab_command(args) is not None:
         _parse_arrows(args)   # --data --page: the page draws them
@@ -262,7 +278,8 @@ def _programs(args) -> list[str]:
 
 def _check_list(args) -> None:
     """--list takes nothing else."""
-    others = [flag for flag, attribute in (("--constants", "constants"), ("--set", "assignments"),
+    others = [flag for flag, attribute in (("--constants", "constants"), ("--forces", "forces"), ("--set", "assignments"),
+                                           ("--force", "added_forces"),
                                            ("--scenario", "scenario"), ("--preset", "preset"),
                                            *RUN_OPTIONS, *PROGRAM_OPTIONS, *BROWSER_ONLY,
                                            ("--overwrite", "overwrite"), (_arrows_flag(args), "arrows"))

@@ -21,7 +21,6 @@ import math
 import numpy as np
 
 from physics.exact import Role, damping_regime
-from physics.forces import closed_form_constants
 
 from .lines import commented, vector
 
@@ -30,11 +29,12 @@ DOWN = (0.0, -1.0, 0.0)        # the program writes gravity along −y
 
 class Roles:
     """The program's constants (export/program_constants.py) by their role in the closed form: the
-    constant each force declares for the role (physics/forces/ closed_form_constants)."""
+    constant each of the model's forces declares for the role (ProgramConstants.roles, from
+    physics/forces/ closed_form_constants)."""
 
     def __init__(self, constants):
         self.constants = constants
-        self.held = closed_form_constants()
+        self.held = constants.roles
 
     def has(self, role: str) -> bool:
         """Whether the program has the constant of this role."""

@@ -7,78 +7,44 @@ file, and the programs and pages of both front ends, are written this way.
 
 Where a file may go (check_writable):
 
-- Never into the program's own tree, with or without --overwrite (see own_tree). The tree is
-  worked out from the folder this program runs from, not from a list of its parts, so a module,
-  folder, data file or document added later is covered without anyone remembering to list it.
-- Never over a file the program did not write, unless --overwrite is given. Its own outputs
-  carry a mark (see written_here): the programs and the offline page have MARK in their header,
-  the figures have it in their metadata (matplotlib's savefig metadata: PNG "Software", SVG, PDF
-  and PostScript "Creator"), and a CSV file is known by its header line, which is the program's
-  contract with the scripts that read it (see ownership for why nothing is added to it).
-  A file of a type that carries no metadata (.jpg, .tif, .webp, ...) is never known to be ours.
-- Beside the mark is a fingerprint, the file's SHA-256 (fingerprint): a marked file that has been
-  changed since, such as a handout a student edited, is not replaced without --overwrite either.
-  A mark without one (an earlier version's file, an .svgz figure) and a CSV file are known as
-  before, by the mark or the header alone (see ownership).
+- Never into the program's own tree, with or without --overwrite (see own_tree): not beside
+  main.py, not in any folder of the tree. The tree is worked out from the folder this program
+  runs from, not from a list of its parts, so a module, folder, data file or document added later
+  is covered without anyone remembering to list it. Outputs go in a folder of outputs the tree's
+  .gitignore gives to the user (out/), where no tool's file (conftest.py, setup.py, *.pth, ...)
+  may be written either.
+- Never over a file the program did not write, or wrote and someone changed since, unless
+  --overwrite is given: a file is ours only where its mark stands where we put it and its
+  fingerprint still matches (export/marks.py ownership; the rules are in docs/homework.md).
 - A symbolic link is followed: the file it points to is the one judged, and replaced, and the
   link stays a link. Only a regular file is replaced: an existing device (/dev/null,
   /dev/stdout), named pipe or socket is refused before anything opens it, since renaming over it
   would put a regular file in its place and opening a pipe waits for a reader.
+
+Each file written is added to the record of what this program wrote (export/written.py).
 """
 from __future__ import annotations
 
 import contextlib
-import hashlib
 import importlib.machinery
-import importlib.util
 import os
-import re
 import stat
 import sys
 import tempfile
-import zlib
 
-from .numbers import CSV_HEADER
+from . import marks, written
+from .marks import (CSV_HEADER_LINES, DIGEST_SLOT, EDITED, FIGURE_MARK_KEYS, FINGERPRINTED_FIGURES,  # noqa: F401
+                    MARK, OURS, THEIRS, figure_mark, fill_fingerprint, ownership, stamped)
 
 STDOUT = "-"                   # the file name that means standard output
-MARK = "Written by the spring-mass simulator"    # in every program, page and figure it writes
 HANDOUT_MARK = MARK            # the name the program writers use
 PROJECT = os.path.dirname(os.path.dirname(os.path.realpath(__file__)))   # the folder main.py is in
-# The header lines of the CSV files it writes (reports/csv_file.py; several masses add "body"),
-# with the line end csv.writer gives them: byte for byte, they are how a CSV file of ours is known.
-CSV_HEADER_LINES = tuple((",".join(CSV_HEADER + extra) + "\r\n").encode() for extra in ([], ["body"]))
-MARK_SPAN = 65536              # bytes read at each end of an existing file to look for the mark
-# Where a figure of each file type keeps the note of who wrote it (matplotlib's savefig metadata;
-# reports/plotting.py writes MARK there). The other types matplotlib writes (.jpg, .tif, .webp, raw
-# pixels) have no such note in matplotlib, so an existing file of theirs is never known to be ours.
-FIGURE_MARK_KEYS = {"png": "Software", "svg": "Creator", "svgz": "Creator", "pdf": "Creator", "eps": "Creator",
-                    "ps": "Creator"}
-# The fingerprint beside the mark (see fingerprint below): "sha256:" and the first 16 hex digits of
-# the SHA-256 of the file's bytes without those 16 digits (and, in a PNG, without the CRC of the
-# chunk holding them, which depends on them). A writer puts DIGEST_SLOT after MARK (with_fingerprint,
-# figure_mark); the file is fingerprinted as written (atomic_file), so the digits match the bytes on
-# the disk, line ends and all.
-DIGEST_TAG = b"sha256:"
-DIGEST_DIGITS = 16
-DIGEST_SLOT = DIGEST_TAG.decode() + "-" * DIGEST_DIGITS
-DIGEST_SPAN = 1000             # bytes after MARK in which its fingerprint is looked for
-_DIGEST = re.compile(re.escape(DIGEST_TAG) + rb"([0-9a-f]{%d}|-{%d})" % (DIGEST_DIGITS, DIGEST_DIGITS))
-# The figure types whose mark keeps a fingerprint: the note is stored as plain bytes in the file.
-# An .svgz figure is compressed whole, so its digits cannot be found or changed in place: its mark
-# has none, and it is known by the mark alone, as before.
-FINGERPRINTED_FIGURES = ("png", "svg", "pdf", "eps", "ps")
-PNG_SIGNATURE = b"\x89PNG\r\n\x1a\n"
-
-
-def figure_mark(kind: str, writer: str) -> dict | None:
-    """savefig's metadata for a figure of file type `kind` written by `writer` (its name and
-    version): MARK, with DIGEST_SLOT where the type keeps it as plain bytes; None for a type with
-    no place for a mark (FIGURE_MARK_KEYS)."""
-    key = FIGURE_MARK_KEYS.get(kind)
-    if key is None:
-        return None
-    slot = f" {DIGEST_SLOT}" if kind in FINGERPRINTED_FIGURES else ""
-    return {key: f"{MARK} (with {writer}){slot}"}
+# Files that Python's tools read or run from the folder they lie in: pytest's conftest.py and
+# settings, packaging's setup files, a package's __init__.py, the site module's customize files
+# and path files. Written into the program's folder, even its out/, they would run with the tools.
+TOOL_FILES = {"conftest.py", "pytest.ini", ".pytest.ini", "tox.ini", "setup.py", "setup.cfg", "pyproject.toml",
+              "noxfile.py", "__init__.py", "__main__.py", "sitecustomize.py", "usercustomize.py", "manifest.in"}
+TOOL_SUFFIXES = (".pth",)
 
 
 class OutputError(ValueError):
@@ -139,14 +105,10 @@ def _module_name(name: str) -> str | None:
     return None
 
 
-def _importable(module: str) -> bool:
-    """Whether Python already has a top-level module of this name (json, numpy, physics, __main__)."""
-    if module in sys.stdlib_module_names or module in sys.builtin_module_names or module in sys.modules:
-        return True
-    try:
-        return importlib.util.find_spec(module) is not None
-    except (ImportError, ValueError):   # a module whose spec cannot be told: one that exists
-        return True
+def _tool_file(name: str) -> bool:
+    """Whether a file of this name is one Python's tools read or run where it lies (TOOL_FILES)."""
+    folded = name.lower()
+    return folded in TOOL_FILES or folded.endswith(TOOL_SUFFIXES)
 
 
 def _user_folders() -> set[str]:
@@ -217,23 +179,19 @@ def own_tree(target: str) -> str | None:
     is covered) and not from git (a copy made without .git, or unzipped from an archive, is the
     same tree, and is just as broken by a CSV written over one of its modules). So:
 
-    - No existing file under PROJECT is replaced, whatever --overwrite says, except this
-      program's own outputs (ownership: marked, edited since or not) lying directly in PROJECT:
-      the README's examples run from this folder (`--csv damped.csv`), and running one twice
-      replaces its own file (an edited one only with --overwrite, as anywhere). An unmarked file
-      there may be main.py or a requirements file, or a user's file that cannot be told from one.
-    - A new file may be made directly in PROJECT, the folder users run the program from, unless
-      Python would import it in place of a module it already has: main.py's folder comes first
-      on Python's path, so a json.py or numpy.py there would replace that module on the next run.
+    - Nothing is written directly in PROJECT, new or old, whatever --overwrite says: beside main.py
+      a file may be a module (json.py would be imported in place of json), a tool's settings
+      (pytest.ini, conftest.py: the project's own tests would fail) or a user's file that cannot
+      be told from one, and every new file there is one more that `git status` shows.
     - Nothing is made in any folder below PROJECT: a new file in scenes/ would be a scene, in
       docs/ or tests/ a part of the project. The exception is the folders the tree's own
       .gitignore gives to the user by naming them at its root (`/out/`): a student who keeps
       outputs in ./out/ of a checkout writes there as anywhere else. Git ignores it, the program
-      never reads it, and refusing it would only push the same files somewhere less tidy; it is
-      the place this message suggests. The .gitignore's other lines (`__pycache__/`, `.venv/`,
-      `*.pyc`) name what tools make wherever they run, the compiled modules and installed
-      packages the program runs on, which stay protected. A copy without the .gitignore has no
-      such folder, and everything below PROJECT is refused.
+      never reads it; it is the place this message suggests. Even there, no tool's file
+      (TOOL_FILES: conftest.py, setup.py, __init__.py, sitecustomize.py, *.pth, ...) is written.
+      The .gitignore's other lines (`__pycache__/`, `.venv/`, `*.pyc`) name what tools make
+      wherever they run, which stays protected. A copy without the .gitignore has no such folder,
+      and everything under PROJECT is refused.
     - A teacher's scene folder (SPRING_SCENES) is the teacher's, but Python imports scenes from
       it: no file named as a module is written there, new or old. Other files there are the
       teacher's, and the usual rules apply to them.
@@ -242,16 +200,14 @@ def own_tree(target: str) -> str | None:
     parts = _inside(target, PROJECT)
     if parts is not None:
         if parts[0] in _user_folders() and len(parts) > 1:
+            if _tool_file(name):
+                return (f"{name} is a file Python's tools run where it lies (pytest, pip, site), and inside the "
+                        f"program's folder they would run it")
             return None
         if len(parts) > 1:
             return f"it is inside the program's own folder {parts[0]}/, which it never writes into"
-        if os.path.lexists(target):
-            return None if ownership(target) != THEIRS else "it is one of this program's own files"
-        module = _module_name(name)
-        if module is not None and module.isidentifier() and _importable(module):
-            return (f"in the program's own folder it would be imported in place of the {module} module "
-                    f"and break the program")
-        return None
+        where = "is" if os.path.lexists(target) else "would go"
+        return f"it {where} beside main.py, in the program's own folder, which holds only the program's files"
     for folder in _scene_folders():
         if _inside(target, folder) == [name] and _module_name(name) is not None:
             return (f"it is in the teacher's scene folder {folder!r} (SPRING_SCENES), where every Python "
@@ -259,158 +215,24 @@ def own_tree(target: str) -> str | None:
     return None
 
 
-# ---- the program's own outputs ----
+# ---- the program's own outputs (export/marks.py) ----
 
 def written_here(target: str) -> bool:
-    """Whether the existing file at `target` is one this program wrote, unchanged since: see ownership."""
+    """Whether the existing file at `target` is one this program wrote, unchanged since (marks.ownership)."""
     return ownership(target) == OURS
 
 
-OURS, EDITED, THEIRS = "ours", "edited", "theirs"
-
-
-def ownership(target: str) -> str:
-    """OURS if the existing file at `target` is one this program wrote and nobody has changed since,
-    EDITED if it carries the mark but its fingerprint no longer matches, THEIRS otherwise.
-
-    The programs, the offline page and the figures have MARK near one end (a header comment, the
-    PNG's "Software" text, the SVG's, PDF's or PostScript's "Creator"); a compressed SVG (.svgz)
-    is looked at unpacked. Beside the mark is the fingerprint (DIGEST_TAG and 16 hex digits, see
-    fingerprint): the file's SHA-256 without those digits. A marked file whose bytes no longer
-    give it, such as a handout a student has edited, is EDITED: not replaced without --overwrite.
-    A mark with no fingerprint (written by a version before fingerprints, or an .svgz figure) is
-    OURS by the mark alone, as it was: a teacher's script that reruns its commands onto files an
-    earlier version wrote keeps working. Reading the fingerprint costs one pass over the file in
-    blocks (hashlib), so a big figure costs its reading time and no more memory.
-
-    A CSV file is ours if its first line is our header, byte for byte (CSV_HEADER_LINES, with
-    csv.writer's line end), and it carries no fingerprint: a CSV file whose rows a student changed
-    is still replaced as ours. Nothing is added to the CSV file for a mark or a fingerprint,
-    because every addition breaks a reader the header is promised to: measured on our own
-    vertical run with csv.DictReader, csv.reader, numpy.loadtxt, numpy.genfromtxt(names=True) and
-    pandas.read_csv, and a grader reading line 1 as the header, a comment line before the header
-    breaks all six, one after the rows breaks DictReader, csv.reader and pandas (the t column
-    turns to text), an extra column breaks the line-1 grader and one or more of the others, and a
-    UTF-8 byte-order mark breaks DictReader and genfromtxt. The header is as distinctive: a
-    measurement file from Tracker, Vernier, PASCO or Logger Pro has its own. What it cannot tell
-    is a file another program wrote in our exact format; the one such file a command reads, its
-    --data file, is never written at all (cli/options.py).
-    """
+def _edited_how(target: str) -> str:
+    """Why a file with our mark is not ours any more: its fingerprint no longer matches, or is gone."""
     try:
         with open(target, "rb") as file:
-            head = file.read(MARK_SPAN)
-            size = os.fstat(file.fileno()).st_size
-            tail, tail_at = b"", 0
-            if size > MARK_SPAN:
-                tail_at = max(MARK_SPAN, size - MARK_SPAN)
-                file.seek(tail_at)
-                tail = file.read(MARK_SPAN)
-            if head.startswith(CSV_HEADER_LINES):
-                return OURS
-            if head.startswith(b"\x1f\x8b"):   # gzip: an .svgz figure, unpacked as far as it was read
-                try:
-                    unpacked = zlib.decompressobj(wbits=31).decompress(head, MARK_SPAN)
-                except zlib.error:
-                    unpacked = head
-                return OURS if MARK.encode() in unpacked else THEIRS
-            found = _find_digest(head, 0) or _find_digest(tail, tail_at)
-            if found is None:
-                return OURS if MARK.encode() in head or MARK.encode() in tail else THEIRS
-            at, digits = found
-            if digits == b"-" * DIGEST_DIGITS:     # a slot never filled in: known by its mark alone
-                return OURS
-            return OURS if fingerprint(file, at) == digits else EDITED
+            mark = marks.find_mark(file, os.fstat(file.fileno()).st_size)
     except OSError:
-        return THEIRS   # unreadable: not known to be ours
-
-
-def _find_digest(block: bytes, offset: int) -> tuple[int, bytes] | None:
-    """Where the fingerprint's digits after MARK in `block` start in the file (block starts at
-    `offset`), and the digits; None if `block` has no MARK or MARK has no fingerprint after it."""
-    mark = block.find(MARK.encode())
-    if mark < 0:
-        return None
-    found = _DIGEST.search(block, mark, mark + len(MARK) + DIGEST_SPAN)
-    if found is None:
-        return None
-    return offset + found.start(1), found.group(1)
-
-
-def _png_chunk(file, at: int) -> tuple[int, int] | None:
-    """In a PNG file, the chunk holding byte `at`: where its type starts (its CRC covers the type
-    and the data) and where its CRC starts; None if the file is not a PNG."""
-    file.seek(0)
-    if file.read(8) != PNG_SIGNATURE:
-        return None
-    place = 8
-    while True:
-        file.seek(place)
-        head = file.read(8)
-        if len(head) < 8:
-            return None
-        end = place + 8 + int.from_bytes(head[:4], "big")
-        if place + 8 <= at < end:
-            return place + 4, end
-        place = end + 4
-
-
-def fingerprint(file, at: int) -> bytes:
-    """The 16 hex digits (as bytes) of the SHA-256 of an open binary file's bytes, leaving out the
-    DIGEST_DIGITS bytes at `at` (the fingerprint's own place) and, in a PNG, the CRC of their
-    chunk. Read in blocks of 1 MiB: a big file is never held whole."""
-    skips = [(at, at + DIGEST_DIGITS)]
-    chunk = _png_chunk(file, at)
-    if chunk is not None:
-        skips.append((chunk[1], chunk[1] + 4))
-    digest = hashlib.sha256()
-    file.seek(0)
-    place = 0
-    while block := file.read(1 << 20):
-        end = place + len(block)
-        kept, cursor = [], place
-        for start, stop in sorted(skips):
-            if start < end and stop > cursor:
-                kept.append(block[cursor - place:max(start, cursor) - place])
-                cursor = min(stop, end)
-        kept.append(block[cursor - place:])
-        digest.update(b"".join(kept))
-        place = end
-    return digest.hexdigest()[:DIGEST_DIGITS].encode()
-
-
-def fill_fingerprint(path: str) -> None:
-    """Write the fingerprint of the file at `path` into its place after MARK (DIGEST_SLOT, or the
-    digits of an earlier one), and in a PNG the CRC of that chunk again; nothing if it has none.
-    The file is changed in place, as many bytes as before: a PDF's table of offsets stays right."""
-    with open(path, "r+b") as file:
-        head = file.read(MARK_SPAN)
-        size = os.fstat(file.fileno()).st_size
-        tail_at = max(MARK_SPAN, size - MARK_SPAN) if size > MARK_SPAN else 0
-        file.seek(tail_at)
-        found = _find_digest(head, 0) or (_find_digest(file.read(MARK_SPAN), tail_at) if tail_at else None)
-        if found is None:
-            return
-        at = found[0]
-        digits = fingerprint(file, at)
-        file.seek(at)
-        file.write(digits)
-        chunk = _png_chunk(file, at)
-        if chunk is not None:
-            file.seek(chunk[0])
-            covered = file.read(chunk[1] - chunk[0])
-            file.seek(chunk[1])
-            file.write(zlib.crc32(covered).to_bytes(4, "big"))
-
-
-def with_fingerprint(text: str, line: str) -> str:
-    """`text` with `line` (a comment holding DIGEST_SLOT, in the file's language) after the line
-    holding MARK; `text` as it is if it has no MARK near its top. Only files get it: the same
-    program printed (`-`) or downloaded from the page is as before, known by its mark alone."""
-    at = text.find(MARK, 0, MARK_SPAN)
-    if at < 0:
-        return text
-    end = text.find("\n", at) + 1 or len(text)
-    return text[:end] + line + "\n" + text[end:]
+        mark = None
+    if mark is not None and mark.digits is None:
+        return ("it carries this program's mark but no fingerprint (deleted, blanked, or written by a version "
+                "before fingerprints), so it cannot tell whether it was edited")
+    return "this program wrote it, but it has been changed since (its sha256 fingerprint no longer matches)"
 
 
 def _refuse(path: str, target: str, *, what: str, overwrite: bool) -> None:
@@ -419,9 +241,10 @@ def _refuse(path: str, target: str, *, what: str, overwrite: bool) -> None:
     reason = own_tree(target)
     if reason is not None:
         where = sorted(_user_folders())
-        advice = ("give another name" if not reason.startswith("it is inside") else
-                  f"write it outside the program's folder, or in {where[0]}/ (kept for your files)" if where else
-                  "write it outside the program's folder")
+        name = os.path.basename(target)
+        advice = ("give another name" if not reason.startswith(("it is inside", "it would go beside", "it is beside")) else
+                  f"write it in {where[0]}/ (kept for your files: {where[0]}/{name}) or outside the program's folder"
+                  if where else "write it outside the program's folder")
         raise OutputError(f"cannot write {what} {path!r}: {reason}; {advice}")
     if overwrite or not os.path.isfile(target):
         return
@@ -430,7 +253,7 @@ def _refuse(path: str, target: str, *, what: str, overwrite: bool) -> None:
         return
     kind = target.rsplit(".", 1)[-1].lower() if "." in os.path.basename(target) else ""
     if owner == EDITED:
-        said = "this program wrote it, but it has been changed since (its sha256 fingerprint no longer matches)"
+        said = _edited_how(target)
     elif what == "figure" and kind not in FIGURE_MARK_KEYS:
         said = f"it is a .{kind} file, a type that cannot carry this program's mark, so it cannot tell whether it wrote it"
     else:
@@ -494,14 +317,16 @@ IN_USE = " (is the file open in another program, such as Excel? close it there a
 
 
 @contextlib.contextmanager
-def atomic_file(path: str, *, what: str):
+def atomic_file(path: str, *, what: str, record: bool = True):
     """Yield a temporary file name in path's folder; on success it is renamed onto `path`.
 
     A rename within one folder is atomic, so `path` is always either the old file, untouched, or
     the complete new one: a full disk, a file-size limit, Ctrl-C or SIGTERM part-way leave no
     half-written file (the temporary one is removed). An OSError becomes OutputError. A symbolic
     link is followed (the temporary file goes beside the file it points to, and replaces that);
-    a target that is not a regular file is refused (_target).
+    a target that is not a regular file is refused (_target). A figure's fingerprint is filled in
+    (marks.fill_fingerprint), and the file, once in place, is added to the record of what this
+    program wrote (export/written.py; `record=False` for a file known by its header, the CSV).
     """
     target = _target(path, what=what)
     temporary = _temporary_beside(target, what=what, shown=path)
@@ -509,6 +334,8 @@ def atomic_file(path: str, *, what: str):
         yield temporary
         fill_fingerprint(temporary)
         os.replace(temporary, target)
+        if record:
+            written.remember(target, inside=lambda folder: _inside(folder, PROJECT) is not None)
     except OSError as problem:
         raise OutputError(f"cannot write {what} {path!r}: {problem.strerror or problem}"
                           f"{IN_USE if isinstance(problem, PermissionError) and os.path.exists(target) else ''}"
@@ -543,11 +370,7 @@ def check_path(path: str, *, overwrite: bool = False) -> None:
     check_writable(path, what="the program", overwrite=overwrite)
 
 
-PROGRAM_FINGERPRINT = (f"# {DIGEST_SLOT}: this file's fingerprint; once the file is edited, the simulator replaces "
-                       f"it only with --overwrite")
-
-
 def write_program(path: str, text: str, *, overwrite: bool = False) -> None:
-    """Write a program to path whole: a temporary file in the same folder, then renamed over it.
-    Its header gets the fingerprint's line (PROGRAM_FINGERPRINT, filled in as written)."""
-    write_text(path, with_fingerprint(text, PROGRAM_FINGERPRINT), what="the program", overwrite=overwrite)
+    """Write a program to path whole: a temporary file in the same folder, then renamed over it,
+    stamped with its mark line and fingerprint (marks.stamped)."""
+    write_text(path, stamped(text), what="the program", overwrite=overwrite)

@@ -159,8 +159,12 @@ window.offlineProgram = function (compiled, rate, GSprint, offline_page, canvas,
 
   // The program for a set-up: the file's program for its integrator, with each constant that
   // differs written into its line of the constants block (`k = 60   # N/m: ...`).
-  function programFor(setup) {
-    var lines = DATA.programs[setup.integrator].split("\n");
+  function programFor(setup) {   // with the forces the Add a force box adds (export/force_box.js)
+    var own = window.offlineForces ? window.offlineForces.program(setup.integrator) : DATA.programs[setup.integrator];
+    return withConstants(own, setup);
+  }
+  function withConstants(text, setup) {
+    var lines = text.split("\n");
     Object.keys(setup.values).forEach(function (name) {
       if (setup.values[name] === DATA.constants[name].written) return;
       var at = lines.findIndex(function (line) { return line.indexOf(name + " = ") === 0; });
@@ -274,6 +278,7 @@ window.offlineProgram = function (compiled, rate, GSprint, offline_page, canvas,
         showArrows(run);
         drawEquilibrium(run);
         showMeasured(run);
+        if (window.offlineForces) window.offlineForces.drawn(run);
       },
       stepped: function (i, n, m, F, p, r, terms) {
         if (run !== current) return;
@@ -282,6 +287,7 @@ window.offlineProgram = function (compiled, rate, GSprint, offline_page, canvas,
                         terms: (terms || []).map(vec)};
         run.last[i] = {r: run.steps[i].r_f, p: run.steps[i].p_f};
         if (i === 0) run.n = n;
+        if (window.offlineForces) window.offlineForces.stepped(run, run.steps[i]);
       }
     };
   }
@@ -589,6 +595,10 @@ window.offlineProgram = function (compiled, rate, GSprint, offline_page, canvas,
             arrows: drawn, opacity: (run.balls || []).map(function (ball) { return ball.opacity; }),
             jumping: jump !== null, jumps: jumps, jumpsDrawn: jumpsDrawn, last: run.last};
   };
+
+  // what the Add a force box (export/force_box.js) asks of the page
+  window.offlinePage = {setup: function () { return setup; }, withConstants: withConstants,
+                        restart: function () { start(setup); }};
 
   // ---- start ----
 

@@ -44,7 +44,7 @@ from scenes import DECLARED
 from scenes._sliders import round_slider_values, slider_names, slider_range, symbol
 from scenes._view import DEFAULT_VIEW
 
-from . import files
+from . import files, offline_forces
 from . import page_access
 from .arrows import ARROW_LABELS, ARROWS, SEE_THROUGH, choose_scales
 from .description import template_data
@@ -236,6 +236,9 @@ def page(setup, *, integrator: str | None = None, arrows=None, end: float | None
                               end=end)
                 for name in names}
     offered = {found.name: found for found in settable(setup, integrator=None if fixed else first, view=view)}
+    # the Add a force box: its programs for the integrator the page starts with (a few programs each)
+    forces = offline_forces.box_data(setup, integrators={first: None if fixed else first}, shown=shown, end=end,
+                                     pages=programs)
     methods = sorted(set(fixed or INTEGRATORS))
     framed = frame(model, view)   # the local page's camera (export/framing.py), and room for the arrows
     scales = choose_scales(model, view=view, integrator=first if not fixed else None, forces="forces" in shown)
@@ -261,6 +264,7 @@ def page(setup, *, integrator: str | None = None, arrows=None, end: float | None
                  "kicks_once": {name: INTEGRATORS[name].kicks_once for name in methods},
                  "labels": list(model.labels), "masses": STEP_MASSES},
         "describe": {**template_data(model), "m": [float(m) for m in model.state.m]},   # export/description.py
+        "forces": forces,
     }
     text = _document(setup, data, shown=shown)
     if len(text.encode("utf-8")) > MAX_BYTES:
@@ -294,7 +298,7 @@ def _document(setup, data: dict, *, shown) -> str:
                       if name == COMPILER else f"<script>{library(name)}</script>\n" for name, _ in LIBRARIES)
     speeds = "".join(f'<option{" selected" if value == 1 else ""}>{label}</option>' for label, value in SPEEDS.items())
     return f"""<!DOCTYPE html>
-<!-- {files.HANDOUT_MARK} (python main.py {setup.name} --html): {html.escape(title)} -->
+<!-- The spring-mass simulator's offline page (python main.py {setup.name} --html): {html.escape(title)} -->
 <html lang="en">
 <head>
 <meta charset="utf-8">
@@ -305,7 +309,7 @@ This file holds GlowScript 3.2 and the libraries bundled in it, each under its o
 
 {notice}
 -->
-<style>{_read(STYLE) % {"body": BODY_PX, "projector": PROJECTOR_PX}}{page_access.STYLE}</style>
+<style>{_read(STYLE) % {"body": BODY_PX, "projector": PROJECTOR_PX}}{page_access.STYLE}{offline_forces.STYLE}</style>
 </head>
 <body>
 <h1>{html.escape(title)}</h1>
@@ -334,11 +338,13 @@ This file holds GlowScript 3.2 and the libraries bundled in it, each under its o
 <p class="link"><label for="link">This set-up's link (add it to the file's address once the file is on a web site):</label>
 <input id="link" readonly size="28"></p>
 <details><summary>The program this page runs (Web VPython 3.2)</summary><pre id="program-text"></pre></details>
+{offline_forces.box_html(data["forces"])}
 </div>
 </main>
 <script type="application/json" id="offline-data">{_json(data)}</script>
 {scripts}{plain_ticks(clear_outside=False)}
 <script>{page_access.script()}</script>
+<script>{_read(offline_forces.SCRIPT)}</script>
 <script>{_read(SCRIPT)}</script>
 <script>{page_access.install_call(viewLabel=VIEW_LABEL)}</script>
 </body>
@@ -375,30 +381,14 @@ def _short(x) -> str:
     return str(int(x)) if x.is_integer() and abs(x) < 1e15 else repr(x)
 
 
-# The fingerprint's line under the mark (export/files.py with_fingerprint); an HTML comment may not hold "--".
-PAGE_FINGERPRINT = (f"<!-- {files.DIGEST_SLOT}: this file's fingerprint; once the file is edited, the simulator "
-                    f"replaces it only when told to overwrite -->")
-
-
 def check_page_path(path: str, *, overwrite: bool = False) -> None:
     """Raise OutputError (one line) if the page cannot be written to path: files.check_writable's
-    checks, and an existing file this program did not write (no HANDOUT_MARK near its top) is
-    not replaced unless `overwrite`."""
+    checks (an existing file is replaced only where it is ours, unchanged: export/marks.py)."""
     files.check_writable(path, what="the offline page", overwrite=overwrite)
-    if overwrite or not os.path.isfile(path):
-        return
-    try:
-        with open(path, "rb") as file:
-            ours = files.HANDOUT_MARK.encode() in file.read(2000)
-    except OSError:
-        ours = False
-    if not ours:
-        raise files.OutputError(f"cannot write the offline page {path!r}: it is a file this program did not write; "
-                                f"give another name, or add --overwrite to replace it")
 
 
 def write_page(path: str, text: str, *, overwrite: bool = False) -> None:
     """Write the page whole (a temporary file renamed over the target), after check_page_path,
-    with the fingerprint's line under its mark (PAGE_FINGERPRINT)."""
+    stamped with its mark line and fingerprint under <!DOCTYPE html> (export/marks.py stamped)."""
     check_page_path(path, overwrite=overwrite)
-    files.write_text(path, files.with_fingerprint(text, PAGE_FINGERPRINT), what="the offline page", overwrite=overwrite)
+    files.write_text(path, files.stamped(text), what="the offline page", overwrite=overwrite)

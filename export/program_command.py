@@ -83,7 +83,14 @@ def command(setup, model, integrator) -> str:
         best = [f"--set {name}={_set_value(value)}" for name, value in setup.values.items()]
     if model.methods(integrator) != model.methods():
         best.append(f"--integrator {integrator}")
+    best += [force_option(name, text) for name, text in setup.written]
     return " ".join(["python main.py", setup.name, *best])
+
+
+def force_option(name: str, text: str) -> str:
+    """--force "push=vector(2, 0, 0)": a written force as the command line takes it (the grammar
+    has no quote, $ or \\, so double quotes keep it whole in any shell)."""
+    return f'--force "{name}={text}"'
 
 
 def _options(setup, preset: str | None) -> list[str] | None:

@@ -26,8 +26,11 @@ class ProgramConstants:
     scene's constants block; otherwise its unit and meaning are DECLARED's.
     """
 
-    def __init__(self, setup, count: int):
+    def __init__(self, setup, count: int, forces=()):
         self.setup, self.count = setup, count
+        # the constant holding each role of the closed form among the model's forces, as each
+        # declares it (physics/forces/ CLOSED_FORM): read here, when a program is written, never at import
+        self.roles: dict[str, str] = closed_form_constants(forces)
         self.single: dict[str, object] = {}       # name -> a float, or a 3-tuple for a vector
         self.per_mass: dict[str, np.ndarray] = {}  # name -> (count,) or (count, 3)
         self.meanings: dict[str, str] = {}         # name -> what the program means by it, where the scene's
@@ -99,24 +102,20 @@ def constants_block(setup, constants: ProgramConstants, used: set[str]) -> list[
     order = [name for name in order if name not in ("dt", "until", "t_end")] + \
         [name for name in ("dt", "until", "t_end") if name in values]
     critical = _critical(setup, constants, order)
-    b = ROLES[Role.DAMPING]
-    return [commented(f"{b} = {critical_line()}", critical_comment(), width=CONSTANT_COLUMN) if name == b and critical
+    b = constants.roles.get(Role.DAMPING)      # the damping and stiffness constants by their role in the
+    return [commented(f"{b} = {critical_line(constants)}", critical_comment(constants), width=CONSTANT_COLUMN)
+            if name == b and critical      # closed form (CLOSED_FORM): this module names no force's constant
             else commented(f"{name} = {_literal(values[name])}", constants.comment(name), width=CONSTANT_COLUMN)
             for name in order]
 
 
-# The damping and the stiffness constants by their role in the closed form, as each force declares
-# them (physics/forces/ CLOSED_FORM): this module names no force's constant itself.
-ROLES = closed_form_constants()
-
-
-def critical_line() -> str:
+def critical_line(constants: ProgramConstants) -> str:
     """The preset's b = None (scenes/_catalog.py resolve), in the program's arithmetic: 2*sqrt(m*k)."""
-    return f"2*sqrt(m*{ROLES[Role.STIFFNESS]})"
+    return f"2*sqrt(m*{constants.roles[Role.STIFFNESS]})"
 
 
-def critical_comment() -> str:
-    b, k = ROLES[Role.DAMPING], ROLES[Role.STIFFNESS]
+def critical_comment(constants: ProgramConstants) -> str:
+    b, k = constants.roles[Role.DAMPING], constants.roles[Role.STIFFNESS]
     return unit_and_meaning(DECLARED[b].unit, f"critical damping, {b} = 2√(m{k})")
 
 
@@ -124,8 +123,8 @@ def _critical(setup, constants: ProgramConstants, order: list[str]) -> bool:
     """Whether the program's b is critical damping for its m and k, as the preset works it out
     (scenes/_catalog.py resolve), with m and k named above it: then it is written `b = 2*sqrt(m*k)`,
     the same float (a correctly rounded square root, doubled), not 52.76362383309168."""
-    b, k = ROLES[Role.DAMPING], ROLES[Role.STIFFNESS]
-    if not all(name in constants.single for name in (b, "m", k)) or \
+    b, k = constants.roles.get(Role.DAMPING), constants.roles.get(Role.STIFFNESS)
+    if b is None or k is None or not all(name in constants.single for name in (b, "m", k)) or \
             not order.index("m") < order.index(b) > order.index(k):
         return False
     single = {name: constants.single[name] for name in ("m", k)}

@@ -1,7 +1,7 @@
 """The forces and the integrator's update, as lines of the handed-out program.
 
 Nothing here knows a force or a method by name: each force gives its constants' values and its
-line(s) of program (physics/forces.py: Force.program_values, Force.program), and each integrator
+line(s) of program (physics/forces/base.py: Force.program_values, Force.program), and each integrator
 its template (physics/integrators.py: the registry entry's program). This module fills them in
 with the program's names, `b` or `b_each[i]` for a value per mass, in the order
 physics.forces.net_force adds the forces.
@@ -9,6 +9,7 @@ physics.forces.net_force adds the forces.
 from __future__ import annotations
 
 from physics.integrators import INTEGRATORS
+from scenes import DECLARED
 
 from .lines import ProgramError, commented
 
@@ -26,13 +27,13 @@ class ProgramForces:
         for force in self.forces:
             if not force.program():
                 raise ProgramError(f"the program cannot write the force {type(force).__name__}: "
-                                   f"it declares no PROGRAM line (physics/forces.py)")
+                                   f"it declares no PROGRAM line (physics/forces/base.py)")
             try:
                 values = force.program_values()
             except ValueError as problem:
                 raise ProgramError(str(problem)) from None
             for name, value in values.items():
-                constants.add(name, value, is_vector=force.CONSTANTS[name].vector)
+                constants.add(name, value, is_vector=DECLARED[name].vector)
         self.uses_velocity = any(force.uses_velocity for force in self.forces)
 
     def lines(self, t: str, r: str, v: str, laws: bool) -> list[tuple[str, str]]:

@@ -15,7 +15,6 @@ import re
 import numpy as np
 
 from physics.exact import Role
-from physics.forces import closed_form_constants
 from scenes import DECLARED
 
 from .lines import COMMENT, CONSTANT_COLUMN, commented, listed, number, vector
@@ -84,14 +83,16 @@ def _spelled(values, name: str, x, used: set[str]) -> str:
     return name if same else number(clean(x))
 
 
-# The spring's fixed end, which the helix is drawn from, by its role in the closed form as the
-# spring declares it (physics/forces/ CLOSED_FORM): no front end names a force's constant.
-ANCHOR = closed_form_constants()[Role.ANCHOR]
+def anchor(constants) -> str:
+    """The spring's fixed end, which the helix is drawn from, by its role in the closed form as the
+    spring declares it (physics/forces/ CLOSED_FORM, ProgramConstants.roles): no front end names a
+    force's constant."""
+    return constants.roles.get(Role.ANCHOR, Role.ANCHOR)
 
 
 def mass_count(constants) -> str:
     """How the program counts its masses: the length of one of its lists."""
-    for name in ("r0", ANCHOR, *constants.per_mass):
+    for name in ("r0", anchor(constants), *constants.per_mass):
         if name in constants.per_mass:
             return f"len({constants.list_name(name)})"
     return str(constants.count)

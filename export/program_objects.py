@@ -6,7 +6,7 @@ import numpy as np
 
 from .lines import commented, listed, number
 from .palette import CURVE_COLOURS, MASS_COLOURS, mass_colours, shade, simulation_width
-from .program_masses import ANCHOR, LABELLED, mass_count
+from .program_masses import LABELLED, anchor, mass_count
 
 
 def objects(model, view, constants, single: bool) -> list[str]:
@@ -70,7 +70,8 @@ def objects(model, view, constants, single: bool) -> list[str]:
               f"for i in range({mass_count(constants)}):",
               f"    pos.append({n('r0')})",
               f"    p.append({n('m')}*{n('v0')})",
-              f"    springs.append(helix(pos={n(ANCHOR)}, axis={n('r0')} - {n(ANCHOR)}, radius=0.45*radius, "
+              f"    springs.append(helix(pos={n(anchor(constants))}, axis={n('r0')} - {n(anchor(constants))}, "
+              f"radius=0.45*radius, "
               f"thickness=0.12*radius, coils={coils}))",
               f"    balls.append(sphere(pos={n('r0')}, radius=radius, color={each}))",
               f"    position.append(gcurve(color={each}, width={width}"

@@ -17,7 +17,7 @@ teacher can set a case up and hand it to the class to read and edit:
         pos = pos + p/m*dt                     # r_f = r_i + v_f Δt, with v_f = p_f / m
         ...
 
-Its arithmetic is the engine's, line for line: every force is written the way physics/forces.py
+Its arithmetic is the engine's, line for line: every force is written the way physics/forces/
 works it out (Hooke's law as k (L0/|L| − 1) L, drag as −½ C A ρ |v| v), the forces are added in the
 scene's order, and the integrator's update is the one in physics/integrators.py, in the same
 order of operations (euler-cromer works out v_i only where a force needs it; verlet's extra half
@@ -58,6 +58,7 @@ from physics.integrators import INTEGRATORS
 from physics.simulate import steps_to_reach
 from scenes import DECLARED
 from scenes._view import DEFAULT_VIEW, MAX_DRAWN_MASSES
+from scenes._written import add_forces
 
 from . import program_arrows, program_page
 from .exact_curve import exact_lines, plot_line
@@ -67,7 +68,7 @@ from .program_answer import HELPERS, answer_line
 from .program_command import command, description
 from .program_constants import ProgramConstants, constants_block
 from .program_forces import ProgramForces, update
-from .program_masses import ANCHOR, mass_count, masses, which_mass
+from .program_masses import anchor, mass_count, masses, which_mass
 from .program_objects import objects
 
 WEB_FIRST_LINE = "Web VPython 3.2"
@@ -79,7 +80,7 @@ IMPORTS = ["from vpython import *",
 
 
 def program(setup, *, integrator: str | None = None, web: bool = False, arrows=None,
-            end: float | None = None, page: bool = False, header: bool = True) -> str:
+            end: float | None = None, page: bool = False, header: bool = True, added=()) -> str:
     """The VPython program for a configured scene (scenes._catalog.Setup), as text.
 
     integrator  the method (default: the scene's own, else euler-cromer, the page's update), as
@@ -95,10 +96,14 @@ def program(setup, *, integrator: str | None = None, web: bool = False, arrows=N
                 step worked out from until and dt as the program runs.
     header      False leaves out the header's comments (its description and the command of the
                 same case, which takes most of the time to write): to compare programs' code.
+    added       forces added after the model's own (export/offline_forces.py's place for the forces
+                the offline page's box adds)
 
     Raises ProgramError, or ValueError from the scene's build function, with a one-line message.
     """
     model = setup.build()
+    if added:
+        model = add_forces(model, added)
     _check_size(setup, model)
     case = _Case(setup, model, integrator, arrows, end, page)
     lines = IMPORTS + (case.header() if header else []) + case.constants_lines()
@@ -152,7 +157,7 @@ class _Case:
         self.arrows = self.view["arrows"] if arrows is None else arrows
         self.single = model.state.count == 1
         self.index = "" if self.single else "[i]"
-        self.constants = ProgramConstants(setup, model.state.count)
+        self.constants = ProgramConstants(setup, model.state.count, model.forces)
         self.constants.add("m", model.state.m)
         self.forces = ProgramForces(model, self.constants)
         self.constants.add("r0", model.state.r, is_vector=True)
@@ -176,7 +181,7 @@ class _Case:
         methods = self.methods
         how = f"the {methods[0]} integrator" if len(set(methods)) == 1 else "each mass's own integrator (the list method)"
         return [*description(self.setup),
-                f"# Written by the spring-mass simulator with {how}. Edit the constants and run it again.",
+                f"# It steps with {how}. Edit the constants and run it again.",
                 f"# The same case on the simulator's page: {command(self.setup, self.model, self.integrator)}"]
 
     def constants_lines(self) -> list[str]:
@@ -247,7 +252,7 @@ class _Case:
     def draw(self) -> list[str]:
         i, n, axes = self.index, self.constants.name, self.axes
         lines = [f"{'ball' if self.single else 'balls[i]'}.pos = pos{i}",
-                 commented(f"spring{'' if self.single else 's[i]'}.axis = pos{i} - {n(ANCHOR)}",
+                 commented(f"spring{'' if self.single else 's[i]'}.axis = pos{i} - {n(anchor(self.constants))}",
                            "the helix follows the sphere")]
         lines += self.plot_position()
         if self.exact is not None:

@@ -15,13 +15,17 @@ from itertools import combinations
 
 import numpy as np
 
-from physics.forces import FORCES
+from physics.forces import FORCES, declared_constants
 from scenes._constants import DECLARED
 
 from .model_run import RELEASE, FitError
 
-# Constants that enter the motion only in a combination, as each force declares them: pairs of a group.
-TIED = [(set(pair), why) for force in FORCES for names, why in force.TIED for pair in combinations(names, 2)]
+
+def tied() -> list[tuple[set, str]]:
+    """Constants that enter the motion only in a combination, as each force declares them (TIED):
+    pairs of a group, with why. Read when a fit is asked for, after the declarations are checked."""
+    declared_constants()
+    return [(set(pair), why) for force in FORCES for names, why in force.TIED for pair in combinations(names, 2)]
 
 
 def check_names(setup, names) -> list[str]:
@@ -41,7 +45,7 @@ def check_names(setup, names) -> list[str]:
                            f"can be fitted")
         if names.count(name) > 1:
             raise FitError(f"--fit names {name!r} twice")
-    for group, why in TIED:
+    for group, why in tied():
         if group <= set(names):
             pair = " and ".join(sorted(group))
             raise FitError(f"--fit {','.join(names)}: {pair} cannot be told apart from a measured "

@@ -6,7 +6,7 @@ mass stepped with numpy runs several times slower than the page's own vpython lo
 arithmetic is only about 40 additions and multiplications of floats. A second, hand-written copy
 of every force law in components would be fast, but it would be a second copy to keep right.
 
-How: the one copy of the physics (forces.py, integrators.py) writes the fast copy.
+How: the one copy of the physics (physics/forces/, integrators.py) writes the fast copy.
 
 1. Trace. Take one tick of the engine (physics/simulate.py: the integrator's step, the forces'
    stop rules and the work meter) on numbers that are :class:`Traced`: each
@@ -29,8 +29,8 @@ That is never silent: the first time, an :class:`UntracedWarning` names the forc
 (once per force and reason in a process); the command line shows it as one line on stderr.
 
 Why not numba: measured on the user command (docs/performance.md), importing and compiling with
-numba costs as much as it saves at 10⁶ steps, it cannot compile forces.py as written, and it adds
-some 200 MB; this module is a few hundred lines and keeps one copy of the physics.
+numba costs as much as it saves at 10⁶ steps, it cannot compile physics/forces/ as written, and it
+adds some 200 MB; this module is a few hundred lines and keeps one copy of the physics.
 
 The loop does the same IEEE double operations as the numpy tick, in the same order, so the two
 agree to round-off (numpy's cos may differ from math.cos in the last bit; tests/test_compiled.py
@@ -184,6 +184,10 @@ class Traced:
         exponent = self.tape.operand(other)
         return self.tape.write(f"_pow({self.name}, {exponent})", math.pow(self.value, _value(other)))
 
+    def __rpow__(self, other):
+        base = self.tape.operand(other)
+        return self.tape.write(f"_pow({base}, {self.name})", math.pow(_value(other), self.value))
+
     def __neg__(self):
         return self.tape.write(f"-{self.name}", -self.value)
 
@@ -219,6 +223,9 @@ class Traced:
 
     def sin(self):
         return self.tape.write(f"_sin({self.name})", math.sin(self.value))
+
+    def exp(self):
+        return self.tape.write(f"_exp({self.name})", math.exp(self.value))
 
     def __float__(self):
         raise Untraceable("the step turns a traced number into a float")
@@ -266,7 +273,7 @@ class CompiledLoop:
             if len(outputs) != len(names):
                 raise Untraceable("the tick changed the number of values")
             self.source = _loop_source(tape, names, [tape.operand(x) for x in outputs])
-            namespace = {"_sqrt": math.sqrt, "_cos": math.cos, "_sin": math.sin, "_pow": math.pow,
+            namespace = {"_sqrt": math.sqrt, "_cos": math.cos, "_sin": math.sin, "_exp": math.exp, "_pow": math.pow,
                          "_t0": self.t0, "_dt": self.dt, **tape.constants}
             exec(compile(self.source, "<compiled tick>", "exec"), namespace)
             self._loop = namespace["advance"]

@@ -1,6 +1,6 @@
 """What a constant may be: its unit, symbol and range, declared once beside what uses it.
 
-A force declares the constants of its law (physics/forces.py: Spring's k and L0, LinearDamping's
+A force declares the constants of its law (physics/forces/: Spring's k and L0, LinearDamping's
 b); the scenes declare the rest (m, Δt, a row's spacing) in scenes/_constants.py's DECLARED, which
 reads the forces' declarations too. Plain data: numbers and words, no numpy.
 """

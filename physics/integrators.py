@@ -209,7 +209,8 @@ class Integrator:
                   works every limit out from the step, and a test checks it against this number.
     rule          how the step uses F_net, in words, for the step table a student checks by hand
     kicks_once    True if p_f = p_i + F(t_i, r_i, v_i) Δt: one kick with the force at the start
-    damped_rule   the stability condition with linear damping b, in words, where it is known
+    damped_rule   the stability condition with a damping rate γ (b/m of linear damping), in words, where it
+                  is known: the message writes γ as the damping force's own rate (physics/stability.py)
     program       its template: the step as lines of the handed-out program (see the module's docstring)
     """
 
@@ -230,7 +231,7 @@ INTEGRATORS = {entry.name: entry for entry in (
     Integrator("euler-cromer", euler_cromer, order=1, omega_dt_limit=2.0,
                rule="F_net = F(t_i, r_i, v_i) at the start of the step; p_f = p_i + F_net·Δt; "
                     "v_f = p_f / m; r_f = r_i + v_f·Δt", kicks_once=True,
-               damped_rule="stable while (ω·dt)² + 2·(b/m)·dt < 4", program=euler_cromer_program),
+               damped_rule="stable while (ω·dt)² + 2·γ·dt < 4", program=euler_cromer_program),
     Integrator("euler", euler, order=1, omega_dt_limit=None,
                rule="F_net = F(t_i, r_i, v_i) at the start of the step; p_f = p_i + F_net·Δt; "
                     "r_f = r_i + v_i·Δt (the old velocity); v_f = p_f / m", kicks_once=True, program=euler_program),

@@ -7,7 +7,7 @@ three times as many lines). So the engine asks, once at the start, which axes th
 and steps a copy of the system cut to those axes (physics/simulate.py's tick puts the others back,
 unchanged).
 
-When an axis may be left out. Every force declares its vectors (physics/forces.py's
+When an axis may be left out. Every force declares its vectors (physics/forces/base.py's
 Force.VECTORS): a "point" it pulls towards or pushes from along r − point (a spring's anchor), a
 "direction" it pushes along (gravity's), and otherwise it pushes only along v. Axis i may be left
 out when, for every mass,

@@ -95,7 +95,7 @@ class Simulation:
         self.may_run_away = frozenset(int(i) for i in may_run_away)
         self.compiled = compiled
         self._seconds_per_step = None
-        # what each force declares (physics/forces.py's Force.tether); a plain callable declares nothing
+        # what each force declares (physics/forces/base.py's Force.tether); a plain callable declares nothing
         tethers = [tether() for tether in (getattr(force, "tether", None) for force in self.forces) if tether]
         tethers = [tether for tether in tethers if tether is not None]
         self._anchor = np.broadcast_to(tethers[0][0], state.r.shape) if tethers else None
@@ -272,11 +272,14 @@ class Simulation:
         v = np.nan_to_num(velocity(self._p, self.start.m), nan=0.0, posinf=0.0, neginf=0.0)
         methods = tuple(self.methods[i] for i in rows)
         verdict = judge(self.forces, self.start.m, self.methods, self.dt, v=v)
-        # a drag is a rate that grows with the speed: the forces' declared drag at a speed of 1 m/s
-        drag = np.any(rates(self.forces, self.start.m, v=np.ones_like(self._p)).drag > 0)
+        # a drag is a rate that grows with the speed: the forces' declared drag at a speed of 1 m/s,
+        # named by the force and its own constants (physics/stability.py Part)
+        drag = [part for part in rates(self.forces, self.start.m, v=np.ones_like(self._p)).parts
+                if part.kind == "drag" and np.any(part.value > 0)]
+        named = " and ".join(f"the {part.label} (its rate {part.words} grows with the speed)" for part in drag)
         advice = (verdict.message if verdict.message and verdict.method in methods else
-                  f"dt = {self.dt:g} s, but the drag (its rate ρCA|v|/m grows with the speed) outgrew what "
-                  f"{methods[0]} can follow at this dt; try a smaller dt, or less drag" if drag else
+                  f"dt = {self.dt:g} s, but {named} outgrew what {methods[0]} can follow at this dt; try a "
+                  f"smaller dt, or less {drag[0].label}" if drag else
                   f"dt = {self.dt:g} s; try a smaller dt")
         return f"the simulation blew up by t = {self.t:.4g} s ({how}): {advice}"
 

@@ -150,13 +150,27 @@ def largest_stable_dt(method: str, *, omega: float, rate: float) -> float:
 
 
 @dataclass(frozen=True)
+class Part:
+    """One force's share of a rate, for the message that names it: its label, how it writes its rate
+    (Force.rate_words: "b/m", "c/m", "ρCA|v|/m", "√(k/m)") and its value per mass ((N,): N/m for
+    stiffness, s⁻¹ for damping and drag)."""
+
+    kind: str
+    label: str
+    words: str
+    value: np.ndarray
+
+
+@dataclass(frozen=True)
 class Rates:
-    """The rates that limit Δt, per mass: ω (rad/s), b/m and the drag's ρCA|v|/m (s⁻¹), and |v| (m/s)."""
+    """The rates that limit Δt, per mass: ω (rad/s), b/m and the drag's ρCA|v|/m (s⁻¹), and |v| (m/s);
+    and each force's part of them (parts), so a message names the force and its own constant."""
 
     omega: np.ndarray
     damping: np.ndarray
     drag: np.ndarray
     speed: np.ndarray
+    parts: tuple = ()
 
     @property
     def gamma(self) -> np.ndarray:
@@ -179,7 +193,21 @@ def rates(forces, m, v=None) -> Rates:
     joined = sorted({index % count for i, j, _ in joints for index in (i, j)})
     if joined:
         omega[joined] = np.maximum(omega[joined], fastest_angular_frequency(forces, m))
-    return Rates(omega=omega, damping=damping, drag=drag, speed=speed)
+    return Rates(omega=omega, damping=damping, drag=drag, speed=speed, parts=_parts(forces, m, speed))
+
+
+def _parts(forces, m, speed) -> tuple:
+    """Each force's share of the stiffness, damping and drag, with its label and how it writes its rate."""
+    parts = []
+    for force in forces:
+        declared = getattr(force, "rates", None)
+        terms = declared(m, speed) if declared else {}
+        for kind in ("stiffness", "damping", "drag"):
+            if kind in terms:
+                words = force.rate_words(kind) if hasattr(force, "rate_words") else "γ"
+                label = getattr(force, "LABEL", "") or type(force).__name__
+                parts.append(Part(kind, label, words, np.broadcast_to(np.asarray(terms[kind], float), (len(m),))))
+    return tuple(parts)
 
 
 def joints(forces, m) -> list:
@@ -293,12 +321,39 @@ def judge(forces, m, methods, dt: float, v=None, *, ignore=()) -> Verdict:
         bounded = limit.any_start or (limit.from_rest and at_rest)
         return Verdict(bounded, 1.0, dt, method, "spring" if damping + drag == 0 else "spring and damping",
                        _limit_message(method, dt=dt, omega=omega, rate=damping + drag, bounded=bounded,
-                                      limit=limit, at_rest=at_rest), at_limit=True)
+                                      limit=limit, at_rest=at_rest, named=_named(r, worst, omega=omega)),
+                       at_limit=True)
     dt_max = largest_stable_dt(method, omega=omega, rate=damping + drag)
     cause = _cause(method, omega=omega, damping=damping, drag=drag, dt_max=dt_max)
+    named = _named(r, worst, omega=omega)
     return Verdict(False, float(growth[worst]), dt_max, method, cause,
-                   _message(method, dt=dt, dt_max=dt_max, cause=cause, growth=float(growth[worst]),
-                            omega=omega, damping=damping, drag=drag, speed=float(r.speed[worst])))
+                   _message(method, dt=dt, dt_max=dt_max, cause=cause, growth=float(growth[worst]), named=named))
+
+
+def _named(r: Rates, worst: int, *, omega: float) -> dict[str, str]:
+    """What limits Δt, by kind, in the words of the forces that add to it at the worst mass, each
+    with its own constant: "the spring (ω = 2 rad/s, √(k/m) for one mass)", "the damping (b/m =
+    40 s⁻¹)", "the eddy brake (c/m = 40 s⁻¹)", "the drag (ρCA|v|/m = 3 s⁻¹ at |v| = 2 m/s)"."""
+    speed = float(r.speed[worst])
+    said: dict[str, list[str]] = {}
+    for part in r.parts:
+        value = float(part.value[worst])
+        if not value > 0:
+            continue
+        if part.kind == "stiffness":
+            text = f"the {part.label} (ω = {omega:.4g} rad/s, {part.words} for one mass)"
+        elif part.kind == "damping":
+            text = f"the {part.label} ({part.words} = {value:.4g} s⁻¹)"
+        else:
+            text = f"the {part.label} ({part.words} = {value:.4g} s⁻¹ at |v| = {speed:.4g} m/s)"
+        said.setdefault(part.kind, []).append(text)
+    words = {kind: [part.words for part in r.parts if part.kind == kind and float(part.value[worst]) > 0]
+             for kind in ("stiffness", "damping", "drag")}
+    return {"spring": " and ".join(said.get("stiffness", [])) or f"the spring (ω = {omega:.4g} rad/s)",
+            "damping": " and ".join(said.get("damping", [])) or "the damping",
+            "drag": " and ".join(said.get("drag", [])) or "the drag",
+            "spring words": words["stiffness"][0] if len(words["stiffness"]) == 1 else "√(k/m)",
+            "damping words": " + ".join(words["damping"]) or "γ"}
 
 
 def growing(forces, m, methods, dt: float, v=None) -> np.ndarray:
@@ -337,10 +392,11 @@ def _cause(method, *, omega, damping, drag, dt_max) -> str:
     return " and ".join(present)
 
 
-def _limit_message(method, *, dt, omega, rate, bounded, limit: Limit, at_rest) -> str:
+def _limit_message(method, *, dt, omega, rate, bounded, limit: Limit, at_rest, named: dict) -> str:
     """The one sentence for a Δt exactly at the limit: what the motion will do, started as it is."""
+    damping = f", {named['damping words']} = {rate:.4g} s⁻¹" if rate else ""
     where = (f"dt = {dt:g} s is exactly {method}'s stability limit for the spring (ω = {omega:.4g} rad/s, "
-             f"ω·dt = {omega * dt:.4g}{f', b/m = {rate:.4g} s⁻¹' if rate else ''})")
+             f"ω·dt = {omega * dt:.4g}{damping})")
     if limit.any_start:
         return f"{where}: the motion keeps a part that flips sign at every step, neither growing nor dying away"
     if bounded:
@@ -352,20 +408,21 @@ def _limit_message(method, *, dt, omega, rate, bounded, limit: Limit, at_rest) -
             f"amount every step (linearly, not exponentially); a dt below {dt:g} s keeps it bounded")
 
 
-def _message(method, *, dt, dt_max, cause, growth, omega, damping, drag, speed) -> str:
-    spring = f"ω = {omega:.4g} rad/s, √(k/m) for one mass"
-    what = {"spring": f"the spring ({spring})",
-            "damping": f"the damping (b/m = {damping:.4g} s⁻¹)",
-            "drag": f"the drag (ρCA|v|/m = {drag:.4g} s⁻¹ at |v| = {speed:.4g} m/s)"}
+def _message(method, *, dt, dt_max, cause, growth, named: dict) -> str:
+    """The sentence for a Δt past the limit: the forces that limit it, each by its label and its own
+    constant (named, from _named), the Δt they make necessary, and the method's rule."""
     if dt_max == 0:
+        spring = named["spring"].partition(" (")[2].rstrip(")")
         return (f"dt = {dt:g} s: {method} is unstable on a spring at every dt ({spring}; the motion "
                 f"grows about {100 * (growth - 1):.3g} % each step): use euler-cromer, verlet or rk4")
-    named = " and ".join(what[part] for part in cause.split(" and "))
+    parts = [named[part] for part in cause.split(" and ")]
+    what = " and ".join(parts)
     entry = INTEGRATORS[method]
-    rule = (f", {entry.damped_rule}" if "damping" in cause and entry.damped_rule else
-            f", ω·dt < {entry.omega_dt_limit:.3g}" if cause == "spring" and entry.omega_dt_limit else "")
-    verb = "makes" if " and " not in cause else "make"
+    rate = named["damping words"]
+    rule = (f", {entry.damped_rule.replace('γ', f'({rate})')}" if "damping" in cause and entry.damped_rule
+            else f", ω·dt < {entry.omega_dt_limit:.3g}" if cause == "spring" and entry.omega_dt_limit else "")
+    verb = "makes" if len(parts) == 1 and " and " not in what else "make"
     limit, digits = f"{dt_max:.4g}", 6
     while float(f"{dt:.{digits}g}") != dt and float(f"{dt:.{digits}g}") <= float(limit) and digits < 17:
         digits += 1   # dt = 1.0000001 s against dt < 1 s, not dt = 1 s
-    return f"dt = {dt:.{digits}g} s, but {named} {verb} dt < {limit} s necessary for {method}{rule}"
+    return f"dt = {dt:.{digits}g} s, but {what} {verb} dt < {limit} s necessary for {method}{rule}"

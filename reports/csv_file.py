@@ -30,7 +30,7 @@ def write_csv(result: Result, path: str) -> int:
     """
     if path == STDOUT:
         return _write_rows(result, lambda text: sys.stdout.write(text.decode("utf-8")))
-    with atomic_file(path, what="CSV file") as temporary:
+    with atomic_file(path, what="CSV file", record=False) as temporary:   # known by its header
         with open(temporary, "wb") as handle:      # UTF-8 bytes, "\r\n" as csv.writer ends rows
             return _write_rows(result, handle.write)
 

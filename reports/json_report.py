@@ -51,7 +51,7 @@ def as_json(result: Result) -> dict:
     whose closed form stopped holding has no "exact" but its own "exact_note" and
     "exact_valid_until", and the top-level ones count such masses and give the first time.
     "period" is the period measured from the motion and the formula's (reports/periods.py), per
-    body in a row. A scene may add its own keys with a function extra_json(result) -> dict
+    body in a row. "forces_added" lists the forces --force wrote (name, force as written, unit N). A scene may add its own keys with a function extra_json(result) -> dict
     (scenes/_hooks.py).
     """
     traj, model, setup = result.trajectory, result.model, result.setup
@@ -79,6 +79,8 @@ def as_json(result: Result) -> dict:
     _periods(out, result)
     out["constants"] = {name: {"value": _plain(setup.values[name]), "unit": c.unit, "meaning": c.meaning}
                         for name, c in setup.constants.items()}
+    if setup.written:    # --force: each added force as written (its value is in N)
+        out["forces_added"] = [{"name": name, "force": text, "unit": "N"} for name, text in setup.written]
     out["units"] = {**UNITS, "period": "s"} if "period" in out else UNITS
     # to 15 digits, all but what is so already: the final state and the bodies, array by array
     out = {key: value if key in _CLEANED else cleaned(value) for key, value in out.items()}

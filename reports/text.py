@@ -22,6 +22,7 @@ from physics.state import velocity
 from export.step_update import number, vector
 from scenes import ConstantError, Setup, catalog, format_value
 
+from .forces_report import forces_line
 from .headless import Result
 from .periods import period_text, periods
 
@@ -37,6 +38,7 @@ def final_report(result: Result) -> str:
     lines = [f"{result.setup.name}: {plural(result.steps, 'step')} of dt = {number(model.dt)} s "
              f"with {result.integrator}",
              f"t = {number(t)} s"]
+    lines += [f"added force {name}: F = {text} N" for name, text in result.setup.written]
     extra_text = result.setup.hooks.extra_text  # a scene's own results first (resonance's amplitude
     if extra_text is not None:                  # table), then each of its masses
         lines.append(extra_text(result))
@@ -90,25 +92,30 @@ def _masses(result: Result, reports) -> list[str]:
 
 
 def constants_report(setup: Setup) -> str:
-    """Each constant of a configured scene: `k = 40 N/m   spring constant (stiffness)`."""
+    """Each constant of a configured scene: `k = 40 N/m   spring constant (stiffness)`, every force's
+    it accepts among them, on or off; then ω0 and the forces on and off (reports/forces_report.py)."""
     rows = [(f"{name} = {format_value(setup.values[name], constant.unit)}", constant.meaning)
             for name, constant in setup.constants.items()]
     width = max(len(left) for left, _ in rows)
     lines = [f"{left:<{width}}   {meaning}" for left, meaning in rows]
-    omega0, dt = natural_frequency(setup), setup.values.get("dt")
+    try:
+        model = setup.build()
+    except (ValueError, ConstantError):   # the physics refuses these constants: the run says why
+        model = None
+    omega0, dt = natural_frequency(model), setup.values.get("dt")
     if omega0 is not None:                      # worked out from the values in use
         lines.append(f"so: ω0 = √(k/m) = {number(omega0, 4)} rad/s, T = 2π/ω0 = {number(2 * math.pi / omega0, 4)} s"
                      + (f", ω0·dt = {number(omega0 * dt, 4)}" if isinstance(dt, (int, float)) else ""))
+    if model is not None:
+        lines.append(forces_line(setup, model))
     return "\n".join(lines)
 
 
-def natural_frequency(setup: Setup) -> float | None:
-    """ω0 = √(k/m) in rad/s of the scene's masses, from the stiffness the forces declare
+def natural_frequency(model) -> float | None:
+    """ω0 = √(k/m) in rad/s of the model's masses, from the stiffness the forces declare
     (physics.stability.rates), where every mass has the same one; None where they differ, where no
-    spring holds them, or where the physics refuses these constants (the run says why)."""
-    try:
-        model = setup.build()
-    except (ValueError, ConstantError):
+    spring holds them, or where there is no model (the physics refused its constants)."""
+    if model is None:
         return None
     omega = rates(model.forces, model.state.m).omega
     if not np.all(np.isfinite(omega)) or np.any(omega <= 0) or np.ptp(omega) > 1e-12 * omega.max():

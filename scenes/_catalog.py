@@ -43,12 +43,13 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from physics.exact import critical_damping
-from physics.forces import declared_constants
+from physics.forces import FORCES, declared_constants
 
 from ._hooks import SceneHooks
 from ._constants import (DECLARED, END_OF_CONSTANTS, ConstantError, Constant, check_value, parse_assignments,
                          read_constants, shown_path)
 from ._model import Model
+from ._written import add_written, parse_force_option
 
 DEFAULT_SCENE = "vertical"
 EXTRA_FOLDERS = "SPRING_SCENES"   # environment variable: more folders of scenes, like PATH
@@ -296,7 +297,8 @@ def presets(scene, *, whole: bool = True) -> list[tuple[str, dict]]:
     whole=False gives only the changes it names, as its label reads.
     """
     module = getattr(scene, "module", scene)
-    defaults = {name: constant.value for name, constant in read_constants(module).items()}
+    block = read_constants(module)
+    defaults = {name: constant.value for name, constant in listed_constants(module, block).items()}
     case = {name: value for name, value in defaults.items()
             if not (name in DECLARED and DECLARED[name].numerical)}
     found = {}
@@ -346,13 +348,15 @@ def resolve(values: dict) -> dict:
 class Setup:
     """A scene with its constants resolved: module, constants (with units), chosen values, and
     what the scene file gives beyond them (hooks: VIEW, measure_window, extra_json, ...; read
-    from the module once, scenes/_hooks.py)."""
+    from the module once, scenes/_hooks.py); and the forces written as expressions that are
+    added to it, as text: ((name, expression), ...) (--force, the pages' Add a force; _written.py)."""
 
     name: str
     module: object
     constants: dict[str, Constant]
     values: dict
     hooks: SceneHooks = None
+    written: tuple = ()
 
     def __post_init__(self):
         if self.hooks is None:
@@ -362,14 +366,20 @@ class Setup:
         """The scene's model. A ValueError is the physics refusing these constants; anything else
         (a teacher's typo inside build, a sys.exit()) is a ConstantError naming the file and line."""
         try:
-            return self.module.build(**self.values)
+            model = self.module.build(**self.values)
         except ValueError:
             raise
         except (Exception, SystemExit) as problem:
             raise ConstantError(_broken_file_message(Path(self.module.__file__), problem)) from None
+        return add_written(model, self.written, self.values)
 
     def with_values(self, **changes) -> "Setup":
-        return Setup(self.name, self.module, self.constants, resolve({**self.values, **changes}), self.hooks)
+        return Setup(self.name, self.module, self.constants, resolve({**self.values, **changes}), self.hooks,
+                     self.written)
+
+    def with_written(self, written) -> "Setup":
+        """These values with these written forces, ((name, expression), ...), instead of any before."""
+        return Setup(self.name, self.module, self.constants, self.values, self.hooks, tuple(written))
 
     def with_preset(self, name: str) -> "Setup":
         """These values with the preset's changes (critical damping from the m and k set now)."""
@@ -378,9 +388,9 @@ class Setup:
 
 def force_constants(module, constants: dict[str, Constant]) -> dict[str, Constant]:
     """The forces' constants a scene takes beyond its constants block, at their declared defaults
-    (each switches its force off: mu_k = 0): every force's, where the scene's build takes any
+    (each switches its force off: b = 0): every force's, where the scene's build takes any
     constant it is given (`build(**constants)` handing them to build_single_mass), else none.
-    `--set` may give them; the scene shows those it lists, and those set."""
+    `--set` may give them (friction's too, which then says in one line why it needs a table)."""
     if _keywords(module.build)[1] is not None:
         return {}
     return {name: Constant(name, declared.default, declared.unit, declared.meaning)
@@ -388,17 +398,44 @@ def force_constants(module, constants: dict[str, Constant]) -> dict[str, Constan
             if name not in constants and declared.default is not None}
 
 
-def configure(name: str, *, assignments=(), scenario: int | None = None, preset: str | None = None) -> Setup:
-    """Defaults from the scene file, then the scenario's changes, the preset's, and `--set NAME=VALUE` ones.
+def listed_constants(module, constants: dict[str, Constant]) -> dict[str, Constant]:
+    """The scene's constants as --constants, --json and the page list them: its block, and every
+    constant of every force it accepts beyond the block (a force a single-mass scene can switch on:
+    Force.SINGLE_MASS), at its declared default, switched off. Each extra one stands after the
+    constant declared before it (physics/forces/: k, L0, anchor, g, b, C, A, ρ, F0, ω, ...), so a
+    scene file that leaves its switched-off forces out lists them where a file that copied them
+    would: b after g, drive_axis after ω."""
+    offered = force_constants(module, constants)
+    if not offered:
+        return dict(constants)
+    accepted = {name for cls in FORCES if cls.SINGLE_MASS for name in cls.CONSTANTS}   # friction needs a table
+    canonical = list(declared_constants())
+    order = list(constants)
+    for name in canonical:
+        if name not in offered or name not in accepted:
+            continue
+        before = [other for other in canonical[:canonical.index(name)] if other in order]
+        place = (order.index(before[-1]) + 1 if before else
+                 max((i + 1 for i, other in enumerate(order) if other in canonical), default=0))
+        order.insert(place, name)
+    return {name: constants[name] if name in constants else offered[name] for name in order}
+
+
+def configure(name: str, *, assignments=(), scenario: int | None = None, preset: str | None = None,
+              forces=()) -> Setup:
+    """Defaults from the scene file, then the scenario's changes, the preset's, and `--set NAME=VALUE` ones;
+    and the forces written as `NAME=EXPRESSION` (--force), added after the scene's own.
 
     A preset's b = None (critical damping) is worked out last, from the final m and k. The setup's
-    constants are the scene's block and any other force constant set; its values hold every
-    constant the scene takes (force_constants).
+    constants are the scene's block, every constant of a force it accepts (listed_constants: on or
+    switched off) and any other constant set; its values hold every constant the scene takes
+    (force_constants).
     """
     module = load(name)
-    constants = read_constants(module)
-    check_build(module, constants)
-    offered = {**constants, **force_constants(module, constants)}
+    block = read_constants(module)
+    check_build(module, block)
+    constants = listed_constants(module, block)
+    offered = {**constants, **force_constants(module, block)}
     values = {key: constant.value for key, constant in offered.items()}
     if scenario is not None:
         options = scenarios(module)
@@ -414,4 +451,8 @@ def configure(name: str, *, assignments=(), scenario: int | None = None, preset:
     for key, value in values.items():  # the file's own values and the presets' obey the same ranges
         check_value(key, tuple(value) if isinstance(value, list) else value, offered[key].unit)
     shown = {**constants, **{key: offered[key] for key in assigned if key not in constants}}
-    return Setup(name, module, shown, resolve(values))
+    try:
+        written = tuple(parse_force_option(text) for text in forces)
+    except ValueError as problem:
+        raise ConstantError(str(problem)) from None
+    return Setup(name, module, shown, resolve(values), written=written)

@@ -24,7 +24,7 @@ from collections.abc import Mapping
 from dataclasses import dataclass
 
 from physics.declared import NONZERO, SMALLEST, Declared, _short  # noqa: F401  (scenes import them from here)
-from physics.forces import FORCES, declared_constants
+from physics.forces import FORCES, DeclarationError, declared_constants
 
 
 class ConstantError(ValueError):
@@ -32,7 +32,7 @@ class ConstantError(ValueError):
 
 
 # What each constant that is not a force's may be, for every scene (the units are the scene files').
-# A force's own constants (k, b, ω, ...) are declared beside its law, in its CONSTANTS (physics/forces.py).
+# A force's own constants (k, b, ω, ...) are declared beside its law, in its CONSTANTS (physics/forces/).
 SCENE_CONSTANTS = {
     "m": Declared("kg", 1e-6, 1e6, meaning="mass"),
     "r0": Declared("m", -1e4, 1e4, vector=True, none="worked out by the scene", meaning="start position"),
@@ -63,7 +63,8 @@ class _Declarations(Mapping):
         forces = declared_constants()
         both = sorted(forces.keys() & SCENE_CONSTANTS.keys())
         if both:
-            raise ValueError(f"{both[0]} is declared twice, by a force and in SCENE_CONSTANTS: keep one")
+            raise DeclarationError(f"the constant {both[0]} is declared twice, by a force and in scenes/_constants.py "
+                                   f"SCENE_CONSTANTS; give the force's a name of its own")
         return {**forces, **SCENE_CONSTANTS}
 
     def __getitem__(self, name: str) -> Declared:

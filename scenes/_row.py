@@ -27,7 +27,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from physics.exact import displacement_bound, row_motion, single_mass_motion
+from physics.exact import Role, displacement_bound, row_motion, single_mass_motion
+from physics.forces import closed_form_terms
 
 from ._single_mass import ANCHOR_LIMIT, AnchorCrossing
 
@@ -185,21 +186,24 @@ class EachMassValidity:
         return float(self.each(T).min())
 
 
-def exact_row(*, forces, anchors, r0, m, k, L0, g, b=0.0, F0=0.0, omega=0.0, drive_axis=DOWN) -> dict:
+def exact_row(*, forces, r0, m) -> dict:
     """The row's closed form, as the Model takes it: exact, exact_valid_until and exact_limit.
+
+    As for a single mass (scenes/_single_mass.py), the closed form's parameters come from the
+    forces themselves, each force's closed_form() by role (physics/exact.py Role: the spring's k,
+    L0 and anchors, gravity's g, the damping's b, the drive's F0, ω and axis), so a row names no
+    force's constant and a new force with a closed form is read as ours are. m, k, L0 and g are
+    the row's (one value each); b, F0 and ω may be one value per mass (resonance: one b per row).
 
     exact is t -> (r, v) of shape (len(t), N, 3), the single-mass closed form of every mass at once
     (physics.exact.row_motion), NaN ("not known") for a mass that has none: one on which a force
     acts that the closed form does not cover (quadratic drag; each force's closed_form() and
-    acts_on() say); None if no mass has one, with no_closed_form naming such a force.
-    Every parameter but m, k, L0 and g may be one number or one value per mass. The masses start
-    at rest at r0. With L0 > 0 each mass's closed form holds until it reaches its anchor
+    acts_on() say); None if no mass has one, with no_closed_form naming such a force. The masses
+    start at rest at r0. With L0 > 0 each mass's closed form holds until it reaches its anchor
     (:class:`EachMassValidity`); with L0 = 0 the spring is linear in 3-D and it always holds.
     """
-    anchors, r0 = np.asarray(anchors, dtype=float), np.asarray(r0, dtype=float)
-    count = len(anchors)
-    b, F0, omega = (np.broadcast_to(np.asarray(x, dtype=float), (count,)) for x in (b, F0, omega))
-    C = np.zeros(count)
+    r0 = np.asarray(r0, dtype=float)
+    count = len(r0)
     uncovered = [force for force in forces if force.closed_form() is None]
     acting = [force.acts_on(count) for force in uncovered]
     covered = ~np.any(acting, axis=0) if uncovered else np.ones(count, bool)
@@ -207,8 +211,14 @@ def exact_row(*, forces, anchors, r0, m, k, L0, g, b=0.0, F0=0.0, omega=0.0, dri
     each = {"no_closed_form_each": tuple(next((f"no closed form with {force.LABEL or type(force).__name__}"
                                                for force, on in zip(uncovered, acting) if on[i]), "")
                                          for i in range(count))} if uncovered else {}
-    known, exact = row_motion(m=m, k=k, L0=L0, g=g, b=b, C=C, F0=F0, omega=omega, drive_axis=drive_axis,
-                              anchors=anchors, r0=r0, v0=(0.0, 0.0, 0.0), covered=covered)
+    terms, why = closed_form_terms([force for force in forces if force.closed_form() is not None])
+    row = None if terms is None else _row_terms(terms, count)
+    if row is None:        # two forces hold one role, or the springs differ from mass to mass
+        return {"exact": None, "no_closed_form": why or "no closed form for springs that differ from mass to mass",
+                **each}
+    k, L0, g, b, F0, omega, drive_axis, anchors = row
+    known, exact = row_motion(m=m, k=k, L0=L0, g=g, b=b, C=np.zeros(count), F0=F0, omega=omega,
+                              drive_axis=drive_axis, anchors=anchors, r0=r0, v0=(0.0, 0.0, 0.0), covered=covered)
     if not known.any():    # named only where such a force acts on every mass (not drag on one ball of two)
         why = next((f"no closed form with {force.LABEL or type(force).__name__}" for force in uncovered
                     if force.acts_on(count).all()), "")
@@ -220,7 +230,7 @@ def exact_row(*, forces, anchors, r0, m, k, L0, g, b=0.0, F0=0.0, omega=0.0, dri
     def crossing(i):
         if not known[i]:
             return None
-        each = single_mass_motion(m=m, k=k, L0=L0, g=g, b=b[i], C=C[i], F0=F0[i], omega=omega[i],
+        each = single_mass_motion(m=m, k=k, L0=L0, g=g, b=b[i], C=0.0, F0=F0[i], omega=omega[i],
                                   drive_axis=drive_axis, anchor=anchors[i], r0=r0[i], v0=(0, 0, 0))
         return AnchorCrossing(each, anchor=anchors[i], r0=r0[i], m=m, k=k, b=b[i], F0=F0[i], omega=omega[i])
 
@@ -235,3 +245,22 @@ def exact_row(*, forces, anchors, r0, m, k, L0, g, b=0.0, F0=0.0, omega=0.0, dri
         return displacement_bound(T, m=m, k=k, b=b, x0=s0 - s_eq, v0=0.0, F0=drive_u, omega=omega) >= s_eq
     return {"exact": exact, "exact_valid_until": EachMassValidity(crossing_of=crossing, may_reach=may_reach),
             "exact_limit": ANCHOR_LIMIT, **each}
+
+
+def _row_terms(terms: dict, count: int):
+    """The closed form's terms for a row of `count` masses: k, L0 and g one number each (None where
+    they differ from mass to mass), b, F0 and ω one per mass (count,), the drive's direction and
+    the anchors (count, 3). A term no force gives is not there: 0 (and the drive along −y)."""
+    def one(role):
+        values = np.ravel(np.asarray(terms.get(role, 0.0), dtype=float))
+        return float(values[0]) if np.all(values == values[0]) else None
+
+    def each(role):
+        return np.broadcast_to(np.ravel(np.asarray(terms.get(role, 0.0), dtype=float)), (count,))
+
+    k, L0, g = one(Role.STIFFNESS), one(Role.NATURAL_LENGTH), one(Role.GRAVITY)
+    if None in (k, L0, g):
+        return None
+    anchors = np.broadcast_to(np.asarray(terms.get(Role.ANCHOR, (0.0, 0.0, 0.0)), dtype=float), (count, 3))
+    return (k, L0, g, each(Role.DAMPING), each(Role.DRIVE_AMPLITUDE), each(Role.DRIVE_FREQUENCY),
+            terms.get(Role.DRIVE_AXIS, DOWN), anchors)

@@ -19,7 +19,7 @@ import math
 import numpy as np
 
 from physics.exact import single_mass_motion
-from physics.forces import switched_on
+from physics.forces import closed_form_terms, switched_on
 from physics.state import make_state
 
 from ._model import Model
@@ -30,18 +30,6 @@ def forces_for(**constants) -> tuple:
     (spring, gravity, damping, drag, driving; physics.forces.switched_on: each force's switched_on
     reads its own constants)."""
     return switched_on(**constants)
-
-
-def closed_form_terms(forces) -> tuple[dict | None, str]:
-    """The closed form's parameters from the forces (each force's closed_form()), and "" ; or None
-    and why not, naming the first force it does not cover: "no closed form with drag"."""
-    terms = {}
-    for force in forces:
-        own = force.closed_form()
-        if own is None:
-            return None, f"no closed form with {force.LABEL or type(force).__name__}"
-        terms.update(own)
-    return terms, ""
 
 
 class AnchorCrossing:

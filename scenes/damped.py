@@ -6,17 +6,14 @@ starts at rest, so the answer barely differs from the undamped one this early.
 from ._single_mass import build_single_mass
 
 # ---- constants: edit these (unit: meaning); 0 switches a force off ----
+# A force with no line here is off. To switch one on, add its line, like
+#     F0 = 1.0  # N: driving force amplitude in F = F0 cos(ω t)
+# or give it for one run (--set); `python main.py damped --constants` lists every force's.
 m = 10.0                   # kg: mass of the block
 k = 40.0                   # N/m: spring constant (stiffness)
 L0 = 1.0                   # m: relaxed length of the spring
 g = 9.8                    # m/s²: strength of gravity, acting along −y (y is up)
 b = 1.0                    # kg/s: linear damping constant in F = −b v
-C = 0.0                    # 1: drag coefficient in F = −½ C A ρ |v| v
-A = 0.0                    # m²: cross-section area of the mass, for drag
-rho = 0.0                  # kg/m³: air density, for drag
-F0 = 0.0                   # N: driving force amplitude in F = F0 cos(ω t)
-omega = 0.0                # rad/s: driving angular frequency ω (rad/s, not Hz; f = ω / 2π)
-drive_axis = (1, 0, 0)     # 1: direction of the driving force
 anchor = (0, 0, 0)         # m: top end of the spring, fixed to the ceiling
 r0 = (0, -1.5, 0)          # m: start position, below the anchor (the spring stretched)
 v0 = (0, 0, 0)             # m/s: start velocity (released from rest)

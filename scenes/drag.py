@@ -74,7 +74,7 @@ def build(*, m, k, L0, g, b, C, A, rho, x0, spacing, dt, until):
         forces=tuple(forces),
         dt=float(dt),
         until=float(until),
-        **exact_row(forces=forces, anchors=anchors, r0=r0, m=m, k=k, L0=L0, g=g, b=[b, 0.0]),
+        **exact_row(forces=forces, r0=r0, m=m),
         anchors=anchors,
         labels=(f"linear, b = {b:.3g} kg/s", f"quadratic, ½CAρ = {0.5 * C * A * rho:.3g} kg/m"),
         per_mass=row_loop(count=2).then(row_anchors(row_loop(count=2), count=2), row_starts(k=k)),

@@ -10,14 +10,13 @@ import numpy as np
 from ._single_mass import build_single_mass
 
 # ---- constants: edit these (unit: meaning); 0 switches a force off ----
+# A force with no line here is off. To switch one on, add its line, like
+#     b = 2.0  # kg/s: linear damping constant in F = −b v
+# or give it for one run (--set); `python main.py driven --constants` lists every force's.
 m = 4.0                    # kg: mass of the block
 k = 100.0                  # N/m: spring constant (stiffness)
 L0 = 3.0                   # m: relaxed length of the spring (long enough that no scenario reaches the wall)
 g = 0.0                    # m/s²: strength of gravity (off: the spring lies on a frictionless table)
-b = 0.0                    # kg/s: linear damping constant in F = −b v
-C = 0.0                    # 1: drag coefficient in F = −½ C A ρ |v| v
-A = 0.0                    # m²: cross-section area of the mass, for drag
-rho = 0.0                  # kg/m³: air density, for drag
 F0 = 1.0                   # N: driving force amplitude in F = F0 cos(ω t)
 omega = 5.0                # rad/s: driving angular frequency ω (rad/s, not Hz; f = ω / 2π)
 drive_axis = (1, 0, 0)     # 1: direction of the driving force

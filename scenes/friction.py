@@ -59,7 +59,7 @@ def build(*, m, k, L0, g, mu_k, mu_s, b, x0, spacing, dt, until):
         forces=forces,
         dt=float(dt),
         until=float(until),
-        **exact_row(forces=forces, anchors=anchors, r0=r0, m=m, k=k, L0=L0, g=0.0, b=[b, 0.0]),
+        **exact_row(forces=forces, r0=r0, m=m),
         anchors=anchors,
         labels=(f"damping, b = {b:.3g} kg/s", f"friction, μ_k = {mu_k:.3g}"),
         per_mass=_ROW.then(row_anchors(_ROW, count=2, along=ALONG_WALL), row_starts(direction=OUT_OF_WALL, k=k)),

@@ -45,7 +45,7 @@ def build(*, m, k, L0, x0, spacing, dt, until):
         forces=forces,
         dt=float(dt),
         until=float(until),
-        **exact_row(forces=forces, anchors=anchors, r0=r0, m=m, k=k, L0=L0, g=0.0),
+        **exact_row(forces=forces, r0=r0, m=m),
         anchors=anchors,
         labels=METHODS,
         integrators=METHODS,

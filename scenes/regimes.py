@@ -73,7 +73,7 @@ def build(*, m, k, L0, g, b, under_fraction, over_multiple, x0, spacing, dt, unt
         forces=tuple(forces),
         dt=float(dt),
         until=float(until),
-        **exact_row(forces=forces, anchors=anchors, r0=r0, m=m, k=k, L0=L0, g=g, b=b_each),
+        **exact_row(forces=forces, r0=r0, m=m),
         anchors=anchors,
         labels=tuple(f"{damping_regime(m=m, k=k, b=b_i)} (b = {b_i:.3g} kg/s)" for b_i in b_each),
         per_mass=per_mass,

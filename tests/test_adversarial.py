@@ -158,6 +158,8 @@ BAD = [
     ("vertical --constants --headless", 2, "--constants only prints the constants, so --headless"),
     ("vertical --constants --port 5000", 2, "so --port would do nothing"),
     ("vertical --constants --json", 2, "so --json would do nothing"),
+    ("vertical --forces --headless", 2, "--forces only prints the forces, so --headless would do nothing"),
+    ("--list --forces", 2, "--list takes no scene or other option (got --forces)"),
     ("vertical --headless --port 0", 2, "--port is for the browser page"),
     ("vertical --headless --port 8000", 2, "--port is for the browser page"),
     ("vertical --headless --no-browser", 2, "--no-browser is for the browser page"),
@@ -599,9 +601,11 @@ def test_the_program_never_writes_over_its_own_files(argv, monkeypatch, capsys):
     assert changed == []
     out, err = capsys.readouterr()
     what, path = argv.split()[-3:-1] if argv.endswith("--overwrite") else argv.split()[-2:]
+    name = path.split("/")[-1]
     why = (f"it is inside the program's own folder {path.split('/')[0]}/, which it never writes into; write it "
-           f"outside the program's folder, or in out/ (kept for your files)" if "/" in path else
-           "it is one of this program's own files; give another name")
+           f"in out/ (kept for your files: out/{name}) or outside the program's folder" if "/" in path else
+           f"it is beside main.py, in the program's own folder, which holds only the program's files; write it "
+           f"in out/ (kept for your files: out/{name}) or outside the program's folder")
     assert err.splitlines() == [f"error: cannot write {dict(csv='CSV file', plot='figure').get(what[2:], 'the program')} "
                                 f"{path!r}: {why}"]
 

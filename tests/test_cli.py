@@ -692,6 +692,10 @@ def test_every_readme_example_does_what_its_comment_says(tmp_path):
             without_run = [arg for arg in args if arg != "--headless"]      # --constants prints, runs nothing
             assert "g = 1.62 m/s²" in cli(*without_run, "--constants").stdout
             assert "t = 0.2 s" in out                                   # and the run went to the question time
+        elif "--force" in args:                                     # "a 50 N push up: as g = 4.8"
+            same = cli("vertical", "--headless", "--set", "g=4.8").stdout
+            position = re.search(r"^r = <.*> m$", same, re.M).group(0)
+            assert "t = 0.2 s" in out and position in out, (position, out)
         else:                                                       # "where is the mass at the question time?"
             assert "t = 0.2 s" in out and "r = < 0, -1.73088, 0 > m" in out
 

@@ -201,9 +201,13 @@ def test_a_broken_file_in_a_teachers_folder_is_one_line_naming_it_and_the_other_
     assert main_py("-c", "import main", scenes_folder=tmp_path).returncode == 0
 
 
+K_LINE = next(number for number, line in enumerate((ROOT / "scenes" / "vertical.py").read_text().splitlines(), 1)
+              if line.startswith("k = 40.0 "))
+
+
 @pytest.mark.parametrize("edit, expected", [
     (lambda source: without("m", source), "novel.py: the constants block has no line for m (build needs it)"),
-    (lambda source: source.replace("k = 40.0 ", 'k = "40" '), "novel.py, line 10: k needs a number"),
+    (lambda source: source.replace("k = 40.0 ", 'k = "40" '), f"novel.py, line {K_LINE}: k needs a number"),
 ])
 def test_a_teachers_constants_block_that_does_not_fit_is_one_line_naming_the_file(tmp_path, edit, expected):
     """D-2: these used to be `unexpected TypeError` (exit 1) and `k must be from 0 to 1e6 N/m (got 40 N/m)`."""

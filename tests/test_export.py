@@ -298,7 +298,8 @@ def check_drawing(drawn, expected, final_r):
 
 @pytest.mark.parametrize("scene", catalog.SCENE_NAMES)
 def test_web_vpython_file_is_the_same_program(scene, tmp_path):
-    """Web VPython's file differs only in its first line (`Web VPython 3.2`) and in having no imports."""
+    """Web VPython's file differs only in its first line (`Web VPython 3.2`) and in having no imports
+    (and each file's mark line, with its own fingerprint: the first line, after `Web VPython 3.2`)."""
     desktop, web = tmp_path / "desktop.py", tmp_path / "web.py"
     own_methods = catalog.configure(scene).build().integrators is not None   # --integrator is refused there
     choice = () if own_methods else ("--integrator", "rk4")
@@ -306,9 +307,10 @@ def test_web_vpython_file_is_the_same_program(scene, tmp_path):
     assert done.returncode == 0, done.stderr
     desktop_lines = desktop.read_text(encoding="utf-8").splitlines()
     web_lines = web.read_text(encoding="utf-8").splitlines()
-    for lines in (desktop_lines, web_lines):   # each file's own fingerprint (export/files.py): one line, set aside
-        fingerprints = [line for line in lines if line.startswith("# sha256:")]
-        assert len(fingerprints) == 1 and lines.remove(fingerprints[0]) is None
+    for lines in (desktop_lines, web_lines):   # each file's mark and fingerprint (export/marks.py): one line, set aside
+        marked = [line for line in lines if line.startswith("# Written by the spring-mass simulator; its fingerprint")]
+        assert len(marked) == 1 and lines.index(marked[0]) == (1 if lines is web_lines else 0)
+        lines.remove(marked[0])
     assert web_lines[0] == "Web VPython 3.2"
     assert not any(line.startswith(("import ", "from ")) for line in web_lines)
     from export.vpython_program import IMPORTS
@@ -398,10 +400,12 @@ def test_read_only_folder_leaves_no_file(tmp_path):
 def test_program_replaces_an_old_file_whole(tmp_path):
     """Written through a temporary file renamed over the old one: readable by others like any new file."""
     path = tmp_path / "spring.py"
-    path.write_text("# Written by the spring-mass simulator\n" + "old handout\n" * 1000)   # an earlier handout
-    assert main_py("damped", "--vpython", str(path)).returncode == 0
+    assert main_py("vertical", "--vpython", str(path)).returncode == 0
+    path.write_text(path.read_text(encoding="utf-8") + "old handout\n" * 1000)   # a handout of ours, edited
+    assert main_py("damped", "--vpython", str(path), "--overwrite").returncode == 0
     text = path.read_text(encoding="utf-8")
-    assert text.startswith("from vpython import *\n") and "\n# damped:" in text and "old handout" not in text
+    assert text.startswith("# Written by the spring-mass simulator; its fingerprint is sha256:")
+    assert "\nfrom vpython import *\n" in text and "\n# damped:" in text and "old handout" not in text
     assert [p.name for p in tmp_path.iterdir()] == ["spring.py"]
     mask = os.umask(0)
     os.umask(mask)

@@ -106,6 +106,9 @@ def test_overwrite_lets_data_plot_replace_a_file(tmp_path):
     (["damped", "--mystery", "m.csv", "--seed", "-1"], "--seed needs a whole number of 0 or more (got -1)"),
     (["damped", "--show-answer", "--seed", "-1"], "--seed needs a whole number of 0 or more (got -1)"),
     (["damped", "--data", VERNIER, "--data-column", "²"], "--data-column '²' matches 0 position columns"),
+    (["damped", "--data", VERNIER, "--data-column", ""], "--data-column needs a column"),       # issue 37: once
+    (["damped", "--data", VERNIER, "--data-column", "  "], "--data-column needs a column"),     # ignored in silence
+    (["damped", "--data", VERNIER, "--data-column", "", "--page"], "--data-column needs a column"),
 ])
 def test_the_issues_bad_input_is_status_2(argv, said, tmp_path):
     assert said in one_error(main_py(*argv, cwd=tmp_path))

@@ -53,10 +53,11 @@ class EddyBrake(Force):
     field_axis: object = (1.0, 0.0, 0.0)
     conservative = False
     uses_velocity = True
+    LABEL = "eddy brake"
     CONSTANTS = {
-        "beta": Declared("kg/s", 0, 1e6, symbol="β", slider_from_zero=True,
+        "beta": Declared("kg/s", 0, 1e6, symbol="β", slider_from_zero=True, default=0.0, switch=True,
                          meaning="eddy-current braking constant in F = −β v⊥"),
-        "field_axis": Declared("1", -1e6, 1e6, vector=True, nonzero=True,
+        "field_axis": Declared("1", -1e6, 1e6, vector=True, nonzero=True, default=(1.0, 0.0, 0.0),
                                meaning="direction of the magnetic field (a unit vector)"),
     }
     TERM = "Fbrake"
@@ -185,11 +186,12 @@ def test_the_program_with_the_brake_reaches_the_engines_state(folder, integrator
 
 def test_the_stability_judgement_counts_the_brake(folder):
     """Alone, the brake's rate γ = β/m limits euler-cromer to γ Δt < 2: β = 500 kg/s, m = 2 kg
-    gives Δt < 0.008 s, so Δt = 0.01 s is refused before the run, naming the damping and the limit."""
+    gives Δt < 0.008 s, so Δt = 0.01 s is refused before the run, naming the brake by its label and
+    its own constant (not the page's damping b), and the limit."""
     done = main_py(folder, "--set", "k=0", "--set", "g=0", "--set", "beta=500", "--headless")
     assert done.returncode == 1
     (line,) = done.stderr.strip().splitlines()
-    assert "the damping (b/m = 250 s⁻¹)" in line
+    assert "the eddy brake (β/m = 250 s⁻¹)" in line and "b/m" not in line
     limit = float(line.split("dt < ")[1].split(" s")[0])
     assert limit == pytest.approx(2 / 250, rel=1e-3)
     assert main_py(folder, "--set", "k=0", "--set", "g=0", "--set", "beta=500", "--set", "dt=0.0079",

@@ -1,13 +1,14 @@
-"""Issue 28, items 1 and 2: where an output file may go, run as a user runs main.py.
+"""Issues 28 and 37: where an output file may go, run as a user runs main.py.
 
 1. No file of the program's own tree is ever written, with or without --overwrite. The tree is
    found from the folder main.py is in (export/files.py own_tree), not from a list, so a copy of
-   it without .git is protected the same way; ./out/, which the tree's .gitignore gives to the
-   user, and new files beside main.py (the README's `--csv damped.csv`) are the user's; a
-   teacher's scene folder takes no Python file.
+   it without .git is protected the same way; nothing new goes beside main.py (issue 37: no
+   pytest.ini or conftest.py there); ./out/, which the tree's .gitignore gives to the user, takes
+   the user's outputs but no tool's file; a teacher's scene folder takes no Python file.
 2. A file the program did not write is replaced only with --overwrite; its own outputs are known
-   by their mark (the CSV header, the programs' header line, the figures' metadata). The --data
-   file is never written, by name, through a symbolic link or a hard link.
+   by their mark where we put it and a fingerprint that still matches (export/marks.py), a CSV
+   file by its header. The --data file is never written, by name, through a symbolic link or a
+   hard link. tests/test_lost_files.py tries each file issue 37 found lost.
 """
 from __future__ import annotations
 
@@ -22,10 +23,16 @@ import pytest
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
-from export import files  # noqa: E402
+from export import files, marks  # noqa: E402
 from export.numbers import CSV_HEADER  # noqa: E402
 
 VERNIER = ROOT / "examples" / "data" / "vernier.csv"
+
+
+@pytest.fixture(autouse=True)
+def own_record(tmp_path, monkeypatch):
+    """Each test keeps its own record of the files written (export/written.py), in its folder."""
+    monkeypatch.setenv("SPRING_MASS_CACHE", str(tmp_path / "record"))
 
 
 def main_py(*args, cwd=ROOT, env=None, main=ROOT / "main.py"):
@@ -80,8 +87,11 @@ def test_every_file_the_tree_holds_is_refused_and_no_new_file_is_made_in_its_fol
     for folder in sorted({str(Path(name).parent) for name in names} - {"."}):
         with pytest.raises(files.OutputError, match="inside the program's own folder"):
             files.check_writable(str(ROOT / folder / "new-output.csv"), what="CSV file")
-    # beside main.py only its own outputs are replaced: no file the tree keeps there may look like one
+    # beside main.py nothing is written, new or old: no file the tree keeps there may look like an output
     assert [name for name in names if "/" not in name and files.written_here(str(ROOT / name))] == []
+    for name in ("new-output.csv", "pytest.ini", "conftest.py", "__init__.py", "damped.py"):
+        with pytest.raises(files.OutputError, match="beside main.py"):
+            files.check_writable(str(ROOT / name), what="CSV file")
 
 
 def copy_of_the_tree(tmp_path: Path) -> Path:
@@ -100,8 +110,8 @@ def test_a_copy_without_git_is_protected_the_same_and_its_out_folder_is_the_user
     line = one_error(main_py("vertical", "--headless", "--csv", "cli/options.py", "--overwrite", cwd=copy,
                              main=copy / "main.py"))
     assert line == ("error: cannot write CSV file 'cli/options.py': it is inside the program's own folder cli/, "
-                    "which it never writes into; write it outside the program's folder, or in out/ (kept for your "
-                    "files)")
+                    "which it never writes into; write it in out/ (kept for your files: out/options.py) or outside "
+                    "the program's folder")
     assert options.read_bytes() == before
     # ./out/, gitignored, is a student's outputs: a fresh checkout has none, and the first output
     # into it makes it (the guides write `--vpython out/damped.py`); any other missing folder is
@@ -111,23 +121,31 @@ def test_a_copy_without_git_is_protected_the_same_and_its_out_folder_is_the_user
                                          main=copy / "main.py"))
     assert not (copy / "outs").exists()
     for argv in (["vertical", "--headless", "--csv", "out/run.csv"], ["vertical", "--plot", "out/run.png"],
-                 ["damped", "--vpython", "out/handout.py"], ["damped", "--headless", "--csv", "run.csv"]):
+                 ["damped", "--vpython", "out/handout.py"]):
         done = main_py(*argv, cwd=copy, main=copy / "main.py")
         assert done.returncode == 0, (argv, done.stderr)
         done = main_py(*argv, cwd=copy, main=copy / "main.py")   # again: its own output, replaced
         assert done.returncode == 0, (argv, done.stderr)
     assert sorted(os.listdir(copy / "out")) == ["handout.py", "run.csv", "run.png"]
-    # beside main.py a module name is refused: Python would import it instead of its own json
-    line = one_error(main_py("damped", "--vpython", "json.py", cwd=copy, main=copy / "main.py"))
-    assert "it would be imported in place of the json module and break the program" in line
-    assert not (copy / "json.py").exists()
-    # __main__ has no spec to find: once a ValueError, 'a bug in main.py'
-    assert "in place of the __main__ module" in one_error(main_py("vertical", "--headless", "--csv", "__main__.py",
-                                                                 cwd=copy, main=copy / "main.py"))
+
+
+def test_a_copy_without_git_takes_nothing_beside_main_py(tmp_path):
+    """Beside main.py nothing at all: a module (json.py would be imported instead of json), a tool's
+    file (pytest.ini broke the project's own tests), or any output, which belongs in out/."""
+    copy = copy_of_the_tree(tmp_path)
+    listing = sorted(os.listdir(copy))
+    for argv in (["damped", "--vpython", "json.py"], ["vertical", "--headless", "--csv", "__main__.py"],
+                 ["damped", "--headless", "--csv", "run.csv"], ["vertical", "--headless", "--csv", "pytest.ini"]):
+        line = one_error(main_py(*argv, cwd=copy, main=copy / "main.py"))
+        assert line == (f"error: cannot write {'the program' if '--vpython' in argv else 'CSV file'} {argv[-1]!r}: it "
+                        f"would go beside main.py, in the program's own folder, which holds only the program's "
+                        f"files; write it in out/ (kept for your files: out/{argv[-1]}) or outside the program's "
+                        f"folder"), line
+    assert sorted(os.listdir(copy)) == listing
     # and a file there that is not ours is not replaced, even with --overwrite
     (copy / "notes.txt").write_text("mine\n")
-    assert "own files" in one_error(main_py("vertical", "--headless", "--csv", "notes.txt", "--overwrite", cwd=copy,
-                                            main=copy / "main.py"))
+    assert "beside main.py" in one_error(main_py("vertical", "--headless", "--csv", "notes.txt", "--overwrite",
+                                                 cwd=copy, main=copy / "main.py"))
     assert (copy / "notes.txt").read_text() == "mine\n"
 
 
@@ -192,12 +210,13 @@ def test_a_figure_that_is_not_ours_is_replaced_only_with_overwrite(tmp_path):
     before = theirs.read_bytes()
     assert "a file this program did not write" in one_error(main_py("vertical", "--plot", theirs))
     assert theirs.read_bytes() == before
-    jpg = tmp_path / "run.jpg"
-    assert main_py("vertical", "--plot", jpg).returncode == 0
-    assert one_error(main_py("vertical", "--plot", jpg)).endswith(
+    jpg = tmp_path / "run.jpg"      # no place for a mark: known only by the record of what it wrote
+    assert main_py("vertical", "--plot", jpg, env={"SPRING_MASS_CACHE": ""}).returncode == 0
+    assert one_error(main_py("vertical", "--plot", jpg, env={"SPRING_MASS_CACHE": ""})).endswith(
         "it is a .jpg file, a type that cannot carry this program's mark, so it cannot tell whether it wrote it; "
         "give another name, or add --overwrite to replace it")
     assert main_py("vertical", "--plot", jpg, "--overwrite").returncode == 0
+    assert main_py("vertical", "--plot", jpg).returncode == 0     # recorded as written: its own, unchanged
 
 
 @pytest.mark.parametrize("how", ["same name", "symbolic link", "hard link"])
@@ -293,25 +312,58 @@ def re_digits(data) -> bool:
     return re.search(re.escape(files.MARK.encode()) + rb".{0,600}?sha256:[0-9a-f]{16}", bytes(data), re.S) is not None
 
 
-def test_files_of_the_version_before_fingerprints_are_still_its_own(tmp_path):
-    """A mark with no fingerprint (a handout, page or figure an earlier version wrote, or a program
-    printed with `-` or downloaded from the page) is known by the mark alone, as before: a teacher's
-    script rerunning its commands onto them keeps working, edited or not."""
-    printed = main_py("damped", "--vpython", "-")
-    assert printed.returncode == 0 and "sha256:" not in printed.stdout     # stdout: as before
-    old = tmp_path / "spring.py"
-    old.write_text(printed.stdout.replace("\nb = 1 ", "\nb = 2 "), encoding="utf-8")    # edited, even
-    assert files.ownership(str(old)) == files.OURS
-    assert main_py("damped", "--vpython", old).returncode == 0
-    assert re_digits(old.read_bytes())      # now written with its fingerprint
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+def earlier_handout(path: Path, *, digits: str | None) -> bytes:
+    """A handout as the version before this one wrote it: its mark on the fifth line, its
+    fingerprint's line under it (`digits`: None fills in the true fingerprint, the SHA-256 of the
+    bytes without those 16 digits, worked out here on its own)."""
+    import hashlib
 
-    figure = plt.figure()
-    figure.savefig(tmp_path / "old.png", metadata={"Software": files.MARK + " (with Matplotlib)"})
-    plt.close(figure)
-    assert main_py("vertical", "--plot", tmp_path / "old.png").returncode == 0
+    lines = ["from vpython import *", "import socket", "socket.socket.bind = bind",
+             "# vertical: The page's Simple Example.",
+             "# Written by the spring-mass simulator with the euler-cromer integrator. Edit the constants and run it again.",
+             "# sha256:" + "-" * 16 + ": this file's fingerprint; once the file is edited, the simulator replaces it "
+             "only with --overwrite", "", "k = 40                   # N/m: spring constant", ""]
+    data = "\n".join(lines).encode()
+    at = data.index(b"sha256:") + 7
+    if digits is None:
+        digits = hashlib.sha256(data[:at] + data[at + 16:]).hexdigest()[:16]
+    data = data[:at] + digits.encode() + data[at + 16:]
+    path.write_bytes(data)
+    return data
+
+
+def test_files_of_the_version_before_are_its_own_where_their_fingerprint_still_matches(tmp_path):
+    """The version before this one put its mark and fingerprint a few lines down: such a file is
+    replaced where its fingerprint matches, and refused, byte for byte, once edited or where it has
+    none (its digits blank, or a file from before fingerprints): docs/homework.md says so."""
+    old = tmp_path / "spring.py"
+    earlier_handout(old, digits=None)
+    assert files.ownership(str(old)) == files.OURS
+    assert main_py("vertical", "--vpython", old).returncode == 0
+    assert old.read_bytes().startswith(b"# " + files.MARK.encode())        # now in this version's form
+    for digits in ("-" * 16, "0123456789abcdef"):
+        data = earlier_handout(old, digits=digits)
+        assert files.ownership(str(old)) == files.EDITED
+        line = one_error(main_py("vertical", "--vpython", old))
+        assert ("no fingerprint" if digits.startswith("-") else "no longer matches") in line
+        assert old.read_bytes() == data
+    before_fingerprints = (b"from vpython import *\n# vertical: The page's Simple Example.\n# " + files.MARK.encode()
+                           + b" with the euler-cromer integrator.\nk = 40\n")
+    old.write_bytes(before_fingerprints)
+    assert "no fingerprint" in one_error(main_py("vertical", "--vpython", old))
+    assert old.read_bytes() == before_fingerprints
+    assert main_py("vertical", "--vpython", old, "--overwrite").returncode == 0
+
+
+def test_a_compressed_svg_is_its_own_by_the_record_of_what_it_wrote(tmp_path):
+    """An .svgz figure is compressed whole: its mark has no fingerprint, so it is ours only where
+    the record of what this program wrote (export/written.py) has it, unchanged."""
+    path = tmp_path / "run.svgz"
+    assert main_py("vertical", "--plot", path).returncode == 0
+    assert files.ownership(str(path)) == files.OURS
+    (tmp_path / "record" / "written-sha256.txt").unlink()      # forgotten: marked, but not known unchanged
+    assert files.ownership(str(path)) == files.EDITED
+    assert "no fingerprint" in one_error(main_py("vertical", "--plot", path))
 
 
 def test_a_csv_file_with_changed_rows_is_still_its_own(tmp_path):
@@ -328,26 +380,33 @@ def test_a_csv_file_with_changed_rows_is_still_its_own(tmp_path):
 
 @pytest.mark.parametrize("at", [0, 100, (1 << 20) - 7, (1 << 20), 3 * (1 << 20) - 1])
 def test_the_fingerprint_is_streamed_and_leaves_out_its_own_digits(at):
-    """fingerprint reads the file in 1 MiB blocks; its own 16 digits (here across a block's end too)
-    are left out, so filling them in does not change it."""
+    """A figure's fingerprint reads the file in 1 MiB blocks; its own 16 digits (here across a
+    block's end too) are left out, so filling them in does not change it."""
     import hashlib
     import io
     import random
 
     data = bytearray(random.Random(at).randbytes(3 * (1 << 20) + 5))
     expected = hashlib.sha256(bytes(data[:at] + data[at + 16:])).hexdigest()[:16].encode()
-    assert files.fingerprint(io.BytesIO(bytes(data)), at) == expected
+    assert marks._binary_digest(io.BytesIO(bytes(data)), at) == expected
     data[at:at + 16] = expected
-    assert files.fingerprint(io.BytesIO(bytes(data)), at) == expected
+    assert marks._binary_digest(io.BytesIO(bytes(data)), at) == expected
 
 
-def test_the_fingerprint_is_of_the_bytes_on_the_disk(tmp_path):
-    """Filled in after the file is written (files.fill_fingerprint), so Windows line ends, which
-    Python's text mode writes there, are what it covers."""
+@pytest.mark.parametrize("block_end", [False, True])
+def test_a_programs_fingerprint_reads_windows_line_ends_as_newlines(block_end, tmp_path):
+    """A program printed and saved on Windows (`--vpython - > mine.py`: the shell writes "\\r\\n") is
+    still the very text stamped; a line end changed, or a "\\r\\n" split across two 1 MiB blocks,
+    is read the same way; a real edit is not."""
+    padding = "x" * ((1 << 20) - 200) if block_end else ""
+    text = marks.stamped("from vpython import *\nk = 1\n# " + padding + "\nm = 2\n")
     path = tmp_path / "spring.py"
-    text = files.with_fingerprint("# " + files.MARK + "\nk = 1\n", files.PROGRAM_FINGERPRINT)
     path.write_bytes(text.replace("\n", "\r\n").encode())
-    files.fill_fingerprint(str(path))
-    assert re_digits(path.read_bytes()) and files.ownership(str(path)) == files.OURS
+    if block_end:    # a "\r" as the last byte of the first block
+        data = path.read_bytes()
+        assert b"\r\n" in data[(1 << 20) - 1:(1 << 20) + 1] or data[(1 << 20) - 1:(1 << 20)] != b"\r"
+    assert files.ownership(str(path)) == files.OURS
     path.write_bytes(path.read_bytes().replace(b"k = 1\r\n", b"k = 1\n"))
+    assert files.ownership(str(path)) == files.OURS
+    path.write_bytes(path.read_bytes().replace(b"k = 1", b"k = 2"))
     assert files.ownership(str(path)) == files.EDITED

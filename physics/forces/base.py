@@ -17,6 +17,7 @@ import numpy as np
 from ..declared import Declared
 from ..rows import row_dot
 from ..state import velocity
+from .declarations import DeclarationError, check_forces, closed_form_problem
 
 
 def _per_mass(value) -> np.ndarray | float:
@@ -100,6 +101,10 @@ class Force:
                along v, with numbers per mass. None (the default): it may push along any axis.
                The engine steps only the axes a motion uses (physics/motion_axes.py) where all say so.
     rates()    what it adds to the stability judgement (physics/stability.py)
+    RATE_WORDS how the stability message writes each rate it adds, by its own constant
+               ({"drag": "ρCA|v|/m"}); where it says nothing, rate_words() works it out from its
+               one constant in kg/s ("c/m") or N/m ("√(k/m)"), so the message names the force's
+               own constant: "the eddy brake (c/m = 40 s⁻¹)"
     closed_form()  its terms in the closed form (physics/exact.py), or None where that does not
                cover it: a model with such a force has no exact solution, and says so by LABEL
     CLOSED_FORM  the constant of CONSTANTS that holds each of its roles in the closed form, by the
@@ -107,6 +112,9 @@ class Force:
                finds the constants it writes (closed_form_constants)
     stop()     its stop rule, where it has one (static friction): applied by the engine after
                every step, and written in the program after the update (STOP lines)
+    SINGLE_MASS  whether a single-mass scene takes it, switched on by its constants (True); False
+               for a force that needs a scene of its own (friction needs a table): --constants and
+               --forces then leave it out of those scenes, and its switched_on says why in one line
 
     A class that subclasses Force is known by that alone (FORCES), wherever it is defined.
     """
@@ -118,6 +126,8 @@ class Force:
     PROGRAM: tuple[tuple[str, str], ...] = ()
     STOP: tuple[tuple[str, str], ...] = ()
     CLOSED_FORM: dict[str, str] = {}
+    RATE_WORDS: dict[str, str] = {}
+    SINGLE_MASS = True
     conservative = False
     uses_velocity = False
     responds = False
@@ -178,6 +188,19 @@ class Force:
         """
         return {}
 
+    @classmethod
+    def rate_words(cls, kind: str) -> str:
+        """How the stability message writes the rate of `kind` ("stiffness", "damping", "drag") this
+        force adds: RATE_WORDS[kind] where declared, else from its one constant of the rate's unit
+        (a damping's in kg/s: "c/m"; a stiffness's in N/m: "√(k/m)"), else γ (√(k/m) for a stiffness)."""
+        if kind in cls.RATE_WORDS:
+            return cls.RATE_WORDS[kind]
+        unit = {"damping": "kg/s", "drag": "kg/s", "stiffness": "N/m"}.get(kind)
+        own = [declared.symbol or name for name, declared in cls.CONSTANTS.items() if declared.unit == unit]
+        if len(own) == 1:
+            return f"√({own[0]}/m)" if kind == "stiffness" else f"{own[0]}/m"
+        return "√(k/m)" if kind == "stiffness" else "γ"
+
     def closed_form(self) -> dict | None:
         """What this force adds to the closed form m x'' + b x' + k x = F0 cos(ω t) under gravity
         (physics/exact.py), by the closed form's names (k, L0, anchor, g, b, F0, omega,
@@ -212,35 +235,56 @@ class Force:
 
 
 def declared_constants() -> dict[str, Declared]:
-    """Every force's CONSTANTS, by name. Raises ValueError where two forces declare one name differently."""
+    """Every force's CONSTANTS, by name. Raises DeclarationError (one line naming the force and the
+    fix) where a force's declarations cannot be used, two forces declare one name differently, or
+    a force module could not be imported (physics/forces/declarations.py)."""
+    check_forces(FORCES)
     declared: dict[str, Declared] = {}
     for cls in FORCES:
         for name, declaration in cls.CONSTANTS.items():
-            if declared.setdefault(name, declaration) != declaration:
-                raise ValueError(f"two forces declare the constant {name} differently ({cls.__name__} is one)")
+            declared.setdefault(name, declaration)
     return declared
 
 
-def closed_form_constants() -> dict[str, str]:
-    """The constant that holds each role of the closed form (physics/exact.py ROLES), from every
-    force's CLOSED_FORM. Raises ValueError where two forces give one role different constants, or a
-    force gives a role the closed form does not have or a constant it does not declare."""
-    from ..exact import ROLES
+def closed_form_constants(forces) -> dict[str, str]:
+    """The constant that holds each role of the closed form (physics/exact.py Role) among these
+    forces (a model's, or classes), from each one's CLOSED_FORM: {"b": "b", "k": "k", ...}. A role
+    is one force's: where two of them hold one (damping's b and a brake's c), neither is named, and
+    the model has no closed form (closed_form_terms says so)."""
+    check_forces(FORCES)
+    held: dict[str, list[str]] = {}
+    for cls in {force if isinstance(force, type) else type(force): None for force in forces}:
+        for role, name in getattr(cls, "CLOSED_FORM", {}).items():
+            held.setdefault(role, []).append(name)
+    return {role: names[0] for role, names in held.items() if len(names) == 1}
 
-    names: dict[str, str] = {}
-    for cls in FORCES:
-        for role, name in cls.CLOSED_FORM.items():
-            if role not in ROLES or name not in cls.CONSTANTS:
-                raise ValueError(f"{cls.__name__}.CLOSED_FORM gives {role!r}: {name!r}, but the closed form's roles "
-                                 f"are {', '.join(ROLES)} and the force's constants {', '.join(cls.CONSTANTS)}")
-            if names.setdefault(role, name) != name:
-                raise ValueError(f"two forces give the closed form's {role} different constants ({cls.__name__} is one)")
-    return names
+
+def closed_form_terms(forces) -> tuple[dict | None, str]:
+    """The closed form's parameters from the forces (each one's closed_form(), by role), and "";
+    or None and why not: the first force it does not cover ("no closed form with drag"), or two
+    forces holding one role ("no closed form with both damping and eddy brake: each is its b").
+    Raises DeclarationError where a force's closed_form() and CLOSED_FORM disagree."""
+    terms, holder = {}, {}
+    for force in forces:
+        own = force.closed_form() if hasattr(force, "closed_form") else None
+        label = getattr(force, "LABEL", "") or type(force).__name__
+        if own is None:
+            return None, f"no closed form with {label}"
+        problem = closed_form_problem(force, own)
+        if problem:
+            raise DeclarationError(problem)
+        for role, value in own.items():
+            if role in terms:
+                return None, (f"no closed form with both {holder[role]} and {label}: each is the closed "
+                              f"form's {role}, which one force holds")
+            terms[role], holder[role] = value, label
+    return terms, ""
 
 
 def switched_on(**constants) -> tuple:
     """Every known force the constants switch on, in the order the forces were defined (the page's
     own first: spring, gravity, damping, drag, driving): what a single-mass scene is made of."""
+    check_forces(FORCES)
     forces = (cls.switched_on(**constants) for cls in FORCES)
     return tuple(force for force in forces if force is not None)
 
@@ -295,6 +339,6 @@ def settle(forces, *, t, r, p, m, dt, r_f, p_f):
     return r_f, p_f
 
 
-__all__ = ["Force", "FORCES", "Declared", "closed_form_constants", "compare", "declared_constants", "forces_each", "net_force", "settle",
-           "switched_on",
-           "uses_velocity", "where", "row_dot"]
+__all__ = ["Force", "FORCES", "Declared", "DeclarationError", "closed_form_constants", "closed_form_terms", "compare",
+           "declared_constants", "forces_each", "net_force", "settle", "switched_on", "uses_velocity", "where",
+           "row_dot"]

@@ -61,6 +61,7 @@ class Friction(Force):
     conservative = False
     uses_velocity = True
     responds = True
+    SINGLE_MASS = False        # it needs a table: switched_on refuses it in a single-mass scene, in one line
     LABEL = "friction"
     CONSTANTS = {
         "mu_k": Declared("1", 0, 100, symbol="μ_k", slider=True, slider_from_zero=True, default=0.0,

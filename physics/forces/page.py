@@ -250,13 +250,14 @@ class QuadraticDrag(Force):
     LABEL = "drag"
     TIED = ((("C", "A", "rho"), "drag depends on the product C·A·ρ only"),)
     CONSTANTS = {
-        "C": Declared("1", 0, 100, slider=True, slider_from_zero=True, meaning="drag coefficient", default=0.0,
-                      switch=True),
-        "A": Declared("m²", 0, 1e3, meaning="cross-section area, for drag", default=0.0, switch=True),
+        "C": Declared("1", 0, 100, slider=True, slider_from_zero=True, meaning="drag coefficient in F = −½ C A ρ |v| v",
+                      default=0.0, switch=True),
+        "A": Declared("m²", 0, 1e3, meaning="cross-section area of the mass, for drag", default=0.0, switch=True),
         "rho": Declared("kg/m³", 0, 1e5, symbol="ρ", meaning="air density, for drag", default=0.0, switch=True),
     }
     TERM = "Fdrag"
     VECTORS = {}
+    RATE_WORDS = {"drag": "ρCA|v|/m"}     # its rate at the present speed, for the stability message
     PROGRAM = (("Fdrag = -0.5*{C}*{A}*{rho}*mag({v})*{v}", "air drag: F = −½ C A ρ |v|² v̂ = −½ C A ρ |v| v"),)
 
     def __post_init__(self):
@@ -294,9 +295,9 @@ class Driving(Force):
         "F0": Declared("N", -1e6, 1e6, slider=True, slider_from_zero=True, meaning="driving force amplitude in F = F0 cos(ω t)",
                        default=0.0, switch=True),
         "omega": Declared("rad/s", 0, 1e4, symbol="ω", slider=True, slider_from_zero=True,
-                          meaning="driving angular frequency ω (rad/s, not Hz)", default=0.0),
+                          meaning="driving angular frequency ω (rad/s, not Hz; f = ω / 2π)", default=0.0),
         "drive_axis": Declared("1", -1e6, 1e6, vector=True, nonzero=True,
-                               meaning="direction of the driving force (a unit vector)", default=(1.0, 0.0, 0.0)),
+                               meaning="direction of the driving force", default=(1.0, 0.0, 0.0)),
     }
     TERM = "Fdrive"
     VECTORS = {"axis": "direction"}
