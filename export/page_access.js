@@ -244,7 +244,9 @@
       d = el.__smAlt = document.createElement("details");
       d.__smGraph = el;
       d.className = "sm-alt";
-      d.innerHTML = "<summary>Table of the points shown</summary><div class='sm-points-box'></div>";
+      d.innerHTML = "<summary>Table of the points shown</summary>" +
+        // it scrolls when long: focusable, so its rows can be scrolled by keyboard (axe: scrollable-region-focusable)
+        "<div class='sm-points-box' tabindex='0' role='region' aria-label='Table of the points shown'></div>";
       d.addEventListener("toggle", function () { if (d.open && el.__smPlot) fill(el); });
     }
     var after = el;
@@ -255,7 +257,9 @@
   }
   function fill(el) {
     var d = detailsFor(el), plot = el.__smPlot;
-    d.querySelector("summary").textContent = "Table of the points shown: " + titles(el, plot).title;
+    var name = "Table of the points shown: " + titles(el, plot).title;
+    d.querySelector("summary").textContent = name;
+    d.querySelector(".sm-points-box").setAttribute("aria-label", name);
     d.querySelector(".sm-points-box").innerHTML = tableHtml(el, plot);
   }
   function described(el) {

@@ -18,6 +18,7 @@ from browser_support import jump_offline, jump_to, wait_for
 from test_browser import Program, shown_time
 
 SMALL = (1024, 768)       # px: the smallest window the pages are built for; small windows draw fastest
+OPENING_MS = 300_000      # the most a page may take to open (GlowScript compiles the program) on a loaded machine
 GRAPH_CHOICES = {"energy graph": "Energy", "phase space": "Phase space", "energy bars": None}
 
 
@@ -132,7 +133,7 @@ def offline(browser, scene: str, folder, *, size=SMALL, **context):
     page = context.new_page()
     page.goto(url)
     page.wait_for_function("() => window.offlineState && window.offlineState().paused && "
-                           "document.querySelector('.glowscript-graph')")
+                           "document.querySelector('.glowscript-graph')", timeout=OPENING_MS)
     return context, page
 
 

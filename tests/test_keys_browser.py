@@ -32,8 +32,9 @@ sync_api, Image = require_browser()
 CONTROLS = ("button, select, input:not([type=hidden]):not([type=file]), textarea, summary, a[href], "
             "[tabindex]:not([tabindex='-1']), .ui-slider-handle")
 # Every control the page shows, in document order, with what the Tab walk needs of it.
+# (what a folded table holds is not shown: Chromium gives it an offsetParent all the same)
 SHOWN = """sel => Array.from(document.querySelectorAll(sel)).filter(e => e.offsetParent !== null && !e.disabled
-  && e.tabIndex >= 0 && getComputedStyle(e).visibility !== 'hidden')"""
+  && e.tabIndex >= 0 && getComputedStyle(e).visibility !== 'hidden' && !e.closest('details:not([open]) > :not(summary)'))"""
 FOCUS = """() => { const e = document.activeElement; if (!e || e === document.body) return null;
   const s = getComputedStyle(e);
   const all = (%s)(%r);
