@@ -6,6 +6,8 @@ them on the VPython page and adds what only this page needs:
 
     head(setup)          the page's title and language, the script, the keys and how the page
                          pauses for prefers-reduced-motion (Pause, then Reset: the first frame)
+    scene_heading(name)  the scene's name as the page's one h1 (the script adds the h2s: the
+                         controls, the Measure panel, each graph's title)
     describe_button      "Describe (D)", which queues Describe() (browser/messages.py)
     description_line     the live region the description (export/description.py) is written to,
                          under the clock, after each Step and on Describe
@@ -51,8 +53,14 @@ def head(setup) -> str:
     view_label = (f"The 3-D view of the {setup.name} scene. {summary} "
                   "Press D, or the Describe button, to hear where each mass is and how it moves.")
     call = install_call(title=f"{setup.name}: spring-mass simulator", viewLabel=view_label, nameWidgets=True,
-                        pause=PAUSE)
+                        headings=True, pause=PAUSE)
     return f"<style>{STYLE}</style><script>{script()}\n{call}</script>"
+
+
+def scene_heading(name: str) -> str:
+    """The scene's name at the top of the page, as the page's heading (h1), in the bold it had before
+    (still a <b>: a teacher's test may find the name there)."""
+    return f"<h1 style='display:inline; font-size:130%; margin:0'><b>{html.escape(name)}</b></h1>"
 
 
 def describe_button(vp, put):

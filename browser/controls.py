@@ -63,7 +63,8 @@ class _OwnLine:
     its unit (the browser wrapped `330` and `%` onto two lines at 1280×800)."""
 
     def __init__(self, wtext):
-        self.wtext, self._text = wtext, ""
+        self.wtext, self._text = wtext, None
+        self.text = ""
 
     @property
     def text(self) -> str:
@@ -71,8 +72,10 @@ class _OwnLine:
 
     @text.setter
     def text(self, value: str) -> None:
+        # its marker is there while empty, so the page's script makes it a live region before its
+        # first sentence (export/page_access.js): a screen reader hears why a run stopped
         self._text = value
-        self.wtext.text = "<br>" + units_kept(value) if value else ""
+        self.wtext.text = "<span class='sm-status'>" + ("<br>" + units_kept(value) if value else "") + "</span>"
 
 
 class Controls:

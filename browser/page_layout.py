@@ -8,7 +8,8 @@ browser, where the window's size is known, and again whenever the window is resi
 * the 3-D view at the top left, as wide as the window leaves it (its shape stays
   scene3d.CANVAS_SIZE's, so the camera framing worked out in Python still holds), the controls
   under it, and the graphs in a column on the right: at 1280 × 800 the view and the position
-  graph are both on screen, and at 1024 × 768 nothing scrolls sideways;
+  graph are both on screen, and at 1024 × 768 nothing scrolls sideways; in a window too narrow
+  for both (1280 × 800 at 200 % zoom: 640 CSS px) the graphs go under the controls;
 * text at least BODY_PX (18 px) — body, buttons, menus, axis ticks, legends, graph titles — and in
   projector mode (the page's Projector button, key P, or `--projector`) at least PROJECTOR_PX
   (22 px), with every graph line LINE_FACTOR times thicker and black on white;
@@ -88,6 +89,7 @@ body.sm-projector button, body.sm-projector select { border: 2px solid #000; col
 # graph's legend above it, makes lines thicker in projector mode, and listens to the keys.
 SCRIPT = """
 (function () {
+  var MIN_VIEW = 300;   // px: the narrowest the 3-D view's column gets beside the graphs
   var ASPECT = %(aspect)s, CANVAS_HEIGHT = %(canvas_height)s, GRAPH_WIDTH = %(graph_width)s, SHARE = %(share)s, GAP = %(gap)s,
       FACTOR = %(factor)s, TITLE_PX = [%(body)d, %(projector)d], NOTE_MARK = %(note_mark)s,
       TICK_ROOM = %(tick_room)s;
@@ -250,7 +252,11 @@ SCRIPT = """
     var px = TITLE_PX[window.smProjector ? 1 : 0];
     var W = document.documentElement.clientWidth - 16 - Math.ceil(TICK_ROOM * px), H = window.innerHeight;
     var gw = Math.round(Math.min(GRAPH_WIDTH[1], Math.max(GRAPH_WIDTH[0], SHARE * W)));
-    var left = Math.max(300, W - gw - GAP);
+    var left = Math.max(MIN_VIEW, W - gw - GAP);
+    // Too narrow for two columns (a 1280 x 800 window at 200 %% zoom is 640 CSS px): one column, the
+    // graphs under the controls, each as wide as the window, so none is cut off at the right.
+    var stacked = W < MIN_VIEW + GAP + GRAPH_WIDTH[0];
+    if (stacked) { left = W; gw = Math.min(GRAPH_WIDTH[1], W); }
     var cw = left, ch = Math.round(cw / ASPECT);
     if (ch > 0.6 * H) { ch = Math.round(0.6 * H); cw = Math.round(ch * ASPECT); }
     var main = document.getElementById('glowscript');
@@ -261,7 +267,8 @@ SCRIPT = """
     });
     labels.forEach(grow);  // after the canvas has its size: the labels' offsets follow it
     var right = column();
-    right.style.left = (8 + left + GAP) + 'px';
+    right.style.position = stacked ? 'static' : '';
+    right.style.left = stacked ? '' : (8 + left + GAP) + 'px';
     // Its own width and the room for the last tick, no more: the box flot gives a tick label is
     // wider than its text, and the last one's reached past the window (regimes, 1920 px)
     right.style.width = (gw + Math.ceil(TICK_ROOM * px)) + 'px';

@@ -142,7 +142,7 @@ class SceneView:
         """The 3-D picture, the controls and the graphs of self.setup, in the order the page shows them."""
         setup, model = self.setup, self.live.model
         view = {**DEFAULT_VIEW, **setup.hooks.view}
-        title = (page_head(projector=self.projector) + access.head(setup) + f"<b style='font-size:130%'>{setup.name}</b>: "
+        title = (page_head(projector=self.projector) + access.head(setup) + access.scene_heading(setup.name) + ": "
                  f"{_summary(setup.module)}{PROJECTOR_BUTTON}\n")
         scene = Scene3D(self.vp, model=model, view=view, title=title)
         if self.arrows_scene != setup.name:  # a new scene starts with its own arrows, or --arrows

@@ -123,6 +123,57 @@
     });
   }
 
+  // ---- the graphs' line styles: no curve told from another by colour alone (export/palette.py) ----
+
+  // Each line is drawn with its colour's dash pattern (A.lineStyles: LINE_DASHES, in units of the
+  // line's width within A.dashUnit px), and each legend entry shows a sample of the line, its
+  // dashes and width, beside its name. A flot plugin: every graph either page draws passes here.
+  function styleOf(colour) {         // flot's 'rgb(193,127,0)' -> that colour's pattern, in units
+    var m = /rgba?\(\s*(\d+)\s*,\s*(\d+)\s*,\s*(\d+)/.exec(colour || "");
+    if (!m) return [];
+    var rgb = [+m[1], +m[2], +m[3]];
+    for (var i = 0; i < (A.lineStyles || []).length; i++) {
+      var want = A.lineStyles[i].rgb;
+      if (Math.abs(want[0] - rgb[0]) <= 2 && Math.abs(want[1] - rgb[1]) <= 2 && Math.abs(want[2] - rgb[2]) <= 2)
+        return A.lineStyles[i].dashes;
+    }
+    return [];
+  }
+  function dashes(series) {          // px, for setLineDash; a series of dots only is never dashed
+    if (!series.lines || !series.lines.show) return [];
+    var unit = Math.min(Math.max(series.lines.lineWidth || 1, A.dashUnit[0]), A.dashUnit[1]);
+    return styleOf(series.color).map(function (n) { return n * unit; });
+  }
+  function sample(series) {          // the legend's picture of a line: its colour, width and dashes
+    var shown = series.lines && series.lines.show, width = Math.min(Math.max(series.lines.lineWidth || 2, 2), 8);
+    var svg = shown ? "<line x1='0' y1='8' x2='60' y2='8' stroke='" + series.color + "' stroke-width='" + width +
+        "' stroke-dasharray='" + (dashes(series).join(" ") || "none") + "'/>"
+      : "<circle cx='30' cy='8' r='5' fill='" + series.color + "'/>";
+    return "<svg class='sm-sample' width='60' height='16' style='background:#fff' aria-hidden='true' focusable='false'>" + svg + "</svg>";
+  }
+  function legendSamples(plot) {
+    var options = plot.getOptions(), where = options.legend && options.legend.container ?
+      window.jQuery(options.legend.container)[0] : plot.getPlaceholder().find(".legend")[0];
+    if (!where) return;
+    var named = plot.getData().filter(function (s) { return s.label; });
+    where.querySelectorAll("td.legendColorBox").forEach(function (box, i) {
+      var s = named[i], want = s ? sample(s) : "";
+      if (s && box.__smSample !== want) { box.innerHTML = want; box.__smSample = want; }
+    });
+  }
+  var LINE_STYLES = {
+    init: function (plot) {
+      plot.hooks.drawSeries.push(function (plot, ctx, series) {
+        if (ctx.setLineDash) ctx.setLineDash(A.lineStyles ? dashes(series) : []);
+      });
+      plot.hooks.draw.push(function (plot, ctx) {
+        if (ctx.setLineDash) ctx.setLineDash([]);
+        if (A.lineStyles) legendSamples(plot);
+      });
+    },
+    name: "smLineStyles", version: "1"
+  };
+
   // ---- the graphs: a text alternative and a table of the points shown ----
 
   function number(v) {               // as the graph reading writes a point (browser/graph_reading.py)
@@ -193,7 +244,9 @@
       d = el.__smAlt = document.createElement("details");
       d.__smGraph = el;
       d.className = "sm-alt";
-      d.innerHTML = "<summary>Table of the points shown</summary><div class='sm-points-box'></div>";
+      d.innerHTML = "<summary>Table of the points shown</summary>" +
+        // it scrolls when long: focusable, so its rows can be scrolled by keyboard (axe: scrollable-region-focusable)
+        "<div class='sm-points-box' tabindex='0' role='region' aria-label='Table of the points shown'></div>";
       d.addEventListener("toggle", function () { if (d.open && el.__smPlot) fill(el); });
     }
     var after = el;
@@ -204,7 +257,9 @@
   }
   function fill(el) {
     var d = detailsFor(el), plot = el.__smPlot;
-    d.querySelector("summary").textContent = "Table of the points shown: " + titles(el, plot).title;
+    var name = "Table of the points shown: " + titles(el, plot).title;
+    d.querySelector("summary").textContent = name;
+    d.querySelector(".sm-points-box").setAttribute("aria-label", name);
     d.querySelector(".sm-points-box").innerHTML = tableHtml(el, plot);
   }
   function described(el) {
@@ -240,6 +295,7 @@
       return made;
     };
     Object.keys(plot).forEach(function (name) { jq.plot[name] = plot[name]; });
+    if (plot.plugins && plot.plugins.indexOf(LINE_STYLES) < 0) plot.plugins.push(LINE_STYLES);
     jq.plot.smAccess = true;
   }
   A.describeGraphs = function () {   // now, for a look from outside (the tests)
@@ -256,8 +312,8 @@
                        "where each mass is and how it moves.");
     });
   }
-  function markLive() {              // the description's holder reads out what it is given
-    document.querySelectorAll(".sm-description").forEach(function (text) {
+  function markLive() {              // the description's and the status line's holders read out what they are given
+    document.querySelectorAll(".sm-description, .sm-status").forEach(function (text) {
       var holder = text.closest("span[id]") || text;
       if (holder.getAttribute("role") !== "status") {
         holder.setAttribute("role", "status");
@@ -313,8 +369,32 @@
       });
   }
 
+  // Headings to move by (WCAG 1.3.1, 2.4.1, 2.4.6): each graph's title line (browser/page_layout.py)
+  // is a level-2 heading; on a page that asks (config.headings: the local page, whose scene name is
+  // its h1) so are the Measure panel's button, as an accordion's, and the controls, under a heading
+  // heard, not seen.
+  function heading(el, level) {
+    if (el && el.getAttribute("role") !== "heading") { el.setAttribute("role", "heading"); el.setAttribute("aria-level", String(level)); }
+  }
+  function markHeadings() {
+    document.querySelectorAll(".sm-legend .sm-title").forEach(function (title) { heading(title, 2); });
+    if (!A.headings) return;
+    var toggle = document.querySelector(".sm-measure-toggle");
+    if (toggle && toggle.parentNode.tagName === "SPAN") heading(toggle.parentNode, 2);
+    var first = Array.prototype.filter.call(document.querySelectorAll("#glowscript button"), function (b) {
+      return /^(Run|Pause)$/.test(b.textContent.trim());
+    })[0];
+    if (first && !first.parentNode.querySelector(".sm-controls-heading")) {
+      var h = document.createElement("h2");
+      h.className = "sm-controls-heading sm-unseen";
+      h.textContent = "Controls";
+      first.parentNode.insertBefore(h, first);
+    }
+  }
+
   function tidy() {
     wrapPlot();
+    markHeadings();
     dropOrphans();
     markView();
     markLive();
@@ -328,6 +408,9 @@
     A.keys = config.keys;
     A.viewLabel = config.viewLabel || A.viewLabel;
     A.nameWidgets = !!config.nameWidgets;
+    A.headings = !!config.headings;
+    A.lineStyles = config.lineStyles || A.lineStyles;
+    A.dashUnit = config.dashUnit || A.dashUnit || [2, 4];
     if (config.title) document.title = config.title;
     if (!document.documentElement.getAttribute("lang")) document.documentElement.setAttribute("lang", "en");
     tidy();

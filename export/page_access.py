@@ -1,7 +1,8 @@
 """What both pages carry for keyboard and screen-reader users: one script and its style.
 
 export/page_access.js (the keys of export/page_keys.py, the graphs' text alternatives and tables,
-the 3-D view's text alternative, the live region of the description, reduced motion) is written
+the 3-D view's text alternative, the live region of the description, reduced motion, each graph
+line's dash pattern and its sample in the legend) is written
 into the local page by browser/access.py and into the offline page by export/offline_page.py;
 both hand it the same keys. The style gives every control that can take the focus a ring of
 FOCUS_PX px in FOCUS_COLOUR (5.0:1 against white, the pages' background), and styles the tables.
@@ -12,6 +13,7 @@ import json
 import os
 
 from .page_keys import KEYS, keys_json
+from .palette import DASH_UNIT, line_styles
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 SCRIPT = os.path.join(HERE, "page_access.js")
@@ -28,6 +30,9 @@ table.sm-points { border-collapse: collapse; margin: 4px 8px 8px 0; display: inl
 table.sm-points caption { text-align: left; font-weight: 600; }
 table.sm-points th, table.sm-points td { border: 1px solid #767676; padding: 1px 8px; text-align: right; }
 .sm-description { display: inline-block; max-width: 44em; white-space: normal; }
+.sm-unseen { position: absolute !important; width: 1px; height: 1px; margin: -1px; padding: 0; overflow: hidden;
+             clip: rect(0 0 0 0); white-space: nowrap; border: 0; }
+svg.sm-sample { vertical-align: middle; }
 """ % {"px": FOCUS_PX, "colour": FOCUS_COLOUR}
 
 
@@ -38,10 +43,12 @@ def script() -> str:
 
 
 def install_call(**config) -> str:
-    """The call that sets the page's access up with the keys (export/page_keys.py) and `config`
-    (title, viewLabel, nameWidgets; `pause` is a JavaScript function written as text)."""
+    """The call that sets the page's access up with the keys (export/page_keys.py), the graphs' line
+    styles (export/palette.py) and `config`
+    (title, viewLabel, nameWidgets, headings; `pause` is a JavaScript function written as text)."""
     pause = config.pop("pause", None)
     fields = json.dumps(config, ensure_ascii=False)[1:-1]
-    keys = f'"keys": {keys_json(KEYS)}'
+    keys = (f'"keys": {keys_json(KEYS)}, "lineStyles": {json.dumps(line_styles())}, '
+            f'"dashUnit": {json.dumps(list(DASH_UNIT))}')
     body = ", ".join(part for part in (keys, fields, f'"pause": {pause}' if pause else "") if part)
     return "window.smAccess.install({" + body + "});"

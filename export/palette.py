@@ -12,21 +12,31 @@ How curves stay apart on a projector:
   on top of it: where the two agree the thin line runs inside the thick one and both show;
 * several masses whose curves may coincide (the two balls of `drag` at first, the four methods of
   `integrators`) get lines of different widths, the first widest, so each shows as a border round
-  the next.
+  the next;
+* no curve is told from another by its colour alone (WCAG 2.1's 1.4.1): each colour a graph line
+  can have draws its own dash pattern (LINE_DASHES), the same on both pages, in `--plot` and in the
+  legends, so any two curves of one graph differ by dash or width as well as by colour;
+* every line is at least 3:1 against the white graphs and the dark 3-D view (WCAG 1.4.11).
 """
 from __future__ import annotations
 
 # The Okabe–Ito palette (Okabe and Ito, "Color Universal Design", 2008): eight colours chosen so that
 # people with any of the common colour-vision deficiencies tell them apart. tests/test_palette.py
-# checks it under simulated deuteranopia and protanopia.
-ORANGE, SKY_BLUE, BLUISH_GREEN = (0.902, 0.624, 0.0), (0.337, 0.706, 0.914), (0.0, 0.620, 0.451)
+# checks it under simulated deuteranopia and protanopia, and each line's contrast.
+# Its orange (0.902, 0.624, 0) and sky blue (0.337, 0.706, 0.914) are 2.25:1 and 2.31:1 on a white
+# graph, below WCAG's 3:1 for a line; here they are deepened, hue kept, to 3.3:1 on white and 4.9:1
+# on the dark 3-D view (browser/scene3d.py BACKGROUND), so one colour per mass serves both.
+ORANGE, SKY_BLUE, BLUISH_GREEN = (0.76, 0.5, 0.0), (0.0, 0.58, 0.9), (0.0, 0.620, 0.451)
 YELLOW, BLUE, VERMILION = (0.941, 0.894, 0.259), (0.0, 0.447, 0.698), (0.835, 0.369, 0.0)
 REDDISH_PURPLE, BLACK = (0.800, 0.475, 0.655), (0.0, 0.0, 0.0)
 OKABE_ITO = [ORANGE, SKY_BLUE, BLUISH_GREEN, YELLOW, BLUE, VERMILION, REDDISH_PURPLE, BLACK]
+ROYAL_BLUE = (0.36, 0.38, 1.0)   # not Okabe–Ito's: a sixth mass colour 29 ΔE from the others for any vision
+GREY = (0.5, 0.5, 0.5)
 
 # Yellow is left out of the masses and curves: on a white graph it barely shows from the back row.
-MASS_COLOURS = [ORANGE, SKY_BLUE, BLUISH_GREEN, REDDISH_PURPLE, VERMILION, BLUE]
-CURVE_COLOURS = [BLUE, VERMILION, BLUISH_GREEN, REDDISH_PURPLE, (0.5, 0.5, 0.5)]
+# Vermilion is left out of the masses: the deepened orange and it look alike to a deuteranope.
+MASS_COLOURS = [ORANGE, SKY_BLUE, BLUISH_GREEN, REDDISH_PURPLE, BLUE, ROYAL_BLUE]
+CURVE_COLOURS = [BLUE, VERMILION, BLUISH_GREEN, REDDISH_PURPLE, GREY]
                                                             # blue, vermilion, green, purple, grey: a family of
                                                             # curves, such as resonance's A(ω) per b
 LIVE_COLOUR = MASS_COLOURS[0]                               # a scene graph's dots that follow the run
@@ -43,6 +53,33 @@ SIMULATION_WIDTH = 6       # px: the last (or only) mass's simulated curve
 WIDTH_STEP = 4             # px: each earlier mass's curve is this much wider (2 px of border each side)
 MAX_WIDTH = 14             # px: the widest curve (more than three masses share it in smaller steps)
 CROWDED_WIDTH = 2          # px: every curve of a long row of masses (they do not overlap)
+
+
+# Dash patterns, in units of the line's width (at least DASH_UNIT[0], at most DASH_UNIT[1] px, so a
+# thin line's dots show and a thick curve's dashes stay short enough to follow a swing): on, off, ...
+SOLID, DASHED, DOTTED, DASH_DOT = (), (4, 2), (1, 2), (6, 2, 1, 2)
+DASH_DOT_DOT, LONG_SHORT, DASH_DASH, LONG_DASH = (6, 2, 1, 2, 1, 2), (8, 2, 3, 2), (3, 1.5, 3, 4), (10, 3)
+DASH_UNIT = (2.0, 4.0)     # px
+# Each colour a graph line can have, and its dash: the first mass, E and the exact solution solid
+# (they never share a graph but by width: the exact curve is thin); colours that share a graph (the
+# masses, the energies, a family of curves, a mass's x, y and z) all draw differently, and the two
+# blues of the masses most differently (dashes; long and short).
+LINE_DASHES = {ORANGE: SOLID, BLACK: SOLID, EXACT_COLOUR: SOLID, SKY_BLUE: DASHED, BLUISH_GREEN: DOTTED,
+               REDDISH_PURPLE: DASH_DOT, BLUE: LONG_SHORT, VERMILION: DASH_DOT_DOT, ROYAL_BLUE: DASH_DASH,
+               GREY: LONG_DASH}
+
+
+def line_dashes(colour, width: float) -> tuple[float, ...]:
+    """The dash pattern, px (on, off, ...; () for a solid line), of a graph line of this colour and
+    width, px: LINE_DASHES's pattern in units of the width, kept within DASH_UNIT."""
+    unit = min(max(float(width), DASH_UNIT[0]), DASH_UNIT[1])
+    return tuple(unit * length for length in LINE_DASHES.get(tuple(colour), SOLID))
+
+
+def line_styles() -> list[dict]:
+    """LINE_DASHES for the pages' script (export/page_access.js): each colour as 0–255 and its
+    pattern in units, with DASH_UNIT, as it draws every graph line and legend sample."""
+    return [{"rgb": [int(255 * c) for c in colour], "dashes": list(dashes)} for colour, dashes in LINE_DASHES.items()]
 
 
 def mass_colour(i: int) -> tuple[float, float, float]:

@@ -1,7 +1,8 @@
 """A static figure of a headless run (`python main.py SCENE --headless --plot FILE.png`).
 
-Two graphs, like the page's: position against time for each mass (the iteration solid, the exact
-solution dashed where a closed form exists), and energy against time, K, U, E and E − W_nc.
+Two graphs, like the page's: position against time for each mass (the iteration thick, the exact
+solution thin and dark on top where a closed form exists), and energy against time, K, U, E and
+E − W_nc. Each line has its colour's dash pattern, as on the page (export/palette.py's LINE_DASHES).
 E − W_nc staying flat is the energy principle; how flat it stays shows the integrator's accuracy.
 As on the page, the energies of a system that starts at rest at equilibrium are measured from
 there, and the energy axis is fitted to the masses not expected to run away. A scene with its own
@@ -20,8 +21,8 @@ import sys
 import numpy as np
 
 from export.files import OutputError, atomic_file, figure_mark
-from export.palette import (ENERGY_COLOURS, EXACT_COLOUR, curve_colour, energy_label, mass_colours, shade,
-                            simulation_width)
+from export.palette import (ENERGY_COLOURS, EXACT_COLOUR, curve_colour, energy_label, line_dashes, mass_colours,
+                            shade, simulation_width)
 from physics.energy import kinetic, potential, rest_potential
 from physics.state import State
 
@@ -33,6 +34,14 @@ class MissingMatplotlib(OutputError):
 
     def __init__(self):
         super().__init__(f"--plot needs matplotlib: {sys.executable} -m pip install matplotlib")
+
+
+def styled(colour, lw: float) -> dict:
+    """A line's colour, width (points) and dashes as the page draws it (export/palette.py's
+    LINE_DASHES, told apart by more than colour): matplotlib scales a dash pattern by the width."""
+    dashes = line_dashes(colour, lw / POINTS_PER_PX)
+    return {"color": colour, "lw": lw,
+            "linestyle": (0, tuple(d * POINTS_PER_PX / lw for d in dashes)) if dashes else "-"}
 
 
 def _pyplot():
@@ -98,7 +107,7 @@ def resonance_panel(ax, curve: dict) -> None:
     measured_all = curve["amplitude_m"] or [None] * len(curve["b_kg_per_s"])   # None: run too short
     for j, (b, measured, exact) in enumerate(zip(curve["b_kg_per_s"], measured_all,
                                                  curve["smooth_exact_amplitude_m"])):
-        ax.plot(curve["smooth_omega_rad_per_s"], exact, color=curve_colour(j), label=f"exact, b = {b:.3g} kg/s")
+        ax.plot(curve["smooth_omega_rad_per_s"], exact, label=f"exact, b = {b:.3g} kg/s", **styled(curve_colour(j), 1.5))
         if measured is not None:
             ax.plot(omega, measured, "o", ms=5, color=curve_colour(j), markeredgecolor="white",
                     label=f"measured, b = {b:.3g} kg/s")
@@ -141,16 +150,16 @@ def energy_panel(ax, result, *, colours) -> None:
             name = f"{label}: {energy_label('E', from_rest=from_rest)}"
             if np.nanmax(E[:, i]) > high or np.nanmin(E[:, i]) < low:
                 name += ", runs off the graph"
-            ax.plot(traj.t, E[:, i], color=colours[i], label=name)
+            ax.plot(traj.t, E[:, i], label=name, **styled(colours[i], 1.5))
             if np.any(traj.work):   # else E − W_nc is E: a second line on it would only crowd the legend
-                ax.plot(traj.t, E_minus_W[:, i], ":", color=colours[i],
+                ax.plot(traj.t, E_minus_W[:, i], ":", color=colours[i], lw=0.9,
                         label=f"{label}: {energy_label('E_minus_W_nc', from_rest=from_rest)}")
         ax.set_title("Energy of each mass" + (", measured from rest at equilibrium" if from_rest else ""))
         ax.legend(loc="best", fontsize="small")
     elif traj.energy is not None:
         for key, colour in ENERGY_COLOURS.items():
-            ax.plot(traj.t, traj.energy[key] - (rest if from_rest and key != "K" else 0.0), color=colour,
-                    label=energy_label(key, from_rest=from_rest), lw=2.4 if key == "E" else 1.5)
+            ax.plot(traj.t, traj.energy[key] - (rest if from_rest and key != "K" else 0.0),
+                    label=energy_label(key, from_rest=from_rest), **styled(colour, 2.4 if key == "E" else 1.5))
         if from_rest:
             ax.set_title("Energy, measured from rest at equilibrium")
         ax.legend(loc="best", fontsize="small")
@@ -214,11 +223,10 @@ def plot(result, path: str) -> None:
             tag = f"{label}: {name}" if len(model.labels) > 1 or len(axes_shown) > 1 else name
             crowded = len(model.labels) * len(axes_shown) > MAX_LEGEND
             width = POINTS_PER_PX * simulation_width(i, len(model.labels), crowded=crowded)
-            ax_r.plot(traj.t, traj.r[:, i, axis], lw=width, label=tag,
-                      color=shade(colours[i], axes_shown.index(axis)))
+            ax_r.plot(traj.t, traj.r[:, i, axis], label=tag, **styled(shade(colours[i], axes_shown.index(axis)), width))
             if exact is not None and not crowded and np.any(np.isfinite(exact[0][:, i, axis])):
                 first = not any(line.get_label() == "exact" for line in ax_r.lines)
-                ax_r.plot(smooth_t, exact[0][:, i, axis], "--", lw=1.2, color=EXACT_COLOUR, zorder=3,
+                ax_r.plot(smooth_t, exact[0][:, i, axis], zorder=3, **styled(EXACT_COLOUR, 1.2),
                           label="exact" if first else "_nolegend_")
     ax_r.set_ylabel("position (m)")
     ax_r.set_title(f"{result.setup.name}: dt = {model.dt:g} s, {result.integrator}")

@@ -256,3 +256,38 @@ def test_the_simulation_of_colour_blindness_merges_red_and_green():
     red, green = (0.8, 0.3, 0.1), (0.45, 0.45, 0.1)
     assert closest_pair([red, green], np.eye(3))[0] > 2 * DISTINCT
     assert closest_pair([red, green], DEUTERANOPIA)[0] < DISTINCT
+
+
+def contrast(a, b) -> float:
+    """WCAG 2.1's contrast ratio of two colours (0–1 RGB)."""
+    def luminance(colour):
+        lin = [c / 12.92 if c <= 0.04045 else ((c + 0.055) / 1.055) ** 2.4 for c in colour]
+        return 0.2126 * lin[0] + 0.7152 * lin[1] + 0.0722 * lin[2]
+    high, low = sorted((luminance(a), luminance(b)), reverse=True)
+    return (high + 0.05) / (low + 0.05)
+
+
+def test_every_line_colour_is_3_to_1_on_the_white_graphs_and_masses_on_the_dark_view():
+    """WCAG 1.4.11: a graph line is at least 3:1 against the white graph; a mass's colour (its ball,
+    trail and arrows) against the 3-D view's dark background too."""
+    from browser.scene3d import BACKGROUND
+    from export.palette import ENERGY_COLOURS, EXACT_COLOUR
+
+    white = (1.0, 1.0, 1.0)
+    for colour in [*MASS_COLOURS, *CURVE_COLOURS, *ENERGY_COLOURS.values(), EXACT_COLOUR]:
+        assert contrast(colour, white) >= 3.0, (colour, contrast(colour, white))
+    for colour in MASS_COLOURS:
+        assert contrast(colour, BACKGROUND) >= 3.0, (colour, contrast(colour, BACKGROUND))
+    assert contrast((0.902, 0.624, 0.0), white) < 3.0   # Okabe–Ito's own orange: why it is deepened
+
+
+def test_curves_that_share_a_graph_differ_by_dash_not_only_by_colour():
+    """WCAG 1.4.1: the masses' colours, the energies' and a family of curves each draw a dash
+    pattern of their own (export/palette.py LINE_DASHES), the same at every width."""
+    from export.palette import ENERGY_COLOURS, LINE_DASHES, line_dashes
+
+    for family in (MASS_COLOURS, list(ENERGY_COLOURS.values()), CURVE_COLOURS):
+        patterns = [LINE_DASHES[tuple(c)] for c in family]
+        assert len(set(patterns)) == len(patterns), family
+    assert line_dashes(MASS_COLOURS[1], 1.0) == tuple(2.0 * n for n in LINE_DASHES[MASS_COLOURS[1]])   # floor 2 px
+    assert line_dashes(MASS_COLOURS[1], 14.0) == tuple(4.0 * n for n in LINE_DASHES[MASS_COLOURS[1]])  # cap 4 px
