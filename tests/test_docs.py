@@ -98,15 +98,16 @@ def test_the_readme_reads_in_the_issues_order():
     assert text.index("![") < text.index("## Set up")
 
 
-def test_the_readme_sets_up_as_ci_does_and_names_the_quick_check():
-    """The README's second set-up command is the one `.ci/run` runs, word for word, and the README
-    names the quick check (no browser) that a contributor runs while working."""
+def test_the_readme_sets_up_as_ci_does_and_names_the_browser_suite():
+    """The README's second set-up command is the one `.ci/run` runs, word for word: the tests
+    that need no browser (QUICK_CHECK); and the README names the browser suite's own command."""
     readme = (ROOT / "README.md").read_text(encoding="utf-8")
     ci = (ROOT / ".ci" / "run").read_text(encoding="utf-8")
     ci_command = next(line for line in ci.splitlines() if line.startswith("apt-get update"))
     assert f"\n    {ci_command}\n" in readme
     assert "    python3 -m venv .venv && .venv/bin/pip install -r requirements.txt && .venv/bin/python main.py\n" in readme
-    assert f"`{QUICK_CHECK}`" in readme
+    assert ci_command.endswith(QUICK_CHECK.replace("python", ".venv/bin/python", 1))
+    assert "\n    .venv/bin/python -m pytest -m browser\n" in readme
 
 
 def test_the_notebook_tells_the_guides_jupyter_command():
