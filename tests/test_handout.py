@@ -23,8 +23,13 @@ def lines_of(*args) -> list[str]:
     return done.stdout.splitlines()
 
 
+MARK = "# Written by the spring-mass simulator; its fingerprint is sha256:"   # export/marks.py's first line
+
+
 def header(lines: list[str]) -> list[str]:
-    return lines[:lines.index("# ---- constants (unit: meaning) ----")]
+    """The program's header below its mark line (checked here): the imports and the description."""
+    assert lines[0].startswith(MARK), lines[0]
+    return lines[1:lines.index("# ---- constants (unit: meaning) ----")]
 
 
 # ---- item 14: derived values follow the values used ----
@@ -60,7 +65,8 @@ def test_critical_damping_is_written_as_its_rule():
     assert "linear damping F = −b v with b = 52.76 kg/s." in lines[3]
     command = next(line for line in lines if "python main.py" in line)
     assert command.endswith('python main.py damped --preset "critical damping" --set m=17.4'), command
-    assert lines_of("damped", "--set", "m=17.4", "--preset", "critical") == lines
+    printed = lines_of("damped", "--set", "m=17.4", "--preset", "critical")
+    assert printed[0].startswith(MARK) and printed[1:] == lines   # printed, the program is marked as ours
 
 
 def test_a_b_that_is_not_critical_keeps_its_number():
