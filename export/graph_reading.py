@@ -1,6 +1,6 @@
 """Reading a graph by clicking it, as a student reads a period or two amplitudes off a printout.
 
-A click on any graph picks the point of its curves nearest the mouse (on the screen, among every
+A click on any graph picks the point of its lines nearest the mouse (on the screen, among every
 curve's own points: numbers the engine gave, never a value in between) and writes it in a line
 under the graph, with the axes' units (from the graph's titles, `t (s)`, `y (m)`):
 
@@ -43,7 +43,7 @@ GRAPH_READING = """<script>(function () {
     }
     return null;
   }
-  function nearest(plot, pos) {  // the curves' own point nearest the click, on the screen
+  function nearest(plot, pos) {  // the lines' own point nearest the click, on the screen
     var best = null;
     plot.getData().forEach(function (s, index) {
       var d = s.datapoints, ps = d.pointsize, xa = s.xaxis, ya = s.yaxis;
